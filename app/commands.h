@@ -1,0 +1,15 @@
+// The subcommands of the `radiant` program. Each registers its options on a
+// CLI11 subcommand and returns the function that runs it.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace radiant {
+
+using CommandRunner = std::function<int()>;
+
+CommandRunner addRenderCommand(CLI::App &app);
+CommandRunner addCompareCommand(CLI::App &app);
+
+}  // namespace radiant

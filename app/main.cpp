@@ -1,0 +1,38 @@
+// radiant — command-line entry point. Catches the one error type (InputError)
+// once, prints it and exits non-zero (STYLE.md §12).
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+
+#include "commands.h"
+#include "util/error.h"
+
+int main(int argc, char **argv) {
+  CLI::App app{"Radiant — a global-illumination renderer built around radiosity (Cohen & Wallace, ch. 9)",
+               "radiant"};
+  app.set_version_flag("--version", std::string("radiant ") + RADIANT_VERSION);
+  app.require_subcommand(1);
+  CLI::App *render = app.add_subcommand("render", "Render a scene (JSON or OBJ) to EXR/PFM/PNG images");
+  CLI::App *compare = app.add_subcommand("compare", "Compare an image with a reference: mean ratio, RMSE, relMSE");
+  radiant::CommandRunner runRender = radiant::addRenderCommand(*render);
+  radiant::CommandRunner runCompare = radiant::addCompareCommand(*compare);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError &e) {
+    return app.exit(e);
+  }
+  try {
+    if (render->parsed()) return runRender();
+    if (compare->parsed()) return runCompare();
+  } catch (const radiant::InputError &e) {
+    fmt::print(stderr, "radiant: error: {}\n", e.what());
+    return 2;
+  } catch (const std::exception &e) {
+    fmt::print(stderr, "radiant: error: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}

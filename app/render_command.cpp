@@ -1,0 +1,175 @@
+// radiant render SCENE — loads a scene (JSON or bare OBJ), applies command-line
+// overrides, renders with the chosen method and writes the images.
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <filesystem>
+#include <optional>
+#include <sstream>
+
+#include "commands.h"
+#include "raytrace/ray_tracer.h"
+#include "render/driver.h"
+#include "render/film_image.h"
+#include "render/renderer.h"
+#include "scene/load_scene.h"
+#include "util/error.h"
+
+namespace radiant {
+
+namespace {
+
+struct RenderCommandOptions {
+  std::string scenePath;
+  std::string method = "path";
+  std::vector<std::string> outputs;
+  std::string variancePath;
+  std::optional<int> spp, width, height, maxDepth;
+  std::optional<double> time, fov, exposure;
+  std::optional<uint64_t> seed;
+  std::string eye, target, up, pixel;
+  int threads = 0;
+  bool quiet = false;
+};
+
+InputLocation flag(const std::string &name) { return InputLocation{name}; }
+
+Vec3 parseVector(const std::string &text, const std::string &flagName) {
+  Vec3 v;
+  char c1 = 0, c2 = 0;
+  std::istringstream in(text);
+  if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !isFinite(v) || !(in >> std::ws).eof())
+    throw InputError(flag(flagName), "expected three comma-separated numbers like 1,2.5,-3, got '" + text + "'");
+  return v;
+}
+
+/// The default output name: the scene's folder for `…/name/scene.json`, else the file's stem.
+std::string defaultStem(const std::string &scenePath) {
+  std::filesystem::path p(scenePath);
+  if (p.stem() == "scene" && p.has_parent_path() && !p.parent_path().filename().empty())
+    return p.parent_path().filename().string();
+  return p.stem().string();
+}
+
+}  // namespace
+
+CommandRunner addRenderCommand(CLI::App &app) {
+  auto o = std::make_shared<RenderCommandOptions>();
+  app.add_option("scene", o->scenePath, "Scene file: JSON (docs/scene-format.md) or a bare .obj model")->required();
+  std::string methods;
+  for (const RendererInfo &info : rendererRegistry())
+    methods += fmt::format("\n  {:<12} {}", info.name, info.summary);
+  app.add_option("-m,--method", o->method, "Rendering method:" + methods)->default_val("path");
+  app.add_option("-o,--output", o->outputs,
+                 "Output image; repeat for several. Format by extension: .exr (linear float), .pfm (linear), "
+                 ".png (sRGB after --exposure). Default: NAME.exr and NAME.png, NAME from the scene file");
+  app.add_option("--variance", o->variancePath, "Also write the variance of each pixel's mean (.exr or .pfm)");
+  app.add_option("--spp", o->spp, "Samples per pixel (default: the scene's render.spp, else 64)");
+  app.add_option("--time", o->time,
+                 "Time budget in seconds: stop after the sampling round that reaches it (--spp still caps it)");
+  app.add_option("--seed", o->seed, "Random seed; the same seed and sample count give the same image");
+  app.add_option("--threads", o->threads, "Worker threads (0: all cores); does not change the image")
+      ->default_val(0)
+      ->check(CLI::Range(0, 4096));
+  app.add_option("--max-depth", o->maxDepth, "Maximum bounces (0: unlimited, Russian roulette ends paths)");
+  app.add_option("--exposure", o->exposure, "PNG exposure in stops (radiance × 2^stops before the sRGB curve)");
+  app.add_option("--eye", o->eye, "Camera position x,y,z in scene units (overrides the scene)");
+  app.add_option("--target", o->target, "Camera target x,y,z in scene units");
+  app.add_option("--up", o->up, "Camera up vector x,y,z");
+  app.add_option("--fov", o->fov, "Vertical field of view, degrees");
+  app.add_option("--width", o->width, "Image width, pixels");
+  app.add_option("--height", o->height, "Image height, pixels");
+  app.add_option("--pixel", o->pixel, "Render only pixel x,y (debugging; other pixels stay black)");
+  app.add_flag("-q,--quiet", o->quiet, "No progress or summary on stderr");
+
+  return [o]() {
+    Scene scene = loadScene(o->scenePath);
+    const double unit = scene.metresPerUnit;
+    if (!o->eye.empty()) scene.camera.eye = parseVector(o->eye, "--eye") * unit;
+    if (!o->target.empty()) scene.camera.target = parseVector(o->target, "--target") * unit;
+    if (!o->up.empty()) scene.camera.up = parseVector(o->up, "--up");
+    if (o->fov) scene.camera.verticalFovDegrees = *o->fov;
+    if (o->width) scene.render.width = *o->width;
+    if (o->height) scene.render.height = *o->height;
+    if (o->spp) scene.render.samplesPerPixel = *o->spp;
+    if (o->time) scene.render.timeBudgetSeconds = *o->time;
+    if (o->seed) scene.render.seed = *o->seed;
+    if (o->maxDepth) scene.render.maxDepth = *o->maxDepth;
+    if (o->exposure) scene.render.exposure = *o->exposure;
+    if (o->time && !o->spp) scene.render.samplesPerPixel = kMaxSamplesPerPixel;  // the budget decides
+
+    // Command-line values get the same checks as the scene file's, before any allocation.
+    const RenderSettings &r = scene.render;
+    if (r.width < 1 || r.height < 1 || r.width > kMaxImageDimension || r.height > kMaxImageDimension ||
+        static_cast<long long>(r.width) * r.height > kMaxImagePixels)
+      throw InputError(flag("--width/--height"),
+                       fmt::format("image size {}x{} is out of range (each side 1..{}, at most {} pixels)", r.width,
+                                   r.height, kMaxImageDimension, kMaxImagePixels));
+    if (r.samplesPerPixel < 1 || r.samplesPerPixel > kMaxSamplesPerPixel)
+      throw InputError(flag("--spp"), fmt::format("samples per pixel must be in 1..{}, got {}", kMaxSamplesPerPixel,
+                                                  r.samplesPerPixel));
+    if (!(r.timeBudgetSeconds >= 0) || !std::isfinite(r.timeBudgetSeconds))
+      throw InputError(flag("--time"), "the time budget must be a non-negative number of seconds");
+    if (r.maxDepth < 0) throw InputError(flag("--max-depth"), "must be 0 (unlimited) or positive");
+    if (!(scene.camera.verticalFovDegrees > 0 && scene.camera.verticalFovDegrees < 180))
+      throw InputError(flag("--fov"), "the field of view must be strictly between 0 and 180 degrees");
+    Vec3 view = scene.camera.target - scene.camera.eye;
+    if (!(length(view) > 0) || !(length(cross(normalize(view), normalize(scene.camera.up))) > 1e-6))
+      throw InputError(flag("--eye/--target/--up"),
+                       "the camera needs eye ≠ target and an up vector not parallel to the view direction");
+
+    std::vector<std::string> outputs = o->outputs;
+    if (outputs.empty()) {
+      std::string stem = defaultStem(o->scenePath);
+      outputs = {stem + ".exr", stem + ".png"};
+    }
+    for (const std::string &path : outputs)
+      if (!isSupportedImageExtension(path))
+        throw InputError(flag("--output"), "'" + path + "': unknown image extension (expected .exr, .pfm or .png)");
+    if (!o->variancePath.empty() && !isSupportedImageExtension(o->variancePath))
+      throw InputError(flag("--variance"), "'" + o->variancePath + "': expected a .exr or .pfm file");
+
+    DriverOptions driver;
+    driver.samplesPerPixel = r.samplesPerPixel;
+    driver.timeBudgetSeconds = r.timeBudgetSeconds;
+    driver.seed = r.seed;
+    driver.threads = o->threads;
+    if (!o->pixel.empty()) {
+      int x = -1, y = -1;
+      char comma = 0;
+      std::istringstream in(o->pixel);
+      if (!(in >> x >> comma >> y) || comma != ',' || x < 0 || y < 0 || x >= r.width || y >= r.height)
+        throw InputError(flag("--pixel"), fmt::format("expected x,y inside the {}x{} image", r.width, r.height));
+      driver.onlyPixelX = x;
+      driver.onlyPixelY = y;
+    }
+
+    if (!o->quiet)
+      for (const std::string &warning : scene.warnings) fmt::print(stderr, "radiant: warning: {}\n", warning);
+
+    RayTracer tracer(scene);
+    RendererOptions rendererOptions;
+    rendererOptions.maxDepth = r.maxDepth;
+    std::unique_ptr<Renderer> renderer = createRenderer(o->method, tracer, rendererOptions);
+    PinholeCamera camera(scene.camera, r.width, r.height);
+    Film film(r.width, r.height);
+    RenderStats stats = renderImage(camera, *renderer, driver, film,
+                                    o->quiet ? ProgressCallback{} : makeConsoleProgress(o->method));
+
+    Image image = meanImage(film);
+    if (driver.onlyPixelX >= 0 && !o->quiet) {
+      const float *v = image.pixel(driver.onlyPixelX, driver.onlyPixelY);
+      fmt::print(stderr, "pixel {},{}: radiance {:.6g} {:.6g} {:.6g} W/(sr·m²)\n", driver.onlyPixelX,
+                 driver.onlyPixelY, v[0], v[1], v[2]);
+    }
+    for (const std::string &path : outputs) writeImage(image, path, r.exposure);
+    if (!o->variancePath.empty()) writeImage(varianceImage(film), o->variancePath);
+    if (!o->quiet)
+      fmt::print(stderr, "radiant: {} spp in {:.2f} s ({:.3g} Msamples/s); wrote {}\n", stats.samplesPerPixel,
+                 stats.seconds, stats.cameraSamples / std::max(stats.seconds, 1e-9) * 1e-6,
+                 fmt::join(outputs, ", "));
+    return 0;
+  };
+}
+
+}  // namespace radiant

@@ -1,0 +1,185 @@
+#include "io/image.h"
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <stb/stb_image_write.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <stdexcept>
+
+#include "util/error.h"
+
+namespace radiant {
+
+namespace {
+
+std::string extensionOf(const std::string &path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char &c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+/// Writes through `write(temporaryPath)` then renames onto `path`.
+template <typename WriteFunction>
+void writeAtomically(const std::string &path, WriteFunction write) {
+  std::filesystem::path target(path);
+  std::random_device entropy;
+  std::filesystem::path temporary =
+      target.parent_path() / ("." + target.filename().string() + ".tmp" + std::to_string(entropy() % 1000000));
+  try {
+    write(temporary.string());
+    std::filesystem::rename(temporary, target);
+  } catch (const std::exception &e) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw std::runtime_error("cannot write '" + path + "': " + e.what());
+  }
+}
+
+}  // namespace
+
+double srgbEncode(double linear) {
+  if (!(linear > 0)) return 0;
+  if (linear >= 1) return 1;
+  return linear <= 0.0031308 ? 12.92 * linear : 1.055 * std::pow(linear, 1 / 2.4) - 0.055;
+}
+
+bool isSupportedImageExtension(const std::string &path) {
+  std::string ext = extensionOf(path);
+  return ext == ".exr" || ext == ".pfm" || ext == ".png";
+}
+
+void writeImage(const Image &image, const std::string &path, double exposureStops) {
+  std::string ext = extensionOf(path);
+  if (ext == ".exr") return writeExr(image, path);
+  if (ext == ".pfm") return writePfm(image, path);
+  if (ext == ".png") return writePng(image, path, exposureStops);
+  throw std::runtime_error("cannot write '" + path + "': unknown image extension (expected .exr, .pfm or .png)");
+}
+
+void writeExr(const Image &image, const std::string &path) {
+  writeAtomically(path, [&](const std::string &temporary) {
+    Imf::Header header(image.width, image.height);
+    header.channels().insert("R", Imf::Channel(Imf::FLOAT));
+    header.channels().insert("G", Imf::Channel(Imf::FLOAT));
+    header.channels().insert("B", Imf::Channel(Imf::FLOAT));
+    Imf::OutputFile file(temporary.c_str(), header);
+    Imf::FrameBuffer frame;
+    const size_t xStride = 3 * sizeof(float), yStride = xStride * image.width;
+    char *base = reinterpret_cast<char *>(const_cast<float *>(image.rgb.data()));
+    frame.insert("R", Imf::Slice(Imf::FLOAT, base, xStride, yStride));
+    frame.insert("G", Imf::Slice(Imf::FLOAT, base + sizeof(float), xStride, yStride));
+    frame.insert("B", Imf::Slice(Imf::FLOAT, base + 2 * sizeof(float), xStride, yStride));
+    file.setFrameBuffer(frame);
+    file.writePixels(image.height);
+  });
+}
+
+void writePfm(const Image &image, const std::string &path) {
+  writeAtomically(path, [&](const std::string &temporary) {
+    std::ofstream out(temporary, std::ios::binary);
+    if (!out) throw std::runtime_error("cannot open for writing");
+    // Negative scale: little-endian floats. PFM stores rows bottom to top.
+    out << "PF\n" << image.width << " " << image.height << "\n-1.0\n";
+    for (int y = image.height - 1; y >= 0; --y)
+      out.write(reinterpret_cast<const char *>(image.pixel(0, y)), std::streamsize(sizeof(float)) * 3 * image.width);
+    if (!out) throw std::runtime_error("write failed");
+  });
+}
+
+void writePngBytes(const std::vector<unsigned char> &rgb, int width, int height, const std::string &path) {
+  writeAtomically(path, [&](const std::string &temporary) {
+    if (!stbi_write_png(temporary.c_str(), width, height, 3, rgb.data(), width * 3))
+      throw std::runtime_error("PNG encoder failed");
+  });
+}
+
+void writePng(const Image &image, const std::string &path, double exposureStops) {
+  const double scale = std::exp2(exposureStops);
+  std::vector<unsigned char> bytes(image.rgb.size());
+  for (size_t i = 0; i < image.rgb.size(); ++i)
+    bytes[i] = static_cast<unsigned char>(std::lround(255.0 * srgbEncode(image.rgb[i] * scale)));
+  writePngBytes(bytes, image.width, image.height, path);
+}
+
+static Image readPfm(const std::string &path) {
+  InputLocation where{path};
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(where, "cannot open the file");
+  std::string magic;
+  long long width = 0, height = 0;
+  double scale = 0;
+  in >> magic >> width >> height >> scale;
+  if (!in || (magic != "PF" && magic != "Pf"))
+    throw InputError(where, "not a PFM file (expected a 'PF' or 'Pf' header with width, height and scale)");
+  if (width < 1 || height < 1 || width > 65536 || height > 65536 || width * height > (1LL << 28))
+    throw InputError(where, "PFM size " + std::to_string(width) + "x" + std::to_string(height) + " is out of range");
+  in.get();
+  int channels = magic == "PF" ? 3 : 1;
+  std::vector<float> raw(size_t(width) * height * channels);
+  in.read(reinterpret_cast<char *>(raw.data()), std::streamsize(raw.size() * sizeof(float)));
+  if (!in) throw InputError(where, "truncated PFM pixel data");
+  if (scale > 0) {  // big-endian data
+    for (float &f : raw) {
+      auto *b = reinterpret_cast<unsigned char *>(&f);
+      std::swap(b[0], b[3]);
+      std::swap(b[1], b[2]);
+    }
+  }
+  Image image(static_cast<int>(width), static_cast<int>(height));
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      for (int c = 0; c < 3; ++c)
+        image.pixel(x, image.height - 1 - y)[c] = raw[(size_t(y) * width + x) * channels + (channels == 3 ? c : 0)];
+  return image;
+}
+
+static Image readExr(const std::string &path) {
+  InputLocation where{path};
+  try {
+    Imf::InputFile file(path.c_str());
+    Imath::Box2i window = file.header().dataWindow();
+    long long width = static_cast<long long>(window.max.x) - window.min.x + 1;
+    long long height = static_cast<long long>(window.max.y) - window.min.y + 1;
+    if (width < 1 || height < 1 || width * height > (1LL << 28))
+      throw InputError(where, "EXR data window is empty or too large");
+    Image image(static_cast<int>(width), static_cast<int>(height));
+    const Imf::ChannelList &channels = file.header().channels();
+    bool hasRgb = channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
+    bool hasY = channels.findChannel("Y");
+    if (!hasRgb && !hasY) throw InputError(where, "EXR file has neither R, G, B nor Y channels");
+    Imf::FrameBuffer frame;
+    const size_t xStride = 3 * sizeof(float), yStride = xStride * image.width;
+    char *base = reinterpret_cast<char *>(image.rgb.data()) -
+                 (size_t(window.min.x) * xStride + size_t(window.min.y) * yStride);
+    const char *names[3] = {"R", "G", "B"};
+    for (int c = 0; c < (hasRgb ? 3 : 1); ++c)
+      frame.insert(hasRgb ? names[c] : "Y", Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
+    file.setFrameBuffer(frame);
+    file.readPixels(window.min.y, window.max.y);
+    if (!hasRgb)  // grey image: luminance into all three channels
+      for (size_t i = 0; i < image.rgb.size(); i += 3) image.rgb[i + 1] = image.rgb[i + 2] = image.rgb[i];
+    return image;
+  } catch (const InputError &) {
+    throw;
+  } catch (const std::exception &e) {
+    throw InputError(where, std::string("cannot read OpenEXR image: ") + e.what());
+  }
+}
+
+Image readImage(const std::string &path) {
+  if (!std::filesystem::exists(path)) throw InputError(InputLocation{path}, "no such file");
+  std::string ext = extensionOf(path);
+  if (ext == ".exr") return readExr(path);
+  if (ext == ".pfm") return readPfm(path);
+  throw InputError(InputLocation{path}, "unsupported image format (expected .exr or .pfm, linear radiance)");
+}
+
+}  // namespace radiant

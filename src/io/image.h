@@ -1,0 +1,45 @@
+// Images on disk: linear HDR (OpenEXR float, PFM) and display PNG.
+//
+// Every writer goes through a temporary file in the target's folder and a
+// rename, so a failed or interrupted write never leaves a partial file over a
+// good one.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "util/spectrum.h"
+
+namespace radiant {
+
+/// Linear RGB float image, row-major from the top-left pixel.
+struct Image {
+  int width = 0, height = 0;
+  std::vector<float> rgb;  ///< 3 floats per pixel
+
+  Image() = default;
+  Image(int w, int h) : width(w), height(h), rgb(size_t(w) * h * 3, 0.0f) {}
+  float *pixel(int x, int y) { return &rgb[(size_t(y) * width + x) * 3]; }
+  const float *pixel(int x, int y) const { return &rgb[(size_t(y) * width + x) * 3]; }
+};
+
+/// Writes by extension: .exr (32-bit float), .pfm, .png (sRGB after
+/// 2^exposureStops scaling). Throws std::runtime_error naming the file.
+void writeImage(const Image &image, const std::string &path, double exposureStops = 0);
+void writeExr(const Image &image, const std::string &path);
+void writePfm(const Image &image, const std::string &path);
+/// 8-bit sRGB (IEC 61966-2-1 curve), radiance scaled by 2^exposureStops and clipped to [0,1].
+void writePng(const Image &image, const std::string &path, double exposureStops = 0);
+/// 8-bit PNG from already display-encoded RGB bytes.
+void writePngBytes(const std::vector<unsigned char> &rgb, int width, int height, const std::string &path);
+
+/// Reads .exr or .pfm (linear). Throws InputError naming the file.
+Image readImage(const std::string &path);
+
+/// The sRGB transfer function (linear [0,1] → encoded [0,1]).
+double srgbEncode(double linear);
+
+/// True if the extension is one writeImage knows.
+bool isSupportedImageExtension(const std::string &path);
+
+}  // namespace radiant

@@ -1,0 +1,141 @@
+#include "raytrace/ray_tracer.h"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace radiant {
+
+static void reportEmbreeError(void *, RTCError code, const char *message) {
+  if (code != RTC_ERROR_NONE) throw std::runtime_error(std::string("Embree: ") + (message ? message : "error"));
+}
+
+RayTracer::RayTracer(const Scene &scene) : scene_(scene) {
+  device_ = rtcNewDevice("threads=0");  // Embree uses the caller's threads (TBB) for builds
+  if (!device_) throw std::runtime_error("Embree: cannot create a device (unsupported CPU?)");
+  rtcSetDeviceErrorFunction(device_, reportEmbreeError, nullptr);
+
+  rtcScene_ = rtcNewScene(device_);
+  rtcSetSceneBuildQuality(rtcScene_, RTC_BUILD_QUALITY_HIGH);
+  rtcSetSceneFlags(rtcScene_, RTC_SCENE_FLAG_ROBUST);
+
+  double extent = 0;
+  for (const Vec3 &p : scene.positions)
+    extent = std::max({extent, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  // Float has 24 bits; 2^-17 of the scene's magnitude is ~100 ulps of it.
+  epsilon_ = std::max(1e-9, extent * 7.6e-6);
+
+  if (!scene.triangles.empty()) {
+    RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto *vertices = static_cast<float *>(rtcSetNewGeometryBuffer(
+        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), scene.positions.size()));
+    for (size_t i = 0; i < scene.positions.size(); ++i) {
+      vertices[3 * i + 0] = static_cast<float>(scene.positions[i].x);
+      vertices[3 * i + 1] = static_cast<float>(scene.positions[i].y);
+      vertices[3 * i + 2] = static_cast<float>(scene.positions[i].z);
+    }
+    auto *indices = static_cast<unsigned *>(rtcSetNewGeometryBuffer(
+        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), scene.triangles.size()));
+    for (size_t i = 0; i < scene.triangles.size(); ++i)
+      for (int j = 0; j < 3; ++j) indices[3 * i + j] = scene.triangles[i].v[j];
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometry(rtcScene_, geometry);
+    rtcReleaseGeometry(geometry);
+  }
+  rtcCommitScene(rtcScene_);
+}
+
+RayTracer::~RayTracer() {
+  if (rtcScene_) rtcReleaseScene(rtcScene_);
+  if (device_) rtcReleaseDevice(device_);
+}
+
+static RTCRayHit makeRayHit(const Ray &ray, double tMax) {
+  RTCRayHit rh{};
+  rh.ray.org_x = static_cast<float>(ray.origin.x);
+  rh.ray.org_y = static_cast<float>(ray.origin.y);
+  rh.ray.org_z = static_cast<float>(ray.origin.z);
+  rh.ray.dir_x = static_cast<float>(ray.direction.x);
+  rh.ray.dir_y = static_cast<float>(ray.direction.y);
+  rh.ray.dir_z = static_cast<float>(ray.direction.z);
+  rh.ray.tnear = 0.0f;
+  rh.ray.tfar = std::isfinite(tMax) ? static_cast<float>(tMax) : INFINITY;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
+void RayTracer::completeHit(const Ray &ray, float tfar, unsigned primitive, float u, float v, Hit &hit) const {
+  const Triangle &t = scene_.triangles[primitive];
+  hit.triangle = primitive;
+  hit.b1 = u;
+  hit.b2 = v;
+  hit.material = t.material;
+  hit.face = t.face;
+  const Vec3 &p0 = scene_.positions[t.v[0]], &p1 = scene_.positions[t.v[1]], &p2 = scene_.positions[t.v[2]];
+  double b0 = 1.0 - hit.b1 - hit.b2;
+  hit.position = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;
+  hit.distance = std::isfinite(dot(hit.position - ray.origin, ray.direction))
+                     ? dot(hit.position - ray.origin, ray.direction)
+                     : static_cast<double>(tfar);
+  hit.geometricNormal = normalize(cross(p1 - p0, p2 - p0));
+  if (t.n[0] >= 0 && t.n[1] >= 0 && t.n[2] >= 0) {
+    Vec3 n = normalize(scene_.normals[t.n[0]] * b0 + scene_.normals[t.n[1]] * hit.b1 + scene_.normals[t.n[2]] * hit.b2);
+    hit.shadingNormal = dot(n, hit.geometricNormal) < 0 ? -n : n;
+    if (!isFinite(hit.shadingNormal) || length(n) == 0) hit.shadingNormal = hit.geometricNormal;
+  } else {
+    hit.shadingNormal = hit.geometricNormal;
+  }
+}
+
+bool RayTracer::intersect(const Ray &ray, Hit &hit, double tMax) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh = makeRayHit(ray, tMax);
+  rtcIntersect1(rtcScene_, &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  completeHit(ray, rh.ray.tfar, rh.hit.primID, rh.hit.u, rh.hit.v, hit);
+  return true;
+}
+
+bool RayTracer::occluded(const Ray &ray, double tMax) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay r = makeRayHit(ray, tMax).ray;
+  rtcOccluded1(rtcScene_, &context, &r);
+  return r.tfar < 0.0f;  // Embree sets tfar to −inf on a hit
+}
+
+bool RayTracer::visible(const Vec3 &from, const Vec3 &fromNormal, const Vec3 &to, const Vec3 &toNormal) const {
+  Vec3 d = to - from;
+  double dist = length(d);
+  if (dist <= 0) return true;
+  Vec3 dir = d / dist;
+  Ray ray = spawnRay(from, fromNormal, dir);
+  Vec3 target = to + toNormal * (dot(-dir, toNormal) >= 0 ? epsilon_ : -epsilon_);
+  double tMax = length(target - ray.origin) * (1.0 - 1e-7);
+  return !occluded(ray, tMax);
+}
+
+void RayTracer::intersectMany(std::span<const Ray> rays, std::span<Hit> hits, std::span<uint8_t> found) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  constexpr size_t kChunk = 256;
+  RTCRayHit batch[kChunk];
+  for (size_t start = 0; start < rays.size(); start += kChunk) {
+    size_t count = std::min(kChunk, rays.size() - start);
+    for (size_t i = 0; i < count; ++i) batch[i] = makeRayHit(rays[start + i], INFINITY);
+    rtcIntersect1M(rtcScene_, &context, batch, static_cast<unsigned>(count), sizeof(RTCRayHit));
+    for (size_t i = 0; i < count; ++i) {
+      found[start + i] = batch[i].hit.geomID != RTC_INVALID_GEOMETRY_ID;
+      if (found[start + i])
+        completeHit(rays[start + i], batch[i].ray.tfar, batch[i].hit.primID, batch[i].hit.u, batch[i].hit.v,
+                    hits[start + i]);
+    }
+  }
+}
+
+}  // namespace radiant

@@ -1,0 +1,66 @@
+// Visibility for every stage: closest hit and occlusion over the scene's
+// triangles, through one Embree 3 BVH.
+//
+// Embree works in single precision on its own copy of the vertices; hit
+// positions and normals are recomputed here in double from the scene's data,
+// so callers get the accuracy the radiosity stages need.
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include <span>
+
+#include "scene/scene.h"
+
+namespace radiant {
+
+struct Hit {
+  double distance = 0;     ///< along the (unit) ray direction, metres
+  uint32_t triangle = 0;   ///< index into Scene::triangles
+  double b1 = 0, b2 = 0;   ///< barycentrics of vertices 1 and 2 (vertex 0 has 1 − b1 − b2)
+  Vec3 position;
+  Vec3 geometricNormal;    ///< unit, the triangle's front side (counter-clockwise winding)
+  Vec3 shadingNormal;      ///< unit, interpolated vertex normals, oriented to the geometric normal's side
+  uint32_t material = 0;
+  uint32_t face = 0;
+};
+
+class RayTracer {
+ public:
+  explicit RayTracer(const Scene &scene);
+  ~RayTracer();
+  RayTracer(const RayTracer &) = delete;
+  RayTracer &operator=(const RayTracer &) = delete;
+
+  /// Closest hit with distance in (tMin, tMax); false if none.
+  bool intersect(const Ray &ray, Hit &hit, double tMax = INFINITY) const;
+  /// True if anything blocks the open segment (tMin, tMax) of the ray.
+  bool occluded(const Ray &ray, double tMax) const;
+  /// True if the two points see each other (both offset off their surfaces).
+  bool visible(const Vec3 &from, const Vec3 &fromNormal, const Vec3 &to, const Vec3 &toNormal) const;
+
+  /// Many rays at once (Embree's stream API, coherent flag): `hits[i]` is valid where `found[i]`.
+  void intersectMany(std::span<const Ray> rays, std::span<Hit> hits, std::span<uint8_t> found) const;
+
+  /// Offset that lifts a ray origin off a surface: large enough to clear float
+  /// round-off of Embree's copy of the geometry, small against the scene.
+  double epsilon() const { return epsilon_; }
+  /// A ray leaving `position` in `direction`, nudged to the side of `normal` the direction points to.
+  Ray spawnRay(const Vec3 &position, const Vec3 &normal, const Vec3 &direction) const {
+    return {position + normal * (dot(direction, normal) >= 0 ? epsilon_ : -epsilon_), direction};
+  }
+
+  const Scene &scene() const { return scene_; }
+  RTCScene embreeScene() const { return rtcScene_; }
+
+  /// Fills a Hit from Embree's primitive id and barycentrics (used by the stream path and the benchmark).
+  void completeHit(const Ray &ray, float tfar, unsigned primitive, float u, float v, Hit &hit) const;
+
+ private:
+  const Scene &scene_;
+  RTCDevice device_ = nullptr;
+  RTCScene rtcScene_ = nullptr;
+  double epsilon_ = 1e-6;
+};
+
+}  // namespace radiant

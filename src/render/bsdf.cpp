@@ -1,0 +1,123 @@
+#include "render/bsdf.h"
+
+#include "render/sampling.h"
+
+namespace radiant {
+
+double fresnelDielectric(double cosThetaI, double eta) {
+  cosThetaI = std::clamp(cosThetaI, 0.0, 1.0);
+  double sin2ThetaT = (1 - cosThetaI * cosThetaI) / (eta * eta);
+  if (sin2ThetaT >= 1) return 1;  // total internal reflection
+  double cosThetaT = std::sqrt(1 - sin2ThetaT);
+  double rParallel = (eta * cosThetaI - cosThetaT) / (eta * cosThetaI + cosThetaT);
+  double rPerpendicular = (cosThetaI - eta * cosThetaT) / (cosThetaI + eta * cosThetaT);
+  return 0.5 * (rParallel * rParallel + rPerpendicular * rPerpendicular);
+}
+
+Bsdf::Bsdf(const Material &material, const Vec3 &shadingNormal, const Vec3 &geometricNormal, const Vec3 &wo)
+    : material_(material) {
+  bool woOnFront = dot(wo, geometricNormal) >= 0;
+  entering_ = woOnFront;
+  // Opaque surfaces reflect on both sides (the Cornell blocks are seen from
+  // outside, walls from inside): orient the frame towards the viewer. Glass
+  // keeps both sides distinct through `entering_`.
+  Vec3 n = woOnFront ? shadingNormal : -shadingNormal;
+  geometricNormal_ = woOnFront ? geometricNormal : -geometricNormal;
+  frame_ = Frame::fromNormal(n);
+  woLocal_ = frame_.toLocal(wo);
+}
+
+bool Bsdf::sameHemisphere(const Vec3 &wi) const {
+  // The geometric normal decides what is reflection: a shading normal may tilt
+  // a direction under the real surface, which would leak light through it.
+  return dot(wi, geometricNormal_) > 0;
+}
+
+double Bsdf::specularLobeProbability() const {
+  if (material_.kind != MaterialKind::Glossy) return 0;
+  double d = material_.diffuse.average(), s = material_.specular.average();
+  return d + s > 0 ? s / (d + s) : 0;
+}
+
+Bands Bsdf::evaluate(const Vec3 &wiWorld) const {
+  if (material_.isDelta() || !sameHemisphere(wiWorld)) return Bands(0.0);
+  Vec3 wi = frame_.toLocal(wiWorld);
+  if (wi.z <= 0 || woLocal_.z <= 0) return Bands(0.0);
+  Bands f = material_.diffuse * kInvPi;
+  if (material_.kind == MaterialKind::Glossy) {
+    // Torrance–Sparrow with GGX D and separable Smith G; the lobe's reflectance
+    // is the constant `specular` (no Fresnel), so ρ_d + ρ_s ≤ 1 bounds the albedo.
+    Vec3 h = normalize(wi + woLocal_);
+    double g = ggxG1(wi, material_.roughness) * ggxG1(woLocal_, material_.roughness);
+    f += material_.specular * (ggxD(h, material_.roughness) * g / (4 * wi.z * woLocal_.z));
+  }
+  return f;
+}
+
+double Bsdf::pdf(const Vec3 &wiWorld) const {
+  if (material_.isDelta() || !sameHemisphere(wiWorld)) return 0;
+  Vec3 wi = frame_.toLocal(wiWorld);
+  if (wi.z <= 0 || woLocal_.z <= 0) return 0;
+  double pSpecular = specularLobeProbability();
+  double p = (1 - pSpecular) * cosineHemispherePdf(wi.z);
+  if (pSpecular > 0) {
+    Vec3 h = normalize(wi + woLocal_);
+    double dotWoH = dot(woLocal_, h);
+    if (dotWoH > 0) p += pSpecular * ggxD(h, material_.roughness) * h.z / (4 * dotWoH);
+  }
+  return p;
+}
+
+bool Bsdf::sample(double uLobe, double u1, double u2, BsdfSample &out) const {
+  out = BsdfSample{};
+  switch (material_.kind) {
+    case MaterialKind::Mirror: {
+      out.wi = frame_.toWorld({-woLocal_.x, -woLocal_.y, woLocal_.z});
+      out.weight = material_.specular;
+      out.isDelta = true;
+      return sameHemisphere(out.wi);
+    }
+    case MaterialKind::Dielectric: {
+      // Smooth glass (pbrt-v4 DielectricBxDF): reflect with probability F,
+      // refract otherwise, so the weight is 1 apart from the colour filter and
+      // the (η_i/η_t)² radiance scaling across the interface.
+      double eta = entering_ ? material_.ior : 1.0 / material_.ior;
+      double cosI = woLocal_.z;
+      double fresnel = fresnelDielectric(cosI, eta);
+      out.isDelta = true;
+      if (uLobe < fresnel) {
+        out.wi = frame_.toWorld({-woLocal_.x, -woLocal_.y, woLocal_.z});
+        out.weight = Bands(1.0);
+        return true;
+      }
+      double sin2T = (1 - cosI * cosI) / (eta * eta);
+      double cosT = std::sqrt(std::max(0.0, 1 - sin2T));
+      Vec3 wt = -woLocal_ / eta + Vec3{0, 0, woLocal_.z / eta - cosT};
+      out.wi = frame_.toWorld(normalize(wt));
+      out.weight = material_.specular / (eta * eta);
+      out.isTransmission = true;
+      return dot(out.wi, geometricNormal_) < 0;
+    }
+    case MaterialKind::Lambertian:
+    case MaterialKind::Glossy: {
+      if (woLocal_.z <= 0) return false;
+      double pSpecular = specularLobeProbability();
+      Vec3 wi;
+      if (uLobe < pSpecular) {
+        Vec3 h = sampleGgxNormal(u1, u2, material_.roughness);
+        wi = h * (2 * dot(woLocal_, h)) - woLocal_;
+      } else {
+        wi = sampleCosineHemisphere(u1, u2);
+      }
+      if (wi.z <= 0) return false;
+      out.wi = frame_.toWorld(wi);
+      out.pdf = pdf(out.wi);
+      if (out.pdf <= 0) return false;
+      out.weight = evaluate(out.wi) * (wi.z / out.pdf);
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace radiant

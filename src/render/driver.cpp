@@ -1,0 +1,130 @@
+#include "render/driver.h"
+
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <mutex>
+
+namespace radiant {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+struct Tile {
+  int x0, y0, x1, y1;
+};
+
+}  // namespace
+
+RenderStats renderImage(const PinholeCamera &camera, const Renderer &renderer, const DriverOptions &options,
+                        Film &film, const ProgressCallback &progress) {
+  const auto start = Clock::now();
+  std::vector<Tile> tiles;
+  if (options.onlyPixelX >= 0) {
+    tiles.push_back({options.onlyPixelX, options.onlyPixelY, options.onlyPixelX + 1, options.onlyPixelY + 1});
+  } else {
+    for (int y = 0; y < film.height; y += options.tileSize)
+      for (int x = 0; x < film.width; x += options.tileSize)
+        tiles.push_back({x, y, std::min(x + options.tileSize, film.width), std::min(y + options.tileSize, film.height)});
+  }
+
+  const int target = options.samplesPerPixel;
+  const double budget = options.timeBudgetSeconds;
+  int done = 0;
+  std::mutex progressMutex;
+  auto lastReport = Clock::now() - std::chrono::seconds(1);
+
+  auto report = [&](int samplesDone, double roundFraction, int roundSamples, bool force) {
+    if (!progress) return;
+    std::lock_guard lock(progressMutex);
+    if (!force && secondsSince(lastReport) < 0.2) return;
+    lastReport = Clock::now();
+    Progress p;
+    p.samplesDone = samplesDone;
+    p.samplesTarget = target;
+    p.elapsedSeconds = secondsSince(start);
+    double sampleFraction = (samplesDone + roundFraction * roundSamples) / target;
+    p.fraction = budget > 0 ? std::max(sampleFraction, std::min(1.0, p.elapsedSeconds / budget)) : sampleFraction;
+    p.fraction = force ? 1.0 : std::min(1.0, p.fraction);
+    p.etaSeconds = p.fraction > 0 ? p.elapsedSeconds * (1 - p.fraction) / p.fraction : -1;
+    progress(p);
+  };
+
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  while (done < target) {
+    double elapsed = secondsSince(start);
+    if (budget > 0 && done > 0 && elapsed >= budget) break;
+    // Rounds double in size so early images are quick and the per-round
+    // overhead vanishes; under a time budget a round is cut to what the
+    // measured speed says fits in the time left.
+    int roundSamples = std::min(target - done, std::max(1, done));
+    if (budget > 0 && done > 0) {
+      double perSample = elapsed / done;
+      int fits = static_cast<int>((budget - elapsed) / perSample);
+      if (fits < 1) break;
+      roundSamples = std::min(roundSamples, fits);
+    }
+    std::atomic<size_t> tilesDone{0};
+    const int first = done, last = done + roundSamples;
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t> &range) {
+        for (size_t t = range.begin(); t != range.end(); ++t) {
+          const Tile &tile = tiles[t];
+          for (int y = tile.y0; y < tile.y1; ++y)
+            for (int x = tile.x0; x < tile.x1; ++x) {
+              size_t pixel = size_t(y) * film.width + x;
+              for (int s = first; s < last; ++s) {
+                Pcg32 rng = sampleGenerator(options.seed, pixel, s);
+                double jitterX = rng.next(), jitterY = rng.next();
+                Ray ray = camera.generateRay(x + jitterX, y + jitterY);
+                film.add(pixel, renderer.radiance(ray, rng));
+              }
+            }
+          size_t finished = ++tilesDone;
+          report(first, double(finished) / tiles.size(), roundSamples, false);
+        }
+      });
+    });
+    done = last;
+  }
+  report(done, 0, 0, true);
+
+  RenderStats stats;
+  stats.samplesPerPixel = done;
+  stats.seconds = secondsSince(start);
+  stats.cameraSamples = uint64_t(done) * (options.onlyPixelX >= 0 ? 1 : film.pixelCount());
+  return stats;
+}
+
+ProgressCallback makeConsoleProgress(const std::string &label) {
+  bool terminal = isatty(fileno(stderr));
+  auto lastLine = std::make_shared<Clock::time_point>(Clock::now());
+  return [terminal, label, lastLine](const Progress &p) {
+    std::string eta = p.etaSeconds >= 0 ? fmt::format("{:.1f}s", p.etaSeconds) : std::string("?");
+    if (terminal) {
+      constexpr int kWidth = 30;
+      int filled = static_cast<int>(p.fraction * kWidth + 0.5);
+      fmt::print(stderr, "\r{} [{}{}] {:3.0f}%  {}/{} spp  {:.1f}s  ETA {}   ", label, std::string(filled, '#'),
+                 std::string(kWidth - filled, '.'), 100 * p.fraction, p.samplesDone, p.samplesTarget,
+                 p.elapsedSeconds, eta);
+      if (p.fraction >= 1) fmt::print(stderr, "\n");
+    } else if (secondsSince(*lastLine) >= 5 || p.fraction >= 1) {
+      *lastLine = Clock::now();
+      fmt::print(stderr, "{}: {:.0f}% ({}/{} spp, {:.1f}s elapsed, ETA {})\n", label, 100 * p.fraction,
+                 p.samplesDone, p.samplesTarget, p.elapsedSeconds, eta);
+    }
+  };
+}
+
+}  // namespace radiant

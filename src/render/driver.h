@@ -1,0 +1,55 @@
+// The render driver: owns tiles, threads, seeds, sample counts, time budgets
+// and progress, so a renderer only estimates radiance for one camera ray.
+//
+// Determinism: sample s of pixel p always uses the generator
+// sampleGenerator(seed, p, s) (util/random.h) and pixels accumulate their
+// samples in index order, so the image depends on the seed and the sample
+// count, never on the thread count or the tiling. A time budget only chooses
+// how many samples are taken.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "render/film.h"
+#include "render/renderer.h"
+#include "scene/camera.h"
+
+namespace radiant {
+
+struct DriverOptions {
+  int samplesPerPixel = 64;
+  double timeBudgetSeconds = 0;  ///< 0: none; else stop after the round that reaches it
+  uint64_t seed = 1;
+  int threads = 0;               ///< 0: all hardware threads
+  int tileSize = 16;
+  /// Restrict rendering to one pixel (debugging); −1 for the whole image.
+  int onlyPixelX = -1, onlyPixelY = -1;
+};
+
+struct Progress {
+  int samplesDone = 0;    ///< complete samples per pixel so far
+  int samplesTarget = 0;
+  double fraction = 0;    ///< of the current estimate of total work
+  double elapsedSeconds = 0;
+  double etaSeconds = 0;  ///< < 0 when unknown
+};
+
+struct RenderStats {
+  int samplesPerPixel = 0;
+  double seconds = 0;
+  uint64_t cameraSamples = 0;
+};
+
+using ProgressCallback = std::function<void(const Progress &)>;
+
+/// Renders into `film` (which must be sized already). Calls `progress` from the
+/// calling thread's context, at most a few times a second.
+RenderStats renderImage(const PinholeCamera &camera, const Renderer &renderer, const DriverOptions &options,
+                        Film &film, const ProgressCallback &progress = {});
+
+/// A progress reporter for a terminal (bar with ETA on one line) or for logs
+/// (a plain line every few seconds), chosen by whether stderr is a terminal.
+ProgressCallback makeConsoleProgress(const std::string &label);
+
+}  // namespace radiant

@@ -1,0 +1,54 @@
+#include "render/light_sampler.h"
+
+#include <algorithm>
+
+#include "render/sampling.h"
+
+namespace radiant {
+
+LightSampler::LightSampler(const Scene &scene) : scene_(scene), pdfAreaByTriangle_(scene.triangles.size(), 0.0) {
+  std::vector<double> power;
+  for (uint32_t i = 0; i < scene.triangles.size(); ++i) {
+    const Material &m = scene.materials[scene.triangles[i].material];
+    if (!m.isEmitter()) continue;
+    double area = scene.triangleArea(scene.triangles[i]);
+    emitters_.push_back(i);
+    power.push_back(kPi * area * m.emission.average());
+    totalPower_ += m.emission * (kPi * area);
+  }
+  double total = 0;
+  for (double p : power) total += p;
+  cumulative_.resize(power.size());
+  probability_.resize(power.size());
+  double running = 0;
+  for (size_t k = 0; k < power.size(); ++k) {
+    probability_[k] = power[k] / total;
+    running += probability_[k];
+    cumulative_[k] = running;
+    pdfAreaByTriangle_[emitters_[k]] = probability_[k] / scene.triangleArea(scene.triangles[emitters_[k]]);
+  }
+  if (!cumulative_.empty()) cumulative_.back() = 1.0;
+}
+
+bool LightSampler::sample(double uSelect, double u1, double u2, LightSample &out) const {
+  if (emitters_.empty()) return false;
+  size_t k = std::upper_bound(cumulative_.begin(), cumulative_.end(), uSelect) - cumulative_.begin();
+  k = std::min(k, emitters_.size() - 1);
+  uint32_t index = emitters_[k];
+  const Triangle &t = scene_.triangles[index];
+  double b1, b2;
+  sampleUniformTriangle(u1, u2, b1, b2);
+  const Vec3 &p0 = scene_.positions[t.v[0]], &p1 = scene_.positions[t.v[1]], &p2 = scene_.positions[t.v[2]];
+  out.position = p0 * (1 - b1 - b2) + p1 * b1 + p2 * b2;
+  out.normal = scene_.triangleNormal(t);
+  out.radiance = scene_.materials[t.material].emission;
+  out.pdfArea = pdfAreaByTriangle_[index];
+  out.triangle = index;
+  return true;
+}
+
+double LightSampler::pdfArea(uint32_t triangle) const {
+  return triangle < pdfAreaByTriangle_.size() ? pdfAreaByTriangle_[triangle] : 0.0;
+}
+
+}  // namespace radiant

@@ -1,0 +1,48 @@
+// Picks points on emitters for next-event estimation.
+//
+// Emissive triangles are chosen in proportion to their power
+// Φ = π·A·L̄ (one-sided Lambertian emitter of radiance L, averaged over bands),
+// then a point uniformly on the chosen triangle. The density of a point is
+// therefore p(triangle)/A per unit area, whichever band is being estimated.
+#pragma once
+
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace radiant {
+
+struct LightSample {
+  Vec3 position;
+  Vec3 normal;        ///< the emitter's front side
+  Bands radiance;     ///< emitted radiance towards the front, W·sr⁻¹·m⁻²
+  double pdfArea = 0; ///< density per unit area, m⁻²
+  uint32_t triangle = 0;
+};
+
+class LightSampler {
+ public:
+  explicit LightSampler(const Scene &scene);
+
+  bool empty() const { return emitters_.empty(); }
+  /// Total emitted power, W (per band).
+  const Bands &totalPower() const { return totalPower_; }
+  bool sample(double uSelect, double u1, double u2, LightSample &out) const;
+  /// Area density of sample() producing a point on `triangle` (0 for non-emitters).
+  double pdfArea(uint32_t triangle) const;
+
+  /// Probability of choosing each emitter (for tests).
+  double selectionProbability(size_t emitterIndex) const { return probability_[emitterIndex]; }
+  size_t emitterCount() const { return emitters_.size(); }
+  uint32_t emitterTriangle(size_t emitterIndex) const { return emitters_[emitterIndex]; }
+
+ private:
+  const Scene &scene_;
+  std::vector<uint32_t> emitters_;       ///< triangle indices
+  std::vector<double> cumulative_;       ///< CDF over emitters_
+  std::vector<double> probability_;      ///< per emitter
+  std::vector<double> pdfAreaByTriangle_;///< per scene triangle
+  Bands totalPower_;
+};
+
+}  // namespace radiant

@@ -1,0 +1,118 @@
+// `path` — the unbiased reference path tracer, the ground truth every other
+// method in Radiant is measured against.
+//
+// Estimator (Veach 1997, ch. 9; pbrt-v4 PathIntegrator): at every non-delta
+// vertex, next-event estimation to a point on an emitter (chosen by power,
+// render/light_sampler.h) and a BSDF-sampled continuation; emission found by the
+// continuation is weighted against the light sample with the power heuristic,
+// so each light path is counted once in expectation. Emitters are one-sided:
+// only their front (counter-clockwise) side emits. Russian roulette after three
+// bounces, with survival probability tied to the path throughput, keeps the
+// estimator unbiased without a depth limit.
+//
+// Parameters: max depth in bounces (0 = unlimited; 1 = direct light only; a
+// positive value truncates paths, biasing
+// the image dark, for debugging only).
+#include "render/path_tracer.h"
+
+#include "render/bsdf.h"
+#include "render/light_sampler.h"
+
+namespace radiant {
+
+namespace {
+
+double powerHeuristic(double pdfA, double pdfB) {
+  double a = pdfA * pdfA, b = pdfB * pdfB;
+  return a + b > 0 ? a / (a + b) : 0.0;
+}
+
+class PathTracer final : public Renderer {
+ public:
+  PathTracer(const RayTracer &tracer, const RendererOptions &options)
+      : tracer_(tracer), scene_(tracer.scene()), lights_(tracer.scene()), maxDepth_(options.maxDepth) {}
+
+  Bands radiance(const Ray &cameraRay, Pcg32 &rng) const override {
+    Bands L(0.0), throughput(1.0);
+    Ray ray = cameraRay;
+    bool countEmissionFully = true;  // camera rays and delta bounces: no light sample competed
+    double previousBsdfPdf = 0;
+    Vec3 previousPosition = ray.origin;
+
+    for (int depth = 0;; ++depth) {
+      Hit hit;
+      if (!tracer_.intersect(ray, hit)) break;  // no environment light: the world outside is black
+      const Material &material = scene_.materials[hit.material];
+      Vec3 wo = -ray.direction;
+
+      // Emission seen by this ray (front side only).
+      if (material.isEmitter() && dot(wo, hit.geometricNormal) > 0) {
+        double weight = 1.0;
+        if (!countEmissionFully) {
+          double cosLight = dot(wo, hit.geometricNormal);
+          double distance2 = sqr(length(hit.position - previousPosition));
+          double lightPdf = lights_.pdfArea(hit.triangle) * distance2 / cosLight;
+          weight = powerHeuristic(previousBsdfPdf, lightPdf);
+        }
+        L += throughput * material.emission * weight;
+      }
+      if (maxDepth_ > 0 && depth >= maxDepth_) break;  // max depth counts bounces
+
+      Bsdf bsdf(material, hit.shadingNormal, hit.geometricNormal, wo);
+
+      if (!bsdf.isDelta() && !lights_.empty()) L += throughput * sampleLight(hit, bsdf, rng);
+
+      BsdfSample s;
+      double uLobe = rng.next(), u1 = rng.next(), u2 = rng.next();
+      if (!bsdf.sample(uLobe, u1, u2, s)) break;
+      throughput *= s.weight;
+      if (throughput.max() <= 0) break;
+      countEmissionFully = s.isDelta;
+      previousBsdfPdf = s.pdf;
+      previousPosition = hit.position;
+
+      if (depth >= 3) {
+        double survive = std::min(0.95, throughput.max());
+        if (rng.next() >= survive) break;
+        throughput *= 1.0 / survive;
+      }
+      ray = tracer_.spawnRay(hit.position, hit.geometricNormal, s.wi);
+      if (depth > 100000) break;  // a path this long carries nothing measurable; guards against NaN loops
+    }
+    return L.isFinite() ? L : Bands(0.0);
+  }
+
+ private:
+  /// Next-event estimate of direct light at a non-delta vertex, MIS-weighted.
+  Bands sampleLight(const Hit &hit, const Bsdf &bsdf, Pcg32 &rng) const {
+    LightSample light;
+    double uSelect = rng.next(), u1 = rng.next(), u2 = rng.next();
+    if (!lights_.sample(uSelect, u1, u2, light)) return Bands(0.0);
+    Vec3 toLight = light.position - hit.position;
+    double distance2 = dot(toLight, toLight);
+    if (distance2 <= 0) return Bands(0.0);
+    Vec3 wi = toLight / std::sqrt(distance2);
+    double cosLight = -dot(wi, light.normal);
+    if (cosLight <= 0) return Bands(0.0);  // the emitter's back does not emit
+    Bands f = bsdf.evaluate(wi);
+    if (f.max() <= 0) return Bands(0.0);
+    double cosSurface = std::abs(dot(wi, hit.shadingNormal));
+    if (!tracer_.visible(hit.position, hit.geometricNormal, light.position, light.normal)) return Bands(0.0);
+    double lightPdf = light.pdfArea * distance2 / cosLight;  // solid angle
+    double weight = powerHeuristic(lightPdf, bsdf.pdf(wi));
+    return f * light.radiance * (cosSurface * weight / lightPdf);
+  }
+
+  const RayTracer &tracer_;
+  const Scene &scene_;
+  LightSampler lights_;
+  int maxDepth_;
+};
+
+}  // namespace
+
+std::unique_ptr<Renderer> createPathTracer(const RayTracer &tracer, const RendererOptions &options) {
+  return std::make_unique<PathTracer>(tracer, options);
+}
+
+}  // namespace radiant

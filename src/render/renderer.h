@@ -1,0 +1,43 @@
+// The one interface every rendering method implements (STYLE.md §4).
+//
+// A renderer estimates the radiance arriving along one camera ray; the driver
+// (render/driver.h) owns tiles, threads, seeds, sample counts, time budgets,
+// progress and output. A new method is one file plus one line in registry.cpp.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "raytrace/ray_tracer.h"
+#include "util/random.h"
+#include "util/spectrum.h"
+
+namespace radiant {
+
+class Renderer {
+ public:
+  virtual ~Renderer() = default;
+  /// Radiance arriving at the camera along `ray`, W·sr⁻¹·m⁻² per band. Must be
+  /// finite and non-negative; `rng` is this camera sample's own generator.
+  virtual Bands radiance(const Ray &ray, Pcg32 &rng) const = 0;
+};
+
+/// Options shared by the renderers, from the command line and scene file.
+struct RendererOptions {
+  int maxDepth = 0;  ///< 0: unlimited, Russian roulette ends paths
+};
+
+struct RendererInfo {
+  const char *name;
+  const char *summary;
+  std::unique_ptr<Renderer> (*create)(const RayTracer &, const RendererOptions &);
+};
+
+/// Every rendering method, by name (render/registry.cpp).
+const std::vector<RendererInfo> &rendererRegistry();
+/// Throws InputError (with a "did you mean") for an unknown name.
+std::unique_ptr<Renderer> createRenderer(const std::string &name, const RayTracer &tracer,
+                                         const RendererOptions &options);
+
+}  // namespace radiant

@@ -1,0 +1,65 @@
+// Sampling routines with their densities. Each one is checked by a chi-square
+// goodness-of-fit test in tests/sampling_test.cpp.
+#pragma once
+
+#include "util/math.h"
+
+namespace radiant {
+
+/// Cosine-weighted direction about +z (Malley's method: a uniform disc point
+/// lifted to the hemisphere, Shirley–Chiu concentric mapping for low distortion).
+inline Vec3 sampleCosineHemisphere(double u1, double u2) {
+  double a = 2 * u1 - 1, b = 2 * u2 - 1;
+  double r = 0, phi = 0;
+  if (a != 0 || b != 0) {
+    if (a * a > b * b) {
+      r = a;
+      phi = (kPi / 4) * (b / a);
+    } else {
+      r = b;
+      phi = (kPi / 2) - (kPi / 4) * (a / b);
+    }
+  }
+  double x = r * std::cos(phi), y = r * std::sin(phi);
+  return {x, y, std::sqrt(std::max(0.0, 1 - x * x - y * y))};
+}
+/// Density per unit solid angle of sampleCosineHemisphere.
+inline double cosineHemispherePdf(double cosTheta) { return cosTheta > 0 ? cosTheta * kInvPi : 0.0; }
+
+/// Uniform point on a triangle as barycentrics (b1, b2) (Heitz 2019,
+/// "A low-distortion map between triangle and square").
+inline void sampleUniformTriangle(double u1, double u2, double &b1, double &b2) {
+  if (u2 > u1) {
+    b1 = u1 / 2;
+    b2 = u2 - b1;
+  } else {
+    b2 = u2 / 2;
+    b1 = u1 - b2;
+  }
+}
+
+/// GGX (Trowbridge–Reitz) normal distribution D(h) for roughness α, h in the local frame.
+inline double ggxD(const Vec3 &h, double alpha) {
+  if (h.z <= 0) return 0;
+  double a2 = alpha * alpha;
+  double c2 = h.z * h.z;
+  double d = c2 * (a2 - 1) + 1;
+  return a2 / (kPi * d * d);
+}
+/// Samples a microfacet normal with density D(h)·cosθh (Walter et al. 2007, eq. 35–36).
+inline Vec3 sampleGgxNormal(double u1, double u2, double alpha) {
+  double tan2 = alpha * alpha * u1 / std::max(1e-300, 1 - u1);
+  double cosTheta = 1 / std::sqrt(1 + tan2);
+  double sinTheta = std::sqrt(std::max(0.0, 1 - cosTheta * cosTheta));
+  double phi = 2 * kPi * u2;
+  return {sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta};
+}
+/// Smith's masking term G1 for GGX (Walter et al. 2007, eq. 34).
+inline double ggxG1(const Vec3 &v, double alpha) {
+  double c = std::abs(v.z);
+  if (c >= 1) return 1;
+  double tan2 = (1 - c * c) / (c * c);
+  return 2 / (1 + std::sqrt(1 + alpha * alpha * tan2));
+}
+
+}  // namespace radiant

@@ -1,0 +1,43 @@
+// Surface materials, in SI radiometry.
+//
+// A material is one of four scattering models plus optional emission. The
+// radiosity stages see only the diffuse part (reflectance ρ per band); the
+// per-pixel renderers and the path tracer see the whole model.
+#pragma once
+
+#include <string>
+
+#include "util/spectrum.h"
+
+namespace radiant {
+
+enum class MaterialKind {
+  Lambertian,  ///< ideal diffuse, reflectance `diffuse` (ρ, dimensionless, per band)
+  Mirror,      ///< ideal specular reflection with reflectance `specular`
+  Dielectric,  ///< smooth glass: Fresnel reflection and refraction, index `ior`, transmittance `specular`
+  Glossy,      ///< `diffuse` Lambertian base plus a GGX microfacet lobe of reflectance `specular`, `roughness`
+};
+
+const char *materialKindName(MaterialKind kind);
+
+struct Material {
+  std::string name;
+  MaterialKind kind = MaterialKind::Lambertian;
+  Bands diffuse{0.5};    ///< Lambertian reflectance ρ in [0,1)
+  Bands specular{0.0};   ///< mirror / glossy reflectance or glass transmittance filter
+  double ior = 1.5;      ///< index of refraction (Dielectric)
+  double roughness = 0.2;///< GGX α (Glossy), in (0, 1]
+  /// Emitted radiance, W·sr⁻¹·m⁻², uniform over the front hemisphere only.
+  Bands emission{0.0};
+
+  // Surface detail, parsed now and used by the texture/bump stage later.
+  std::string diffuseTexture;  ///< map_Kd, path resolved against the file that named it
+  std::string bumpTexture;     ///< bump / map_Bump
+  double bumpScale = 1.0;      ///< -bm
+
+  bool isEmitter() const { return emission.max() > 0.0; }
+  /// True when the surface scatters only into a finite set of directions.
+  bool isDelta() const { return kind == MaterialKind::Mirror || kind == MaterialKind::Dielectric; }
+};
+
+}  // namespace radiant

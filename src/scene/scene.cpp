@@ -1,0 +1,64 @@
+#include "scene/scene.h"
+
+namespace radiant {
+
+double Scene::faceArea(const Face &f) const {
+  double area = 0;
+  for (int k = 1; k + 1 < f.vertexCount; ++k)
+    area += 0.5 * length(cross(positions[f.vertices[k]] - positions[f.vertices[0]],
+                               positions[f.vertices[k + 1]] - positions[f.vertices[0]]));
+  return area;
+}
+
+Vec3 Scene::faceNormal(const Face &f) const {
+  Vec3 n;
+  for (int k = 0; k < f.vertexCount; ++k) {
+    const Vec3 &a = positions[f.vertices[k]];
+    const Vec3 &b = positions[f.vertices[(k + 1) % f.vertexCount]];
+    n += Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
+  }
+  return normalize(n);
+}
+
+bool Scene::addFace(const Face &face) {
+  // Split into a fan; a triangle whose area is tiny against its edges is
+  // dropped (it has no well-defined normal and would only add NaNs).
+  std::vector<Triangle> kept;
+  for (int k = 1; k + 1 < face.vertexCount; ++k) {
+    int i0 = 0, i1 = k, i2 = k + 1;
+    const Vec3 &a = positions[face.vertices[i0]], &b = positions[face.vertices[i1]], &c = positions[face.vertices[i2]];
+    if (!isFinite(a) || !isFinite(b) || !isFinite(c)) continue;
+    double twiceArea = length(cross(b - a, c - a));
+    double longest = std::max({length(b - a), length(c - b), length(a - c)});
+    if (!(twiceArea > 1e-12 * longest * longest) || longest == 0) continue;
+    Triangle t{};
+    for (int j = 0; j < 3; ++j) {
+      int src = j == 0 ? i0 : (j == 1 ? i1 : i2);
+      t.v[j] = face.vertices[src];
+      t.uv[j] = face.uvs[src];
+      t.n[j] = face.normals[src];
+    }
+    t.face = static_cast<uint32_t>(faces.size());
+    t.material = face.material;
+    kept.push_back(t);
+  }
+  if (kept.empty()) {
+    ++droppedDegenerateFaces;
+    return false;
+  }
+  faces.push_back(face);
+  triangles.insert(triangles.end(), kept.begin(), kept.end());
+  return true;
+}
+
+const char *materialKindName(MaterialKind kind) {
+  switch (kind) {
+    case MaterialKind::Lambertian: return "lambertian";
+    case MaterialKind::Mirror: return "mirror";
+    case MaterialKind::Dielectric: return "dielectric";
+    case MaterialKind::Glossy: return "glossy";
+  }
+  return "?";
+}
+
+}  // namespace radiant

@@ -1,0 +1,96 @@
+// The scene as plain data: what every later stage reads.
+//
+// Geometry is in metres (loaders convert declared units), radiometry in SI.
+// Input polygons are kept as faces (triangles and planar quads) because the
+// radiosity mesher subdivides quads as quads; the ray tracer sees the same
+// faces as triangles, listed in `triangles`.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "scene/camera.h"
+#include "scene/material.h"
+#include "util/math.h"
+
+namespace radiant {
+
+/// One input polygon (3 or 4 vertices, counter-clockwise seen from the front).
+struct Face {
+  int vertexCount = 3;
+  uint32_t vertices[4] = {0, 0, 0, 0};  ///< indices into Scene::positions
+  int32_t uvs[4] = {-1, -1, -1, -1};    ///< indices into Scene::uvs, or −1
+  int32_t normals[4] = {-1, -1, -1, -1};///< indices into Scene::normals, or −1
+  uint32_t material = 0;
+  uint32_t object = 0;
+};
+
+/// One triangle as the ray tracer sees it; `face` is the input polygon it came from.
+struct Triangle {
+  uint32_t v[3];
+  int32_t uv[3];
+  int32_t n[3];
+  uint32_t face;
+  uint32_t material;
+};
+
+/// An input object: a JSON object entry, or an OBJ object/group. Reports are per object.
+struct SceneObject {
+  std::string name;
+  std::string source;  ///< file (and group) it came from, for messages
+};
+
+/// Limits that reject absurd requests before any large allocation.
+constexpr int kMaxImageDimension = 16384;
+constexpr long long kMaxImagePixels = 1LL << 26;
+constexpr int kMaxSamplesPerPixel = 1 << 20;
+
+struct RenderSettings {
+  int width = 512;
+  int height = 512;
+  int samplesPerPixel = 64;
+  double timeBudgetSeconds = 0;  ///< 0: no budget
+  uint64_t seed = 1;
+  int maxDepth = 0;              ///< 0: unlimited (Russian roulette ends paths)
+  double exposure = 0;           ///< PNG exposure in stops
+};
+
+struct Scene {
+  std::string sourceFile;  ///< the scene file, for messages and for solution files later
+  /// Metres per scene unit (the JSON "units"); command-line camera positions are in scene units.
+  double metresPerUnit = 1.0;
+
+  std::vector<Vec3> positions;  ///< metres
+  std::vector<Vec3> normals;    ///< unit, optional per-vertex shading normals
+  std::vector<double> uvs;      ///< pairs (u, v)
+  std::vector<Face> faces;
+  std::vector<Triangle> triangles;
+  std::vector<Material> materials;
+  std::vector<SceneObject> objects;
+
+  CameraSettings camera;
+  RenderSettings render;
+
+  /// Degenerate faces dropped while loading (counted for the warning).
+  size_t droppedDegenerateFaces = 0;
+  std::vector<std::string> warnings;
+
+  /// Geometric normal of a triangle from its winding (front side).
+  Vec3 triangleNormal(const Triangle &t) const {
+    return normalize(cross(positions[t.v[1]] - positions[t.v[0]], positions[t.v[2]] - positions[t.v[0]]));
+  }
+  double triangleArea(const Triangle &t) const {
+    return 0.5 * length(cross(positions[t.v[1]] - positions[t.v[0]], positions[t.v[2]] - positions[t.v[0]]));
+  }
+  /// Area of an input face (sum of its triangles).
+  double faceArea(const Face &f) const;
+  /// Newell normal of an input face (robust for slightly non-planar quads).
+  Vec3 faceNormal(const Face &f) const;
+
+  /// Adds a face, and its triangles; returns false (and counts it) when the face
+  /// is degenerate (zero area or non-finite).
+  bool addFace(const Face &face);
+};
+
+}  // namespace radiant

@@ -1,0 +1,52 @@
+// Small analytic scenes built in code, for tests that must not depend on the loader.
+#pragma once
+
+#include "scene/scene.h"
+
+namespace radiant::test {
+
+/// The inside of the axis-aligned box [0,size]³: six quads facing inwards.
+/// Wall k gets material `wallMaterial[k]` (−x, +x, −y, +y, −z, +z); the
+/// materials themselves are appended by the caller.
+inline Scene closedBox(double size, const int wallMaterial[6]) {
+  Scene s;
+  s.objects.push_back({"box", "test"});
+  const double a = size;
+  // Corners; each face listed counter-clockwise as seen from inside.
+  s.positions = {{0, 0, 0}, {a, 0, 0}, {a, a, 0}, {0, a, 0}, {0, 0, a}, {a, 0, a}, {a, a, a}, {0, a, a}};
+  const uint32_t faces[6][4] = {
+      {0, 3, 7, 4},  // x = 0, normal +x
+      {1, 5, 6, 2},  // x = a, normal −x
+      {0, 4, 5, 1},  // y = 0, normal +y
+      {3, 2, 6, 7},  // y = a, normal −y
+      {0, 1, 2, 3},  // z = 0, normal +z
+      {4, 7, 6, 5},  // z = a, normal −z
+  };
+  for (int k = 0; k < 6; ++k) {
+    Face f;
+    f.vertexCount = 4;
+    for (int i = 0; i < 4; ++i) f.vertices[i] = faces[k][i];
+    f.material = static_cast<uint32_t>(wallMaterial[k]);
+    s.addFace(f);
+  }
+  return s;
+}
+
+/// The furnace: every wall emits `emission` and reflects `reflectance`
+/// (REFERENCE §8.1: radiance E/(1−ρ) everywhere). Camera at the centre.
+inline Scene furnace(double emission, double reflectance) {
+  const int walls[6] = {0, 0, 0, 0, 0, 0};
+  Scene s = closedBox(1.0, walls);
+  Material m;
+  m.name = "wall";
+  m.diffuse = Bands(reflectance);
+  m.emission = Bands(emission);
+  s.materials.push_back(m);
+  s.camera.eye = {0.5, 0.5, 0.5};
+  s.camera.target = {1.0, 0.8, 0.9};
+  s.camera.up = {0, 1, 0};
+  s.camera.verticalFovDegrees = 90;
+  return s;
+}
+
+}  // namespace radiant::test
