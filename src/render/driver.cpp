@@ -53,6 +53,7 @@ RenderStats renderImage(const PinholeCamera &camera, const Renderer &renderer, c
     Progress p;
     p.samplesDone = samplesDone;
     p.samplesTarget = target;
+    p.timeBudgetSeconds = budget;
     p.elapsedSeconds = secondsSince(start);
     double sampleFraction = (samplesDone + roundFraction * roundSamples) / target;
     p.fraction = budget > 0 ? std::max(sampleFraction, std::min(1.0, p.elapsedSeconds / budget)) : sampleFraction;
@@ -112,17 +113,18 @@ ProgressCallback makeConsoleProgress(const std::string &label) {
   auto lastLine = std::make_shared<Clock::time_point>(Clock::now());
   return [terminal, label, lastLine](const Progress &p) {
     std::string eta = p.etaSeconds >= 0 ? fmt::format("{:.1f}s", p.etaSeconds) : std::string("?");
+    std::string samples = p.timeBudgetSeconds > 0 ? fmt::format("{} spp, budget {:g}s", p.samplesDone, p.timeBudgetSeconds)
+                                                  : fmt::format("{}/{} spp", p.samplesDone, p.samplesTarget);
     if (terminal) {
       constexpr int kWidth = 30;
       int filled = static_cast<int>(p.fraction * kWidth + 0.5);
-      fmt::print(stderr, "\r{} [{}{}] {:3.0f}%  {}/{} spp  {:.1f}s  ETA {}   ", label, std::string(filled, '#'),
-                 std::string(kWidth - filled, '.'), 100 * p.fraction, p.samplesDone, p.samplesTarget,
-                 p.elapsedSeconds, eta);
+      fmt::print(stderr, "\r{} [{}{}] {:3.0f}%  {}  {:.1f}s  ETA {}   ", label, std::string(filled, '#'),
+                 std::string(kWidth - filled, '.'), 100 * p.fraction, samples, p.elapsedSeconds, eta);
       if (p.fraction >= 1) fmt::print(stderr, "\n");
     } else if (secondsSince(*lastLine) >= 5 || p.fraction >= 1) {
       *lastLine = Clock::now();
-      fmt::print(stderr, "{}: {:.0f}% ({}/{} spp, {:.1f}s elapsed, ETA {})\n", label, 100 * p.fraction,
-                 p.samplesDone, p.samplesTarget, p.elapsedSeconds, eta);
+      fmt::print(stderr, "{}: {:.0f}% ({}, {:.1f}s elapsed, ETA {})\n", label, 100 * p.fraction, samples,
+                 p.elapsedSeconds, eta);
     }
   };
 }

@@ -30,6 +30,7 @@ struct DriverOptions {
 struct Progress {
   int samplesDone = 0;    ///< complete samples per pixel so far
   int samplesTarget = 0;
+  double timeBudgetSeconds = 0;  ///< > 0 when a time budget decides the end
   double fraction = 0;    ///< of the current estimate of total work
   double elapsedSeconds = 0;
   double etaSeconds = 0;  ///< < 0 when unknown

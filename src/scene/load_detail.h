@@ -1,0 +1,66 @@
+// Pieces shared by the JSON scene loader and the OBJ loader; not a public API.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+#include "util/error.h"
+
+namespace radiant::detail {
+
+/// Index of the material named "default" (Lambertian, ρ = 0.5), added on first use.
+uint32_t defaultMaterialIndex(Scene &scene);
+
+/// Index of the material called `name`, or −1.
+int findMaterial(const Scene &scene, const std::string &name);
+
+/// Throws InputError at `where` for a value the later stages cannot use:
+/// non-finite or negative values, a diffuse reflectance ≥ 1 in any band
+/// (radiosity's Neumann series would diverge), a specular reflectance or
+/// transmittance > 1, glossy diffuse + specular > 1, ior ≤ 0, roughness ∉ (0, 1].
+/// `field` names the offending key in each message ("reflectance", "Kd", …)
+/// through `names`.
+struct MaterialFieldNames {
+  const char *diffuse = "reflectance";
+  const char *specular = "specular";
+  const char *emission = "emission";
+  const char *ior = "ior";
+  const char *roughness = "roughness";
+};
+void checkMaterial(const Material &material, const InputLocation &where, const MaterialFieldNames &names = {});
+
+/// Adds an input polygon whose vertices are already in scene.positions (and
+/// uvs/normals, −1 when absent). Triangles and planar convex quads become one
+/// face; a non-planar or non-convex quad becomes two triangles split along a
+/// diagonal that keeps both inside the outline; a polygon of more than four
+/// vertices is fan-split into triangles. `flipWinding` reverses the order (for a
+/// mirroring transform), keeping the first vertex first. Degenerate pieces are
+/// dropped and counted by Scene::addFace.
+void addPolygon(Scene &scene, const std::vector<uint32_t> &vertices, const std::vector<int32_t> &uvs,
+                const std::vector<int32_t> &normals, uint32_t material, uint32_t object, bool flipWinding);
+
+/// A UV sphere with `segments` slices around the axis and segments/2 stacks,
+/// outward-facing, with per-vertex normals (smooth shading) and uvs (u around
+/// the y axis, v from the south pole), transformed by `toWorld`.
+void addUvSphere(Scene &scene, const Vec3 &center, double radius, int segments, const Transform &toWorld,
+                 uint32_t material, uint32_t object);
+
+/// appendObj with the context of a JSON scene: `defaultMaterial` (or, when it is
+/// −1, the material called `defaultMaterialName` from the MTL, or "default" when
+/// that is empty) for faces without usemtl. `fileFrom` locates the JSON entry
+/// for a file that cannot be opened, `materialFrom` the one for a default
+/// material found neither in the scene nor in the MTL.
+void appendObjFromScene(Scene &scene, const std::string &objPath, const Transform &toWorld,
+                        const std::string &objectName, int defaultMaterial, const std::string &defaultMaterialName,
+                        const InputLocation &fileFrom, const InputLocation &materialFrom);
+
+/// Camera and image/render settings checks shared by the JSON loader and validateScene.
+void checkCamera(const CameraSettings &camera, const InputLocation &where);
+void checkRenderSettings(const RenderSettings &render, const InputLocation &where);
+
+/// A camera that frames the scene's bounding box from the +z side (fov 40°).
+CameraSettings frameBounds(const Scene &scene);
+
+}  // namespace radiant::detail

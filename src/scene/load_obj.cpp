@@ -1,0 +1,420 @@
+// Wavefront OBJ/MTL loading through tinyobjloader.
+//
+// tinyobjloader reads the geometry and the MTL statements, but it accepts some
+// malformed lines silently ("v 1 x 2" reads x as 0) and reports out-of-range
+// indices with the line of the end of the file. So the OBJ text is scanned once
+// here first, line by line, and every malformed statement becomes an InputError
+// naming the OBJ file and line. The scan also records each face's usemtl name,
+// because a name that only the JSON scene defines is unknown to tinyobjloader.
+//
+// MTL → Material (docs/scene-format.md has the table):
+//   Kd → diffuse ρ, Ke → emission (W·sr⁻¹·m⁻²), map_Kd → diffuseTexture,
+//   bump/map_Bump → bumpTexture with -bm → bumpScale;
+//   illum 3 with Ks > 0          → Mirror, specular = Ks;
+//   illum 4, 6 or 7 with Ni ≠ 1  → Dielectric, ior = Ni, specular = Tf (1 if absent);
+//   illum 2 with Ks > 0          → Glossy, specular = Ks, GGX α = sqrt(2 / (Ns + 2))
+//                                   (Walter et al. 2007, "Microfacet models for
+//                                   refraction through rough surfaces", §5.2:
+//                                   the Blinn–Phong exponent with the same
+//                                   lobe width as a Beckmann/GGX α);
+//   anything else                → Lambertian Kd.
+
+#include <tiny_obj_loader.h>
+
+#include <charconv>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
+
+#include "scene/json_reader.h"
+#include "scene/load_detail.h"
+#include "scene/load_scene.h"
+
+namespace radiant {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+[[noreturn]] void fileError(const std::string &file, int line, const std::string &message) {
+  throw InputError(InputLocation{file, line, 0, ""}, message);
+}
+
+bool readText(const std::string &path, std::string &text) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return false;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  text = buffer.str();
+  return true;
+}
+
+std::vector<std::string> splitWords(const std::string &line) {
+  std::vector<std::string> words;
+  std::istringstream in(line);
+  for (std::string w; in >> w;) words.push_back(w);
+  return words;
+}
+
+std::vector<std::string> splitLines(const std::string &text) {
+  std::vector<std::string> lines;
+  std::string line;
+  std::istringstream in(text);
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+bool parseNumber(const std::string &word, double &value) {
+  const char *begin = word.c_str();
+  char *end = nullptr;
+  value = std::strtod(begin, &end);
+  return end != begin && *end == '\0' && std::isfinite(value);
+}
+
+bool parseIndex(const std::string &text, long &value) {
+  if (text.empty()) return false;
+  const char *begin = text.c_str();
+  char *end = nullptr;
+  value = std::strtol(begin, &end, 10);
+  return *end == '\0' && value != 0;
+}
+
+constexpr const char *kReferenceKinds[3] = {"vertex", "texture coordinate", "normal"};
+
+/// What the pre-scan learns about an OBJ file.
+struct ObjScan {
+  std::vector<std::string> faceMaterialName;  ///< usemtl in effect per face, in file order
+  std::vector<std::string> mtlFiles;          ///< resolved paths of the mtllib files
+};
+
+/// Checks every v/vt/vn/f/usemtl/mtllib line; throws with the OBJ line on the first bad one.
+ObjScan scanObj(const std::string &objPath, const std::string &text) {
+  ObjScan scan;
+  const fs::path directory = fs::path(objPath).parent_path();
+  long counts[3] = {0, 0, 0};  // v, vt, vn defined so far
+  struct PendingCheck {
+    int line;
+    long index[3];
+  };
+  std::vector<PendingCheck> forwardReferences;  // positive indices, checked against the final counts
+  std::string currentMaterial;
+  std::vector<std::string> lines = splitLines(text);
+  for (size_t lineIndex = 0; lineIndex < lines.size(); ++lineIndex) {
+    const int line = static_cast<int>(lineIndex) + 1;
+    std::vector<std::string> words = splitWords(lines[lineIndex]);
+    if (words.empty() || words[0][0] == '#') continue;
+    const std::string &keyword = words[0];
+    if (keyword == "v" || keyword == "vt" || keyword == "vn") {
+      size_t numbers = 0;
+      for (size_t k = 1; k < words.size() && words[k][0] != '#'; ++k, ++numbers) {
+        double value;
+        if (!parseNumber(words[k], value))
+          fileError(objPath, line, "'" + keyword + "' expects finite numbers, got '" + words[k] + "'");
+      }
+      size_t minimum = keyword == "vt" ? 1 : 3;
+      if (numbers < minimum)
+        fileError(objPath, line,
+                  "'" + keyword + "' expects at least " + std::to_string(minimum) + " numbers, got " +
+                      std::to_string(numbers));
+      ++counts[keyword == "v" ? 0 : (keyword == "vt" ? 1 : 2)];
+    } else if (keyword == "f") {
+      if (words.size() < 4)
+        fileError(objPath, line, "a face needs at least 3 vertices, got " + std::to_string(words.size() - 1));
+      for (size_t k = 1; k < words.size(); ++k) {
+        // v, v/vt, v//vn or v/vt/vn; indices are 1-based, negative ones count back.
+        std::vector<std::string> parts;
+        std::string part;
+        std::istringstream in(words[k]);
+        while (std::getline(in, part, '/')) parts.push_back(part);
+        if (words[k].back() == '/') parts.push_back("");
+        if (parts.empty() || parts.size() > 3)
+          fileError(objPath, line, "'" + words[k] + "' is not a vertex reference (v, v/vt, v//vn or v/vt/vn)");
+        PendingCheck pending{line, {0, 0, 0}};
+        for (size_t c = 0; c < parts.size(); ++c) {
+          if (c > 0 && parts[c].empty()) continue;
+          long index;
+          if (!parseIndex(parts[c], index))
+            fileError(objPath, line, "'" + words[k] + "' is not a vertex reference (expected non-zero integers)");
+          if (index < 0 && -index > counts[c])
+            fileError(objPath, line,
+                      "relative " + std::string(kReferenceKinds[c]) + " index " + std::to_string(index) +
+                          " is out of range (" + std::to_string(counts[c]) + " defined so far)");
+          if (index > 0) pending.index[c] = index;
+        }
+        forwardReferences.push_back(pending);
+      }
+      scan.faceMaterialName.push_back(currentMaterial);
+    } else if (keyword == "usemtl") {
+      currentMaterial = words.size() > 1 ? words[1] : "";
+    } else if (keyword == "mtllib") {
+      for (size_t k = 1; k < words.size(); ++k) {
+        fs::path mtl = directory / words[k];
+        std::error_code ec;
+        if (!fs::is_regular_file(mtl, ec))
+          fileError(objPath, line, "cannot open material library '" + mtl.string() + "'");
+        scan.mtlFiles.push_back(mtl.string());
+      }
+    }
+  }
+  for (const PendingCheck &check : forwardReferences)
+    for (int c = 0; c < 3; ++c)
+      if (check.index[c] > counts[c])
+        fileError(objPath, check.line,
+                  std::string(kReferenceKinds[c]) + " index " + std::to_string(check.index[c]) +
+                      " is out of range (the file has " + std::to_string(counts[c]) + ")");
+  return scan;
+}
+
+/// Where each MTL material is declared, for messages.
+struct MtlSource {
+  std::string file;
+  int newmtlLine = 0;
+  int mapKdLine = 0;
+  int bumpLine = 0;
+};
+
+std::map<std::string, MtlSource> scanMtlFiles(const std::vector<std::string> &mtlFiles) {
+  std::map<std::string, MtlSource> sources;
+  for (const std::string &file : mtlFiles) {
+    std::string text;
+    if (!readText(file, text)) fileError(file, 0, "cannot open material library '" + file + "'");
+    std::vector<std::string> lines = splitLines(text);
+    MtlSource *current = nullptr;
+    for (size_t i = 0; i < lines.size(); ++i) {
+      const int line = static_cast<int>(i) + 1;
+      std::vector<std::string> words = splitWords(lines[i]);
+      if (words.empty() || words[0][0] == '#') continue;
+      const std::string &keyword = words[0];
+      if (keyword == "newmtl") {
+        std::string name = words.size() > 1 ? words[1] : "";
+        if (sources.count(name)) {
+          current = nullptr;  // tinyobjloader keeps the first definition
+          continue;
+        }
+        current = &sources[name];
+        *current = MtlSource{file, line, 0, 0};
+      } else if (current && keyword == "map_Kd") {
+        current->mapKdLine = line;
+      } else if (current && (keyword == "bump" || keyword == "map_Bump" || keyword == "map_bump")) {
+        current->bumpLine = line;
+      } else if (keyword == "Kd" || keyword == "Ks" || keyword == "Ke" || keyword == "Ka" || keyword == "Tf" ||
+                 keyword == "Kt" || keyword == "Ni" || keyword == "Ns" || keyword == "d" || keyword == "Tr" ||
+                 keyword == "illum") {
+        if (words.size() > 1 && (words[1] == "spectral" || words[1] == "xyz")) continue;
+        if (words.size() < 2) fileError(file, line, "'" + keyword + "' expects a value");
+        for (size_t k = 1; k < words.size() && words[k][0] != '#'; ++k) {
+          double value;
+          if (!parseNumber(words[k], value))
+            fileError(file, line, "'" + keyword + "' expects finite numbers, got '" + words[k] + "'");
+        }
+      }
+    }
+  }
+  return sources;
+}
+
+/// tinyobjloader stores floats; widen through the shortest decimal that reads
+/// back as the same float, so "Kd 0.6" gives the double 0.6, not 0.60000002.
+double widen(float value) {
+  char buffer[32];
+  auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  double result = value;
+  if (error == std::errc()) std::from_chars(buffer, end, result);
+  return result;
+}
+
+Bands toBands(const tinyobj::real_t values[3]) {
+  return Bands(widen(values[0]), widen(values[1]), widen(values[2]));
+}
+Vec3 toVec3(const std::vector<tinyobj::real_t> &values, size_t i) {
+  return {widen(values[i]), widen(values[i + 1]), widen(values[i + 2])};
+}
+
+/// The texture path from an MTL statement, relative to the MTL file; it must exist.
+std::string resolveTexture(const std::string &name, const MtlSource &source, int line, const char *statement) {
+  fs::path path = fs::path(source.file).parent_path() / name;
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec))
+    fileError(source.file, line > 0 ? line : source.newmtlLine,
+              std::string("cannot open texture '") + path.string() + "' named by " + statement);
+  return path.lexically_normal().string();
+}
+
+Material convertMtlMaterial(const tinyobj::material_t &m, const MtlSource &source) {
+  Material out;
+  out.name = m.name;
+  out.diffuse = toBands(m.diffuse);
+  out.emission = toBands(m.emission);
+  Bands specular = toBands(m.specular);
+  detail::MaterialFieldNames names{"Kd", "Ks", "Ke", "Ni", "Ns"};
+  if (m.illum == 3 && specular.max() > 0) {
+    out.kind = MaterialKind::Mirror;
+    out.specular = specular;
+    out.diffuse = Bands(0.0);
+  } else if ((m.illum == 4 || m.illum == 6 || m.illum == 7) && m.ior != 1.0f) {
+    out.kind = MaterialKind::Dielectric;
+    out.ior = widen(m.ior);
+    Bands transmittance = toBands(m.transmittance);
+    out.specular = transmittance.max() > 0 ? transmittance : Bands(1.0);
+    out.diffuse = Bands(0.0);
+    names.specular = "Tf";
+  } else if (m.illum == 2 && specular.max() > 0) {
+    out.kind = MaterialKind::Glossy;
+    out.specular = specular;
+    out.roughness = std::sqrt(2.0 / (widen(m.shininess) + 2.0));
+    if (!(out.roughness <= 1.0)) out.roughness = std::numeric_limits<double>::quiet_NaN();  // Ns < 0: rejected below
+  } else {
+    out.kind = MaterialKind::Lambertian;
+  }
+  if (!m.diffuse_texname.empty())
+    out.diffuseTexture = resolveTexture(m.diffuse_texname, source, source.mapKdLine, "map_Kd");
+  if (!m.bump_texname.empty()) {
+    out.bumpTexture = resolveTexture(m.bump_texname, source, source.bumpLine, "bump");
+    out.bumpScale = widen(m.bump_texopt.bump_multiplier);
+  }
+  detail::checkMaterial(out, InputLocation{source.file, source.newmtlLine, 0, ""}, names);
+  return out;
+}
+
+/// A line number quoted in a tinyobjloader message ("line 12" / "line: 12"), or 0.
+int lineInMessage(const std::string &message) {
+  std::smatch match;
+  static const std::regex pattern("line:? ([0-9]+)");
+  return std::regex_search(message, match, pattern) ? std::stoi(match[1]) : 0;
+}
+
+}  // namespace
+
+void detail::appendObjFromScene(Scene &scene, const std::string &objPath, const Transform &toWorld,
+                                const std::string &objectName, int defaultMaterial,
+                                const std::string &defaultMaterialName, const InputLocation &fileFrom,
+                                const InputLocation &materialFrom) {
+  std::string text;
+  if (!readText(objPath, text)) throw InputError(fileFrom, "cannot open OBJ file '" + objPath + "'");
+  ObjScan scan = scanObj(objPath, text);
+  std::map<std::string, MtlSource> mtlSources = scanMtlFiles(scan.mtlFiles);
+
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = false;  // quads stay quads for the radiosity mesher
+  config.vertex_color = false;
+  config.mtl_search_path = fs::path(objPath).parent_path().string();
+  tinyobj::ObjReader reader;
+  if (!reader.ParseFromFile(objPath, config) || !reader.Error().empty()) {
+    const std::string &error = reader.Error();
+    fileError(objPath, lineInMessage(error), "OBJ parse error: " + error);
+  }
+  std::istringstream warnings(reader.Warning());
+  for (std::string w; std::getline(warnings, w);) {
+    // Unknown usemtl names are resolved below (they may name JSON materials).
+    if (w.empty() || w.find("not found in .mtl") != std::string::npos) continue;
+    scene.warnings.push_back(objPath + ": " + w);
+  }
+
+  const std::vector<tinyobj::material_t> &mtlMaterials = reader.GetMaterials();
+  std::map<std::string, size_t> mtlByName;
+  for (size_t i = 0; i < mtlMaterials.size(); ++i) mtlByName.emplace(mtlMaterials[i].name, i);
+
+  // A name already in the scene (a JSON material, or an earlier file's) wins
+  // over the MTL definition; MTL materials are converted on first use only.
+  auto resolve = [&](const std::string &name) -> int {
+    int index = detail::findMaterial(scene, name);
+    if (index >= 0) return index;
+    auto it = mtlByName.find(name);
+    if (it == mtlByName.end()) return -1;
+    MtlSource source = mtlSources.count(name) ? mtlSources[name] : MtlSource{objPath, 0, 0, 0};
+    scene.materials.push_back(convertMtlMaterial(mtlMaterials[it->second], source));
+    return static_cast<int>(scene.materials.size() - 1);
+  };
+
+  uint32_t fallbackMaterial;
+  if (defaultMaterial >= 0) {
+    fallbackMaterial = static_cast<uint32_t>(defaultMaterial);
+  } else if (!defaultMaterialName.empty()) {
+    int index = resolve(defaultMaterialName);
+    if (index < 0) {
+      std::vector<std::string> known;
+      for (const Material &m : scene.materials) known.push_back(m.name);
+      for (const auto &[name, i] : mtlByName) known.push_back(name);
+      throw InputError(materialFrom, "material '" + defaultMaterialName +
+                                         "' is defined neither in the scene's materials nor in the MTL of '" + objPath +
+                                         "'" + didYouMean(defaultMaterialName, known));
+    }
+    fallbackMaterial = static_cast<uint32_t>(index);
+  } else {
+    fallbackMaterial = detail::defaultMaterialIndex(scene);
+  }
+
+  // Geometry: every OBJ vertex once, transformed into the world.
+  const tinyobj::attrib_t &attrib = reader.GetAttrib();
+  const uint32_t positionOffset = static_cast<uint32_t>(scene.positions.size());
+  const int32_t normalOffset = static_cast<int32_t>(scene.normals.size());
+  const int32_t uvOffset = static_cast<int32_t>(scene.uvs.size() / 2);
+  for (size_t i = 0; i + 2 < attrib.vertices.size(); i += 3)
+    scene.positions.push_back(toWorld.point(toVec3(attrib.vertices, i)));
+  for (size_t i = 0; i + 2 < attrib.normals.size(); i += 3)
+    scene.normals.push_back(toWorld.normal(toVec3(attrib.normals, i)));
+  for (size_t i = 0; i + 1 < attrib.texcoords.size(); i += 2) {
+    scene.uvs.push_back(widen(attrib.texcoords[i]));
+    scene.uvs.push_back(widen(attrib.texcoords[i + 1]));
+  }
+
+  size_t faceCount = 0;
+  for (const tinyobj::shape_t &shape : reader.GetShapes()) faceCount += shape.mesh.num_face_vertices.size();
+  if (faceCount != scan.faceMaterialName.size())
+    fileError(objPath, 0,
+              "read " + std::to_string(faceCount) + " faces but the file has " +
+                  std::to_string(scan.faceMaterialName.size()) + " 'f' lines");
+
+  const bool flip = toWorld.determinant() < 0;
+  std::map<std::string, uint32_t> objectByGroup;
+  std::map<std::string, int> unknownMaterialFaces;
+  size_t faceNumber = 0;
+  for (const tinyobj::shape_t &shape : reader.GetShapes()) {
+    size_t next = 0;
+    for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++faceNumber) {
+      auto [groupIt, inserted] = objectByGroup.try_emplace(shape.name, static_cast<uint32_t>(scene.objects.size()));
+      if (inserted) {
+        std::string name = shape.name.empty() ? objectName : objectName + "/" + shape.name;
+        std::string source = shape.name.empty() ? objPath : objPath + " (group '" + shape.name + "')";
+        scene.objects.push_back(SceneObject{name, source});
+      }
+      const std::string &materialName = scan.faceMaterialName[faceNumber];
+      uint32_t material = fallbackMaterial;
+      if (!materialName.empty()) {
+        int index = resolve(materialName);
+        if (index >= 0)
+          material = static_cast<uint32_t>(index);
+        else
+          ++unknownMaterialFaces[materialName];
+      }
+      std::vector<uint32_t> vertices;
+      std::vector<int32_t> uvs, normals;
+      for (unsigned k = 0; k < shape.mesh.num_face_vertices[f]; ++k, ++next) {
+        const tinyobj::index_t &index = shape.mesh.indices[next];
+        vertices.push_back(positionOffset + static_cast<uint32_t>(index.vertex_index));
+        uvs.push_back(index.texcoord_index >= 0 ? uvOffset + index.texcoord_index : -1);
+        normals.push_back(index.normal_index >= 0 ? normalOffset + index.normal_index : -1);
+      }
+      detail::addPolygon(scene, vertices, uvs, normals, material, groupIt->second, flip);
+    }
+  }
+  for (const auto &[name, count] : unknownMaterialFaces)
+    scene.warnings.push_back(objPath + ": usemtl '" + name + "' names no material in the scene or the MTL; " +
+                             std::to_string(count) + " faces use the default material instead");
+}
+
+void appendObj(Scene &scene, const std::string &objPath, const Transform &toWorld, const std::string &objectName,
+               int defaultMaterial) {
+  InputLocation here{objPath, 0, 0, ""};
+  detail::appendObjFromScene(scene, objPath, toWorld, objectName, defaultMaterial, "", here, here);
+}
+
+}  // namespace radiant
