@@ -5,6 +5,7 @@
 #include "raytrace/ray_tracer.h"
 #include "render/driver.h"
 #include "render/renderer.h"
+#include "scene/load_scene.h"
 #include "test_scenes.h"
 
 namespace radiant {
@@ -138,6 +139,60 @@ TEST(PathTracer, MirrorShowsTheEmitterScaledByItsReflectance) {
   EXPECT_NEAR(L[0], 1.4, 1e-12);
   EXPECT_NEAR(L[1], 1.0, 1e-12);
   EXPECT_NEAR(L[2], 0.6, 1e-12);
+}
+
+/// Form factor from a differential area (point p, normal n) to a polygon:
+/// Lambert's contour integral (REFERENCE §1.4, Appendix A).
+double formFactorPointToPolygon(const Vec3 &p, const Vec3 &n, const std::vector<Vec3> &polygon) {
+  double sum = 0;
+  for (size_t k = 0; k < polygon.size(); ++k) {
+    Vec3 r0 = polygon[k] - p, r1 = polygon[(k + 1) % polygon.size()] - p, c = cross(r0, r1);
+    double cn = length(c);
+    if (cn > 0) sum += std::atan2(cn, dot(r0, r1)) * dot(n, c) / cn;
+  }
+  return std::abs(sum) / (2 * kPi);
+}
+
+TEST(PathTracer, DirectLightOnCornellWallMatchesLambertContourFormula) {
+  // With one bounce, a Lambertian point of reflectance ρ under a uniform
+  // emitter of radiance L (and nothing in between) has radiance ρ·L·F(point → emitter).
+  // The last points sit just below the light's plane, where shadow rays graze it:
+  // float round-off there once made the light occlude itself.
+  Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
+  RayTracer tracer(scene);
+  RendererOptions options;
+  options.maxDepth = 1;
+  auto renderer = createRenderer("path", tracer, options);
+  const double lightY = 0.5487;
+  const std::vector<Vec3> light = {{0.343, lightY, 0.227}, {0.343, lightY, 0.332}, {0.213, lightY, 0.332},
+                                   {0.213, lightY, 0.227}};
+  const Vec3 eye{0.278, 0.273, 0.1};
+  for (double y : {0.3, 0.5, 0.545, 0.548}) {
+    Vec3 onRightWall{0, y, 0.1};
+    Ray ray{eye, normalize(onRightWall - eye)};
+    Hit hit;
+    ASSERT_TRUE(tracer.intersect(ray, hit));
+    const Material &wall = scene.materials[hit.material];
+    double F = formFactorPointToPolygon(hit.position, hit.geometricNormal, light);
+    const Material *emitter = nullptr;
+    for (const Material &m : scene.materials)
+      if (m.isEmitter()) emitter = &m;
+    ASSERT_NE(emitter, nullptr);
+    const int n = 100000;
+    Bands sum(0.0), sumSquares(0.0);
+    for (int i = 0; i < n; ++i) {
+      Pcg32 rng = sampleGenerator(3, 0, i);
+      Bands L = renderer->radiance(ray, rng);
+      sum += L;
+      sumSquares += L * L;
+    }
+    for (int b = 0; b < kBandCount; ++b) {
+      double mean = sum[b] / n, standardError = std::sqrt((sumSquares[b] / n - mean * mean) / (n - 1));
+      double expected = wall.diffuse[b] * emitter->emission[b] * F;
+      EXPECT_GT(expected, 0);
+      EXPECT_NEAR(mean, expected, 5 * standardError + 1e-12) << "y = " << y << ", band " << b;
+    }
+  }
 }
 
 TEST(PathTracer, SameImageWithOneAndTwoThreads) {

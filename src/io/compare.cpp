@@ -77,4 +77,36 @@ std::vector<unsigned char> differenceImage(const Image &test, const Image &refer
   return out;
 }
 
+NoiseAgreement noiseAgreement(const Image &test, const Image &reference, const Image &testVariance,
+                              const Image &referenceVariance, int blockSize) {
+  NoiseAgreement result;
+  auto variance = [&](const Image &v, size_t p, int c) { return v.rgb.empty() ? 0.0 : double(v.rgb[3 * p + c]); };
+  // The pixels are independent estimates, so variances of sums add.
+  auto zScore = [&](int x0, int y0, int x1, int y1, int c) {
+    double difference = 0, var = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        size_t p = size_t(y) * test.width + x;
+        difference += double(test.rgb[3 * p + c]) - reference.rgb[3 * p + c];
+        var += variance(testVariance, p, c) + variance(referenceVariance, p, c);
+      }
+    // NaN marks a block that carries no information (noise-free and equal, e.g. black in both).
+    return var > 0 ? difference / std::sqrt(var) : (difference == 0 ? NAN : INFINITY);
+  };
+  for (int c = 0; c < 3; ++c) result.imageZ[c] = zScore(0, 0, test.width, test.height, c);
+  double sumSquares = 0;
+  for (int y = 0; y < test.height; y += blockSize)
+    for (int x = 0; x < test.width; x += blockSize)
+      for (int c = 0; c < 3; ++c) {
+        double z = zScore(x, y, std::min(x + blockSize, test.width), std::min(y + blockSize, test.height), c);
+        if (std::isnan(z)) continue;
+        ++result.blocks;
+        sumSquares += z * z;
+        result.blockMaxAbsZ = std::max(result.blockMaxAbsZ, std::abs(z));
+        if (std::abs(z) > 4) ++result.blocksBeyond4;
+      }
+  result.blockRmsZ = result.blocks ? std::sqrt(sumSquares / result.blocks) : 0;
+  return result;
+}
+
 }  // namespace radiant

@@ -24,6 +24,22 @@ struct ImageComparison {
   size_t nonFinitePixels = 0;                 ///< NaN/Inf in the test image (counted, excluded)
 };
 
+/// Agreement within noise, from the variance of each pixel's mean (radiant
+/// render --variance): z-scores of the difference of means, for the whole image
+/// and for blocks of pixels, so a bias confined to one wall is not averaged away.
+struct NoiseAgreement {
+  std::array<double, 3> imageZ{};  ///< (mean test − mean reference) / its standard error, per channel
+  size_t blocks = 0;               ///< block × channel z-scores computed
+  double blockRmsZ = 0;            ///< ≈ 1 when the images agree within noise
+  double blockMaxAbsZ = 0;
+  size_t blocksBeyond4 = 0;        ///< |z| > 4: expect ~0.006% by chance
+};
+
+/// `testVariance` and `referenceVariance` hold per-pixel variances of the mean
+/// (either may be empty: then that image is taken as noise-free).
+NoiseAgreement noiseAgreement(const Image &test, const Image &reference, const Image &testVariance,
+                              const Image &referenceVariance, int blockSize = 16);
+
 /// Throws InputError if the sizes differ.
 ImageComparison compareImages(const Image &test, const Image &reference, const std::string &testName = "test",
                               const std::string &referenceName = "reference");

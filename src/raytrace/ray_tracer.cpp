@@ -110,13 +110,18 @@ bool RayTracer::occluded(const Ray &ray, double tMax) const {
 
 bool RayTracer::visible(const Vec3 &from, const Vec3 &fromNormal, const Vec3 &to, const Vec3 &toNormal) const {
   Vec3 d = to - from;
-  double dist = length(d);
-  if (dist <= 0) return true;
-  Vec3 dir = d / dist;
-  Ray ray = spawnRay(from, fromNormal, dir);
-  Vec3 target = to + toNormal * (dot(-dir, toNormal) >= 0 ? epsilon_ : -epsilon_);
-  double tMax = length(target - ray.origin) * (1.0 - 1e-7);
-  return !occluded(ray, tMax);
+  if (!(dot(d, d) > 0)) return true;
+  Ray ray = spawnRay(from, fromNormal, normalize(d));
+  Vec3 toTarget = to - ray.origin;
+  double distance = length(toTarget);
+  ray.direction = toTarget / distance;
+  // Stop where the ray is `epsilon` from the target's plane, not `epsilon`
+  // along the ray: a grazing shadow ray (a wall point just under a ceiling
+  // light) otherwise meets the target's own plane early through float
+  // round-off and the light is wrongly found occluded.
+  double cosTarget = std::abs(dot(ray.direction, toNormal));
+  double tMax = distance - epsilon_ / std::max(cosTarget, 1e-4);
+  return tMax <= 0 || !occluded(ray, tMax);
 }
 
 void RayTracer::intersectMany(std::span<const Ray> rays, std::span<Hit> hits, std::span<uint8_t> found) const {
