@@ -50,6 +50,9 @@ if "$radiant" compare a.exr a.exr --diff d.png >cmp.txt; then
 else
   fail "compare failed"
 fi
+"$radiant" compare a.exr a.exr --test-variance v.exr | grep -q "R +0.00  G +0.00  B +0.00" && pass \
+  || fail "compare --test-variance: an image against itself has z = 0"
+expect_error "variance size mismatch" "variance image size" "$radiant" compare a.exr a.exr --test-variance cornell-box.exr
 "$radiant" compare a.pfm a.exr --json | grep -q '"mean_ratio": 1' && pass || fail "compare pfm vs exr, --json"
 
 # Bad input: clear message, non-zero exit, and no partial output over a good file.
