@@ -9,6 +9,7 @@
 #include <embree3/rtcore.h>
 
 #include <span>
+#include <vector>
 
 #include "scene/scene.h"
 
@@ -61,6 +62,7 @@ class RayTracer {
   RTCDevice device_ = nullptr;
   RTCScene rtcScene_ = nullptr;
   double epsilon_ = 1e-6;
+  std::vector<Vec3> triangleNormals_;  ///< unit front-side normal per triangle, computed once
 };
 
 }  // namespace radiant
