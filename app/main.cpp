@@ -15,8 +15,10 @@ int main(int argc, char **argv) {
   app.set_version_flag("--version", std::string("radiant ") + RADIANT_VERSION);
   app.require_subcommand(1);
   CLI::App *render = app.add_subcommand("render", "Render a scene (JSON or OBJ) to EXR/PFM/PNG images");
+  CLI::App *solve = app.add_subcommand("solve", "Compute a scene's radiosity solution, report it, save it for render");
   CLI::App *compare = app.add_subcommand("compare", "Compare an image with a reference: mean ratio, RMSE, relMSE");
   radiant::CommandRunner runRender = radiant::addRenderCommand(*render);
+  radiant::CommandRunner runSolve = radiant::addSolveCommand(*solve);
   radiant::CommandRunner runCompare = radiant::addCompareCommand(*compare);
 
   try {
@@ -26,6 +28,7 @@ int main(int argc, char **argv) {
   }
   try {
     if (render->parsed()) return runRender();
+    if (solve->parsed()) return runSolve();
     if (compare->parsed()) return runCompare();
   } catch (const radiant::InputError &e) {
     fmt::print(stderr, "radiant: error: {}\n", e.what());

@@ -8,6 +8,8 @@
 #include <sstream>
 
 #include "commands.h"
+#include "io/solution_file.h"
+#include "radiosity_options.h"
 #include "raytrace/ray_tracer.h"
 #include "render/driver.h"
 #include "render/film_image.h"
@@ -30,6 +32,8 @@ struct RenderCommandOptions {
   std::string eye, target, up, pixel;
   int threads = 0;
   bool quiet = false;
+  std::string solutionPath;
+  RadiosityCommandOptions radiosity;
 };
 
 InputLocation flag(const std::string &name) { return InputLocation{name}; }
@@ -81,6 +85,9 @@ CommandRunner addRenderCommand(CLI::App &app) {
   app.add_option("--height", o->height, "Image height, pixels");
   app.add_option("--pixel", o->pixel, "Render only pixel x,y (debugging; other pixels stay black)");
   app.add_flag("-q,--quiet", o->quiet, "No progress or summary on stderr");
+  app.add_option("--solution", o->solutionPath,
+                 "Radiosity solution from `radiant solve -o` to display instead of solving (methods that read one)");
+  addRadiosityOptions(app, o->radiosity);
 
   return [o]() {
     Scene scene = loadScene(o->scenePath);
@@ -147,9 +154,16 @@ CommandRunner addRenderCommand(CLI::App &app) {
     if (!o->quiet)
       for (const std::string &warning : scene.warnings) fmt::print(stderr, "radiant: warning: {}\n", warning);
 
+    const RendererInfo &method = findRenderer(o->method);
     RayTracer tracer(scene);
     RendererOptions rendererOptions;
     rendererOptions.maxDepth = r.maxDepth;
+    Solution solution;
+    if (method.needsSolution) {
+      solution = o->solutionPath.empty() ? solveScene(scene, tracer, o->radiosity, r.seed, o->threads, o->quiet)
+                                         : readSolution(o->solutionPath, scene);
+      rendererOptions.solution = &solution;
+    }
     std::unique_ptr<Renderer> renderer = createRenderer(o->method, tracer, rendererOptions);
     PinholeCamera camera(scene.camera, r.width, r.height);
     Film film(r.width, r.height);

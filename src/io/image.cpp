@@ -14,6 +14,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "util/atomic_file.h"
 #include "util/error.h"
 
 namespace radiant {
@@ -24,23 +25,6 @@ std::string extensionOf(const std::string &path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char &c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return ext;
-}
-
-/// Writes through `write(temporaryPath)` then renames onto `path`.
-template <typename WriteFunction>
-void writeAtomically(const std::string &path, WriteFunction write) {
-  std::filesystem::path target(path);
-  std::random_device entropy;
-  std::filesystem::path temporary =
-      target.parent_path() / ("." + target.filename().string() + ".tmp" + std::to_string(entropy() % 1000000));
-  try {
-    write(temporary.string());
-    std::filesystem::rename(temporary, target);
-  } catch (const std::exception &e) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    throw std::runtime_error("cannot write '" + path + "': " + e.what());
-  }
 }
 
 }  // namespace

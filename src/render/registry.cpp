@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include "render/path_tracer.h"
+#include "render/radiosity_display.h"
 #include "render/renderer.h"
 #include "util/error.h"
 
@@ -10,21 +11,25 @@ namespace radiant {
 const std::vector<RendererInfo> &rendererRegistry() {
   static const std::vector<RendererInfo> table = {
       {"path", "unbiased reference path tracer (NEE + MIS, Russian roulette)", &createPathTracer},
+      {"flat", "the radiosity solution, constant per element", &createFlatRadiosityDisplay, true},
+      {"interpolate", "the radiosity solution interpolated from its nodes (the classic radiosity image)",
+       &createInterpolatedRadiosityDisplay, true},
   };
   return table;
 }
 
-std::unique_ptr<Renderer> createRenderer(const std::string &name, const RayTracer &tracer,
-                                         const RendererOptions &options) {
+const RendererInfo &findRenderer(const std::string &name) {
   std::string names;
   for (const RendererInfo &info : rendererRegistry()) {
-    if (name == info.name) return info.create(tracer, options);
+    if (name == info.name) return info;
     names += names.empty() ? info.name : std::string(", ") + info.name;
   }
-  std::string message = fmt::format("unknown method '{}'; known methods: {}", name, names);
-  InputLocation where;
-  where.file = "--method";
-  throw InputError(where, message);
+  throw InputError(InputLocation{"--method"}, fmt::format("unknown method '{}'; known methods: {}", name, names));
+}
+
+std::unique_ptr<Renderer> createRenderer(const std::string &name, const RayTracer &tracer,
+                                         const RendererOptions &options) {
+  return findRenderer(name).create(tracer, options);
 }
 
 }  // namespace radiant

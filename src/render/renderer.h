@@ -23,20 +23,27 @@ class Renderer {
   virtual Bands radiance(const Ray &ray, Pcg32 &rng) const = 0;
 };
 
+struct Solution;
+
 /// Options shared by the renderers, from the command line and scene file.
 struct RendererOptions {
   int maxDepth = 0;  ///< 0: unlimited, Russian roulette ends paths
+  /// The radiosity solution, for the methods that read one (it must outlive the renderer).
+  const Solution *solution = nullptr;
 };
 
 struct RendererInfo {
   const char *name;
   const char *summary;
   std::unique_ptr<Renderer> (*create)(const RayTracer &, const RendererOptions &);
+  bool needsSolution = false;  ///< the driver must solve (or load) radiosity first
 };
 
 /// Every rendering method, by name (render/registry.cpp).
 const std::vector<RendererInfo> &rendererRegistry();
-/// Throws InputError (with a "did you mean") for an unknown name.
+/// The registry entry for `name`; throws InputError listing the known names.
+const RendererInfo &findRenderer(const std::string &name);
+/// Throws InputError listing the known names for an unknown one.
 std::unique_ptr<Renderer> createRenderer(const std::string &name, const RayTracer &tracer,
                                          const RendererOptions &options);
 

@@ -1,0 +1,101 @@
+#include "radiosity_options.h"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "mesh/mesh.h"
+#include "radiosity/solver.h"
+
+namespace radiant {
+
+void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &o) {
+  std::string solvers;
+  for (const SolverInfo &info : solverRegistry()) solvers += fmt::format("\n  {:<13} {}", info.name, info.summary);
+  app.add_option("--solver", o.solver, "Radiosity solver:" + solvers)->default_val("progressive");
+  app.add_option("--mesh-size", o.meshSize,
+                 "Target element edge length in scene units (default: 1/8 of the scene's largest extent)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--max-elements", o.maxElements, "Refuse meshes with more elements than this")
+      ->default_val(2'000'000)
+      ->check(CLI::Range(size_t(1), size_t(100'000'000)));
+  app.add_option("--tolerance", o.tolerance,
+                 "Convergence: unshot power fraction (progressive) or relative change per sweep (gauss-seidel)")
+      ->default_val(1e-3)
+      ->check(CLI::Range(1e-12, 1.0));
+  app.add_option("--max-iterations", o.maxIterations, "Stop after this many shots or sweeps (0: no limit)")
+      ->default_val(0)
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--ff-samples", o.formFactorSamples, "Shadow rays per form factor (a square number is used fully)")
+      ->default_val(4)
+      ->check(CLI::Range(1, 1024));
+  app.add_option("--form-factor", o.formFactor,
+                 "Progressive solver's form factors: analytic (contour integral x visible fraction), ray-cast "
+                 "(Wallace 1989 disc sum), hemicube (Cohen & Greenberg 1985)")
+      ->default_val("analytic")
+      ->check(CLI::IsMember({"analytic", "ray-cast", "hemicube"}));
+  app.add_option("--hemicube-resolution", o.hemicubeResolution, "Hemicube pixels across the top face")
+      ->default_val(64)
+      ->check(CLI::Range(4, 4096));
+}
+
+Solution solveScene(const Scene &scene, const RayTracer &tracer, const RadiosityCommandOptions &o, uint64_t seed,
+                    int threads, bool quiet) {
+  MeshOptions meshOptions;
+  if (o.meshSize) meshOptions.maxEdgeLength = *o.meshSize * scene.metresPerUnit;
+  meshOptions.maxElements = o.maxElements;
+  Solution solution = initialSolution(scene, buildMesh(scene, meshOptions));
+  SolverOptions solverOptions;
+  solverOptions.solver = o.solver;
+  solverOptions.tolerance = o.tolerance;
+  solverOptions.maxIterations = o.maxIterations;
+  solverOptions.visibilitySamples = o.formFactorSamples;
+  solverOptions.formFactor = o.formFactor;
+  solverOptions.hemicubeResolution = o.hemicubeResolution;
+  solverOptions.seed = seed;
+  solverOptions.threads = threads;
+
+  SolverProgressCallback progress;
+  if (!quiet) {
+    bool terminal = isatty(fileno(stderr));
+    auto last = std::make_shared<std::chrono::steady_clock::time_point>(std::chrono::steady_clock::now());
+    std::string name = o.solver;
+    auto first = std::make_shared<SolverProgress>();
+    progress = [terminal, last, first, name](const SolverProgress &p) {
+      if (first->iteration == 0) *first = p;
+      auto now = std::chrono::steady_clock::now();
+      double since = std::chrono::duration<double>(now - *last).count();
+      if (since < (terminal ? 0.2 : 5.0)) return;
+      *last = now;
+      // Residuals fall roughly geometrically: extrapolate log(residual) against time.
+      std::string eta = "?";
+      if (p.residual > 0 && first->residual > p.residual && p.elapsedSeconds > first->elapsedSeconds) {
+        double rate = std::log(first->residual / p.residual) / (p.elapsedSeconds - first->elapsedSeconds);
+        eta = fmt::format("{:.1f}s", std::max(0.0, std::log(p.residual / p.tolerance) / rate));
+      }
+      fmt::print(stderr, "{}{}: iteration {}, residual {:.3g} (target {:.3g}), {:.1f}s, ETA {}{}", terminal ? "\r" : "",
+                 name, p.iteration, p.residual, p.tolerance, p.elapsedSeconds, eta, terminal ? "   " : "\n");
+    };
+    fmt::print(stderr, "radiant: meshing gave {} elements on {} patches; solving with {}\n",
+               solution.elementCount(), solution.mesh.patches.size(), o.solver);
+  }
+  solveRadiosity(tracer, solution, solverOptions, progress);
+  if (!quiet) {
+    if (isatty(fileno(stderr))) fmt::print(stderr, "\n");
+    printSolveSummary(solution);
+  }
+  return solution;
+}
+
+void printSolveSummary(const Solution &s) {
+  const SolveStats &st = s.stats;
+  fmt::print(stderr, "radiant: {} solved {} elements in {:.2f} s: {} iterations, residual {:.3g}, {:.3g} M shadow rays\n",
+             st.solver, s.elementCount(), st.seconds, st.iterations, st.residual, st.formFactorRays * 1e-6);
+  fmt::print(stderr, "radiant: power (W, band average): emitted {:.6g}, absorbed {:.6g}, escaped {:.6g}\n",
+             st.emittedPower.average(), st.absorbedPower.average(), st.escapedPower.average());
+}
+
+}  // namespace radiant

@@ -1,0 +1,47 @@
+// radiant solve SCENE — meshes the scene, computes its radiosity solution,
+// reports it, and optionally saves it for `radiant render --solution`.
+#include <fmt/format.h>
+
+#include "commands.h"
+#include "io/solution_file.h"
+#include "radiosity_options.h"
+#include "scene/load_scene.h"
+
+namespace radiant {
+
+namespace {
+struct SolveCommandOptions {
+  std::string scenePath, outputPath;
+  RadiosityCommandOptions radiosity;
+  uint64_t seed = 1;
+  int threads = 0;
+  bool quiet = false;
+};
+}  // namespace
+
+CommandRunner addSolveCommand(CLI::App &app) {
+  auto o = std::make_shared<SolveCommandOptions>();
+  app.add_option("scene", o->scenePath, "Scene file: JSON (docs/scene-format.md) or a bare .obj model")->required();
+  app.add_option("-o,--output", o->outputPath, "Save the solution (docs/solution-format.md), e.g. scene.rad");
+  addRadiosityOptions(app, o->radiosity);
+  app.add_option("--seed", o->seed, "Random seed of the form-factor shadow rays")->default_val(1);
+  app.add_option("--threads", o->threads, "Worker threads (0: all cores); does not change the solution")
+      ->default_val(0)
+      ->check(CLI::Range(0, 4096));
+  app.add_flag("-q,--quiet", o->quiet, "No progress or summary on stderr");
+
+  return [o]() {
+    Scene scene = loadScene(o->scenePath);
+    if (!o->quiet)
+      for (const std::string &warning : scene.warnings) fmt::print(stderr, "radiant: warning: {}\n", warning);
+    RayTracer tracer(scene);
+    Solution solution = solveScene(scene, tracer, o->radiosity, o->seed, o->threads, o->quiet);
+    if (!o->outputPath.empty()) {
+      writeSolution(solution, scene, o->outputPath);
+      if (!o->quiet) fmt::print(stderr, "radiant: wrote {}\n", o->outputPath);
+    }
+    return 0;
+  };
+}
+
+}  // namespace radiant

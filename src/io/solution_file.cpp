@@ -1,0 +1,244 @@
+#include "io/solution_file.h"
+
+#include <fmt/format.h>
+
+#include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include "util/atomic_file.h"
+#include "util/error.h"
+
+namespace radiant {
+
+namespace {
+
+constexpr char kMagic[16] = {'R', 'A', 'D', 'I', 'A', 'N', 'T', '-', 'S', 'O', 'L', 'U', 'T', 'I', 'O', 'N'};
+
+/// FNV-1a, 64 bit.
+struct Fingerprint {
+  uint64_t h = 0xcbf29ce484222325ULL;
+  void bytes(const void *data, size_t n) {
+    auto *p = static_cast<const unsigned char *>(data);
+    for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 0x100000001b3ULL;
+  }
+  template <typename T>
+  void value(const T &v) { bytes(&v, sizeof v); }
+};
+
+class Writer {
+ public:
+  template <typename T>
+  void put(const T &v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    data_.append(reinterpret_cast<const char *>(&v), sizeof v);
+  }
+  void put(const Vec3 &v) { put(v.x), put(v.y), put(v.z); }
+  void put(const Bands &b) { for (int i = 0; i < kBandCount; ++i) put(b[i]); }
+  void put(const std::string &s) {
+    put(uint32_t(s.size()));
+    data_ += s;
+  }
+  const std::string &data() const { return data_; }
+
+ private:
+  std::string data_;
+};
+
+class Reader {
+ public:
+  Reader(std::string data, std::string path) : data_(std::move(data)), path_(std::move(path)) {}
+  template <typename T>
+  T get() {
+    static_assert(std::is_trivially_copyable_v<T>);
+    need(sizeof(T));
+    T v;
+    std::memcpy(&v, data_.data() + offset_, sizeof v);
+    offset_ += sizeof v;
+    return v;
+  }
+  Vec3 vec3() {
+    Vec3 v;
+    v.x = get<double>(), v.y = get<double>(), v.z = get<double>();
+    return v;
+  }
+  Bands bands() {
+    Bands b;
+    for (int i = 0; i < kBandCount; ++i) b[i] = get<double>();
+    return b;
+  }
+  std::string string() {
+    uint32_t n = get<uint32_t>();
+    need(n);
+    std::string s = data_.substr(offset_, n);
+    offset_ += n;
+    return s;
+  }
+  /// Checks that `count` records of `bytesEach` fit in what is left, before allocating for them.
+  size_t count(uint64_t count, size_t bytesEach, const char *what) {
+    if (count > (data_.size() - offset_) / std::max<size_t>(1, bytesEach))
+      fail(fmt::format("the file is truncated or corrupt: it claims {} {}", count, what));
+    return static_cast<size_t>(count);
+  }
+  [[noreturn]] void fail(const std::string &message) const { throw InputError(InputLocation{path_}, message); }
+  bool atEnd() const { return offset_ == data_.size(); }
+
+ private:
+  void need(size_t n) {
+    if (data_.size() - offset_ < n) fail("the file is truncated");
+  }
+  std::string data_, path_;
+  size_t offset_ = 0;
+};
+
+}  // namespace
+
+uint64_t sceneFingerprint(const Scene &scene) {
+  Fingerprint f;
+  f.value(uint64_t(scene.positions.size()));
+  for (const Vec3 &p : scene.positions) f.value(p.x), f.value(p.y), f.value(p.z);
+  f.value(uint64_t(scene.faces.size()));
+  for (const Face &face : scene.faces) {
+    f.value(face.vertexCount);
+    for (int k = 0; k < face.vertexCount; ++k) f.value(face.vertices[k]);
+    f.value(face.material);
+  }
+  f.value(uint64_t(scene.materials.size()));
+  for (const Material &m : scene.materials) {
+    f.value(int(m.kind));
+    for (int b = 0; b < kBandCount; ++b) f.value(m.diffuse[b]), f.value(m.emission[b]), f.value(m.specular[b]);
+  }
+  return f.h;
+}
+
+void writeSolution(const Solution &s, const Scene &scene, const std::string &path) {
+  Writer w;
+  w.put(kMagic);
+  w.put(kSolutionFormatVersion);
+  w.put(uint32_t(kBandCount));
+  w.put(sceneFingerprint(scene));
+  const RadiosityMesh &m = s.mesh;
+  w.put(uint64_t(m.patches.size()));
+  w.put(uint64_t(m.elements.size()));
+  w.put(uint64_t(m.nodes.size()));
+  w.put(uint64_t(m.patchOfFace.size()));
+  w.put(s.stats.solver);
+  w.put(int64_t(s.stats.iterations));
+  w.put(s.stats.residual);
+  w.put(s.stats.seconds);
+  w.put(uint64_t(s.stats.formFactorRays));
+  w.put(s.stats.emittedPower);
+  w.put(s.stats.absorbedPower);
+  w.put(s.stats.escapedPower);
+  w.put(s.ambient);
+  for (const Patch &p : m.patches) {
+    w.put(p.face), w.put(p.material), w.put(p.object), w.put(int32_t(p.vertexCount));
+    for (const Vec3 &c : p.corners) w.put(c);
+    w.put(p.normal), w.put(p.area), w.put(int32_t(p.divisionsU)), w.put(int32_t(p.divisionsV));
+    w.put(p.firstElement), w.put(p.elementCount), w.put(p.firstNode), w.put(p.nodeCount);
+  }
+  for (const Element &e : m.elements) {
+    w.put(e.patch), w.put(int32_t(e.vertexCount));
+    for (uint32_t v : e.nodes) w.put(v);
+    w.put(e.centre), w.put(e.area);
+  }
+  for (size_t v = 0; v < m.nodes.size(); ++v) w.put(m.nodes[v]), w.put(m.nodePatch[v]);
+  for (int32_t p : m.patchOfFace) w.put(p);
+  for (size_t e = 0; e < m.elements.size(); ++e) {
+    w.put(s.reflectance[e]), w.put(s.emission[e]), w.put(s.radiosity[e]);
+    w.put(s.direct[e]), w.put(s.indirect[e]), w.put(s.unshot[e]), w.put(s.errorEstimate[e]);
+  }
+  for (const Bands &b : s.nodeRadiosity) w.put(b);
+
+  writeAtomically(path, [&](const std::string &temporary) {
+    std::ofstream out(temporary, std::ios::binary);
+    out.write(w.data().data(), std::streamsize(w.data().size()));
+    out.close();
+    if (!out) throw std::runtime_error("write failed");
+  });
+}
+
+Solution readSolution(const std::string &path, const Scene &scene) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(InputLocation{path}, "cannot open the solution file");
+  Reader r(std::string(std::istreambuf_iterator<char>(in), {}), path);
+  char magic[16];
+  for (char &c : magic) c = r.get<char>();
+  if (std::memcmp(magic, kMagic, sizeof magic) != 0)
+    r.fail("not a Radiant solution file (written by `radiant solve -o`)");
+  uint32_t version = r.get<uint32_t>();
+  if (version != kSolutionFormatVersion)
+    r.fail(fmt::format("solution format version {}; this radiant reads version {} (solve the scene again)", version,
+                       kSolutionFormatVersion));
+  uint32_t bands = r.get<uint32_t>();
+  if (bands != uint32_t(kBandCount))
+    r.fail(fmt::format("the solution has {} bands; this scene has {}", bands, kBandCount));
+  if (r.get<uint64_t>() != sceneFingerprint(scene))
+    r.fail("the solution was made for another scene (its geometry or materials differ from '" + scene.sourceFile +
+           "'); solve this scene again with `radiant solve`");
+
+  Solution s;
+  RadiosityMesh &m = s.mesh;
+  uint64_t patches = r.get<uint64_t>(), elements = r.get<uint64_t>(), nodes = r.get<uint64_t>(),
+           faces = r.get<uint64_t>();
+  s.stats.solver = r.string();
+  s.stats.iterations = static_cast<int>(r.get<int64_t>());
+  s.stats.residual = r.get<double>();
+  s.stats.seconds = r.get<double>();
+  s.stats.formFactorRays = r.get<uint64_t>();
+  s.stats.emittedPower = r.bands();
+  s.stats.absorbedPower = r.bands();
+  s.stats.escapedPower = r.bands();
+  s.ambient = r.bands();
+  m.patches.resize(r.count(patches, 4 * 4 + 15 * 8 + 8 + 4 * 4 + 8, "patches"));
+  for (Patch &p : m.patches) {
+    p.face = r.get<uint32_t>(), p.material = r.get<uint32_t>(), p.object = r.get<uint32_t>();
+    p.vertexCount = r.get<int32_t>();
+    for (Vec3 &c : p.corners) c = r.vec3();
+    p.normal = r.vec3(), p.area = r.get<double>();
+    p.divisionsU = r.get<int32_t>(), p.divisionsV = r.get<int32_t>();
+    p.firstElement = r.get<uint32_t>(), p.elementCount = r.get<uint32_t>();
+    p.firstNode = r.get<uint32_t>(), p.nodeCount = r.get<uint32_t>();
+  }
+  m.elements.resize(r.count(elements, 6 * 4 + 4 * 8, "elements"));
+  for (Element &e : m.elements) {
+    e.patch = r.get<uint32_t>(), e.vertexCount = r.get<int32_t>();
+    for (uint32_t &v : e.nodes) v = r.get<uint32_t>();
+    e.centre = r.vec3(), e.area = r.get<double>();
+  }
+  m.nodes.resize(r.count(nodes, 3 * 8 + 4, "nodes"));
+  m.nodePatch.resize(m.nodes.size());
+  for (size_t v = 0; v < m.nodes.size(); ++v) m.nodes[v] = r.vec3(), m.nodePatch[v] = r.get<uint32_t>();
+  m.patchOfFace.resize(r.count(faces, 4, "faces"));
+  for (int32_t &p : m.patchOfFace) p = r.get<int32_t>();
+  const size_t n = r.count(elements, (6 * kBandCount + 1) * 8, "element values");
+  for (auto *v : {&s.reflectance, &s.emission, &s.radiosity, &s.direct, &s.indirect, &s.unshot}) v->resize(n);
+  s.errorEstimate.resize(n);
+  for (size_t e = 0; e < n; ++e) {
+    s.reflectance[e] = r.bands(), s.emission[e] = r.bands(), s.radiosity[e] = r.bands();
+    s.direct[e] = r.bands(), s.indirect[e] = r.bands(), s.unshot[e] = r.bands();
+    s.errorEstimate[e] = r.get<double>();
+  }
+  s.nodeRadiosity.resize(r.count(nodes, kBandCount * 8, "node values"));
+  for (Bands &b : s.nodeRadiosity) b = r.bands();
+  if (!r.atEnd()) r.fail("unexpected data after the solution");
+
+  // Cross-references must stay inside their arrays: a corrupt file must not crash a renderer.
+  if (m.patchOfFace.size() != scene.faces.size()) r.fail("the solution's face count differs from the scene's");
+  for (int32_t p : m.patchOfFace)
+    if (p < -1 || p >= int32_t(m.patches.size())) r.fail("a face refers to a patch that does not exist");
+  for (const Patch &p : m.patches)
+    if (p.vertexCount < 3 || p.vertexCount > 4 || p.divisionsU < 1 || p.divisionsV < 1 ||
+        uint64_t(p.firstElement) + p.elementCount > m.elements.size() ||
+        uint64_t(p.firstNode) + p.nodeCount > m.nodes.size() ||
+        p.elementCount != uint32_t(p.vertexCount == 4 ? p.divisionsU * p.divisionsV : p.divisionsU * p.divisionsU))
+      r.fail("a patch's subdivision is inconsistent");
+  for (const Element &e : m.elements) {
+    if (e.patch >= m.patches.size() || e.vertexCount < 3 || e.vertexCount > 4) r.fail("an element is inconsistent");
+    for (int k = 0; k < e.vertexCount; ++k)
+      if (e.nodes[k] >= m.nodes.size()) r.fail("an element refers to a node that does not exist");
+  }
+  return s;
+}
+
+}  // namespace radiant

@@ -1,0 +1,209 @@
+#include "mesh/mesh.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "util/error.h"
+
+namespace radiant {
+
+namespace {
+
+double cross2(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
+
+/// Bilinear point P(u, v) of a quad a=P(0,0), b=P(1,0), c=P(1,1), d=P(0,1).
+Vec3 bilinear(const std::array<Vec3, 4> &q, double u, double v) {
+  return q[0] * ((1 - u) * (1 - v)) + q[1] * (u * (1 - v)) + q[2] * (u * v) + q[3] * ((1 - u) * v);
+}
+
+/// Inverse of the bilinear map of a planar quad (Quílez's closed form, done in
+/// the quad's plane): the (u, v) with P(u, v) = p.
+void inverseBilinear(const Patch &patch, const Vec3 &p, double &u, double &v) {
+  Frame frame = Frame::fromNormal(patch.normal);
+  auto to2 = [&](const Vec3 &x) {
+    Vec3 l = frame.toLocal(x - patch.corners[0]);
+    return std::array<double, 2>{l.x, l.y};
+  };
+  auto b = to2(patch.corners[1]), c = to2(patch.corners[2]), d = to2(patch.corners[3]), h = to2(p);
+  double ex = b[0], ey = b[1], fx = d[0], fy = d[1];
+  double gx = -b[0] + c[0] - d[0], gy = -b[1] + c[1] - d[1];
+  double k2 = cross2(gx, gy, fx, fy);
+  double k1 = cross2(ex, ey, fx, fy) + cross2(h[0], h[1], gx, gy);
+  double k0 = cross2(h[0], h[1], ex, ey);
+  auto solveU = [&](double vv) {
+    // Least squares along the edge direction at height v: robust whichever axis it follows.
+    double rx = h[0] - fx * vv, ry = h[1] - fy * vv, sx = ex + gx * vv, sy = ey + gy * vv;
+    double s2 = sx * sx + sy * sy;
+    return s2 > 0 ? (rx * sx + ry * sy) / s2 : 0.0;
+  };
+  double scale = patch.area;
+  if (std::abs(k2) <= 1e-12 * scale * scale || std::abs(k2) <= 1e-9 * std::abs(k1) * std::sqrt(scale)) {
+    v = k1 != 0 ? -k0 / k1 : 0;  // a parallelogram: the map is affine
+  } else {
+    double w = std::sqrt(std::max(0.0, k1 * k1 - 4 * k0 * k2));
+    double v1 = (-k1 - w) / (2 * k2), v2 = (-k1 + w) / (2 * k2);
+    auto outside = [](double x) { return std::max({0.0, -x, x - 1}); };
+    v = outside(v1) <= outside(v2) ? v1 : v2;
+  }
+  u = solveU(v);
+}
+
+}  // namespace
+
+std::vector<Vec3> RadiosityMesh::polygon(uint32_t element) const {
+  const Element &e = elements[element];
+  std::vector<Vec3> p(e.vertexCount);
+  for (int k = 0; k < e.vertexCount; ++k) p[k] = nodes[e.nodes[k]];
+  return p;
+}
+
+MeshLocation RadiosityMesh::locate(uint32_t face, const Vec3 &position) const {
+  const Patch &patch = patches[patchOfFace[face]];
+  MeshLocation location;
+  if (patch.vertexCount == 4) {
+    double u, v;
+    inverseBilinear(patch, position, u, v);
+    const int nU = patch.divisionsU, nV = patch.divisionsV;
+    double x = std::clamp(u, 0.0, 1.0) * nU, y = std::clamp(v, 0.0, 1.0) * nV;
+    int i = std::min(nU - 1, static_cast<int>(x)), j = std::min(nV - 1, static_cast<int>(y));
+    location.element = patch.firstElement + uint32_t(j * nU + i);
+    location.s = std::clamp(x - i, 0.0, 1.0);
+    location.t = std::clamp(y - j, 0.0, 1.0);
+    return location;
+  }
+  // Triangle: barycentrics by areas in the patch's plane.
+  const Vec3 &a = patch.corners[0], &b = patch.corners[1], &c = patch.corners[2];
+  Vec3 n = cross(b - a, c - a);
+  double n2 = dot(n, n);
+  double b1 = dot(cross(position - a, c - a), n) / n2;
+  double b2 = dot(cross(b - a, position - a), n) / n2;
+  b1 = std::clamp(b1, 0.0, 1.0);
+  b2 = std::clamp(b2, 0.0, 1.0 - b1);
+  const int d = patch.divisionsU;
+  double x = b1 * d, y = b2 * d;
+  int i = std::min(d - 1, static_cast<int>(x)), j = std::min(d - 1 - i, static_cast<int>(y));
+  double fi = std::clamp(x - i, 0.0, 1.0), fj = std::clamp(y - j, 0.0, 1.0);
+  bool upper = fi + fj > 1 && i + j <= d - 2;
+  uint32_t rowOffset = uint32_t(j * (2 * d - j));
+  if (upper) {
+    location.element = patch.firstElement + rowOffset + uint32_t(d - j + i);
+    location.t = 1 - fi;           // weights: node0 (i+1, j) 1−s−t, node1 (i+1, j+1) s, node2 (i, j+1) t
+    location.s = fi + fj - 1;
+  } else {
+    if (fi + fj > 1) {  // on the patch's far edge: project back onto the lower element
+      double excess = (fi + fj - 1) / 2;
+      fi -= excess;
+      fj -= excess;
+    }
+    location.element = patch.firstElement + rowOffset + uint32_t(i);
+    location.s = fi;
+    location.t = fj;
+  }
+  return location;
+}
+
+std::array<double, 4> RadiosityMesh::nodeWeights(const MeshLocation &l) const {
+  if (elements[l.element].vertexCount == 4)
+    return {(1 - l.s) * (1 - l.t), l.s * (1 - l.t), l.s * l.t, (1 - l.s) * l.t};
+  return {1 - l.s - l.t, l.s, l.t, 0.0};
+}
+
+RadiosityMesh buildMesh(const Scene &scene, const MeshOptions &options) {
+  RadiosityMesh mesh;
+  double edge = options.maxEdgeLength;
+  if (!(edge > 0)) {
+    Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+    for (const Vec3 &p : scene.positions)
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], p[k]);
+        hi[k] = std::max(hi[k], p[k]);
+      }
+    edge = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-9}) / 8;
+  }
+
+  // First the counts, so an absurd request fails before any allocation.
+  size_t totalElements = 0;
+  std::vector<std::array<int, 2>> divisions(scene.faces.size());
+  for (size_t f = 0; f < scene.faces.size(); ++f) {
+    const Face &face = scene.faces[f];
+    auto corner = [&](int k) { return scene.positions[face.vertices[k]]; };
+    auto steps = [&](double length) { return std::max(1, static_cast<int>(std::ceil(length / edge - 1e-9))); };
+    if (face.vertexCount == 4) {
+      int nU = steps(std::max(length(corner(1) - corner(0)), length(corner(2) - corner(3))));
+      int nV = steps(std::max(length(corner(3) - corner(0)), length(corner(2) - corner(1))));
+      divisions[f] = {nU, nV};
+      totalElements += size_t(nU) * nV;
+    } else {
+      int n = steps(std::max({length(corner(1) - corner(0)), length(corner(2) - corner(1)),
+                              length(corner(0) - corner(2))}));
+      divisions[f] = {n, n};
+      totalElements += size_t(n) * n;
+    }
+    if (totalElements > options.maxElements)
+      throw InputError(InputLocation{"--mesh-size"},
+                       fmt::format("the mesh would have more than {} elements (element edge {:.4g} m); "
+                                   "choose a larger --mesh-size or raise --max-elements",
+                                   options.maxElements, edge));
+  }
+
+  mesh.patchOfFace.assign(scene.faces.size(), -1);
+  mesh.elements.reserve(totalElements);
+  for (size_t f = 0; f < scene.faces.size(); ++f) {
+    const Face &face = scene.faces[f];
+    Patch patch;
+    patch.face = static_cast<uint32_t>(f);
+    patch.material = face.material;
+    patch.object = face.object;
+    patch.vertexCount = face.vertexCount;
+    for (int k = 0; k < face.vertexCount; ++k) patch.corners[k] = scene.positions[face.vertices[k]];
+    patch.normal = scene.faceNormal(face);
+    patch.area = scene.faceArea(face);
+    patch.divisionsU = divisions[f][0];
+    patch.divisionsV = divisions[f][1];
+    patch.firstElement = static_cast<uint32_t>(mesh.elements.size());
+    patch.firstNode = static_cast<uint32_t>(mesh.nodes.size());
+    const uint32_t patchIndex = static_cast<uint32_t>(mesh.patches.size());
+    auto addElement = [&](int count, std::array<uint32_t, 4> nodes) {
+      Element e;
+      e.patch = patchIndex;
+      e.vertexCount = count;
+      e.nodes = nodes;
+      Vec3 sum;
+      for (int k = 0; k < count; ++k) sum += mesh.nodes[nodes[k]];
+      e.centre = sum / count;
+      for (int k = 1; k + 1 < count; ++k)
+        e.area += 0.5 * length(cross(mesh.nodes[nodes[k]] - mesh.nodes[nodes[0]],
+                                     mesh.nodes[nodes[k + 1]] - mesh.nodes[nodes[0]]));
+      mesh.elements.push_back(e);
+    };
+
+    if (face.vertexCount == 4) {
+      const int nU = patch.divisionsU, nV = patch.divisionsV;
+      for (int j = 0; j <= nV; ++j)
+        for (int i = 0; i <= nU; ++i) mesh.nodes.push_back(bilinear(patch.corners, double(i) / nU, double(j) / nV));
+      auto node = [&](int i, int j) { return patch.firstNode + uint32_t(j * (nU + 1) + i); };
+      for (int j = 0; j < nV; ++j)
+        for (int i = 0; i < nU; ++i) addElement(4, {node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)});
+    } else {
+      const int n = patch.divisionsU;
+      const Vec3 &a = patch.corners[0], &b = patch.corners[1], &c = patch.corners[2];
+      for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n - j; ++i) mesh.nodes.push_back(a + (b - a) * (double(i) / n) + (c - a) * (double(j) / n));
+      auto node = [&](int i, int j) { return patch.firstNode + uint32_t(j * (n + 1) - j * (j - 1) / 2 + i); };
+      // Row j: its n − j lower triangles, then its n − j − 1 upper ones (the order locate() assumes).
+      for (int j = 0; j < n; ++j) {
+        for (int i = 0; i < n - j; ++i) addElement(3, {node(i, j), node(i + 1, j), node(i, j + 1), 0});
+        for (int i = 0; i < n - j - 1; ++i) addElement(3, {node(i + 1, j), node(i + 1, j + 1), node(i, j + 1), 0});
+      }
+    }
+    patch.elementCount = static_cast<uint32_t>(mesh.elements.size()) - patch.firstElement;
+    patch.nodeCount = static_cast<uint32_t>(mesh.nodes.size()) - patch.firstNode;
+    mesh.nodePatch.resize(mesh.nodes.size(), patchIndex);
+    mesh.patchOfFace[f] = static_cast<int32_t>(patchIndex);
+    mesh.patches.push_back(patch);
+  }
+  return mesh;
+}
+
+}  // namespace radiant

@@ -1,0 +1,82 @@
+// The radiosity mesh: input faces become patches, patches are subdivided into
+// elements, and elements share nodes so radiosity interpolated at the nodes is
+// continuous inside a patch (Cohen & Wallace ch. 6).
+//
+// Subdivision is uniform per patch, to a target edge length: a quad patch
+// becomes an nU × nV grid of quads (its bilinear parameterisation cut evenly),
+// a triangle patch n² triangles (the lattice that n-fold edge splitting makes;
+// n = 2^k is k rounds of four-way splitting). Elements of one patch share the
+// lattice's nodes, so there are no T-vertices inside a patch. Patches do not
+// share nodes: radiosity may be discontinuous across a patch boundary, as it
+// is at the creases of a room.
+//
+// Every face is one-sided here: its elements carry the radiosity leaving the
+// front (counter-clockwise) side.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace radiant {
+
+struct MeshOptions {
+  /// Target element edge length, metres; 0 chooses 1/8 of the scene's largest
+  /// bounding-box side.
+  double maxEdgeLength = 0;
+  /// Refuse meshes above this many elements (a clear error, not an allocation).
+  size_t maxElements = 2'000'000;
+};
+
+struct Patch {
+  uint32_t face = 0, material = 0, object = 0;
+  int vertexCount = 3;
+  std::array<Vec3, 4> corners{};
+  Vec3 normal;  ///< front side, unit
+  double area = 0;
+  int divisionsU = 1, divisionsV = 1;  ///< quads: along corner 0→1 and 0→3; triangles: n and n
+  uint32_t firstElement = 0, elementCount = 0;
+  uint32_t firstNode = 0, nodeCount = 0;
+};
+
+struct Element {
+  uint32_t patch = 0;
+  int vertexCount = 3;
+  std::array<uint32_t, 4> nodes{};  ///< counter-clockwise, into RadiosityMesh::nodes
+  Vec3 centre;
+  double area = 0;
+};
+
+/// A point inside an element, for interpolation: quads use bilinear (s, t) in
+/// [0,1]² over nodes 0,1,2,3; triangles barycentric weights (1−s−t, s, t).
+struct MeshLocation {
+  uint32_t element = 0;
+  double s = 0, t = 0;
+};
+
+struct RadiosityMesh {
+  std::vector<Patch> patches;
+  std::vector<Element> elements;
+  std::vector<Vec3> nodes;              ///< positions, metres
+  std::vector<uint32_t> nodePatch;      ///< the patch each node belongs to
+  std::vector<int32_t> patchOfFace;     ///< Scene::faces index → patch, −1 if none
+
+  const Patch &patchOf(uint32_t element) const { return patches[elements[element].patch]; }
+  const Vec3 &normalOf(uint32_t element) const { return patchOf(element).normal; }
+  /// The element's polygon (3 or 4 vertices, counter-clockwise).
+  std::vector<Vec3> polygon(uint32_t element) const;
+
+  /// The element containing `position` on scene face `face` (which must have
+  /// a patch), with local coordinates for interpolation. Points slightly
+  /// outside (round-off) are clamped to the nearest element.
+  MeshLocation locate(uint32_t face, const Vec3 &position) const;
+  /// Interpolation weights of the element's nodes at a location (sum to 1).
+  std::array<double, 4> nodeWeights(const MeshLocation &location) const;
+};
+
+/// Throws InputError when the mesh would exceed options.maxElements.
+RadiosityMesh buildMesh(const Scene &scene, const MeshOptions &options);
+
+}  // namespace radiant

@@ -1,0 +1,38 @@
+// Form factors: the geometric coupling of radiosity (Cohen & Wallace ch. 4).
+//
+// F(dA → A): the fraction of the energy leaving a differential area at a
+// point p (normal n, Lambertian) that arrives at polygon A. All estimators here
+// are of that point-to-area kind; element-to-element factors are built from
+// them by the solvers (centre point, or averaged over sample points).
+#pragma once
+
+#include <functional>
+#include <span>
+
+#include "raytrace/ray_tracer.h"
+#include "util/math.h"
+#include "util/random.h"
+
+namespace radiant {
+
+/// Unoccluded F(dA → polygon) by Lambert's contour integral (REFERENCE §1.4),
+/// with the polygon first clipped to the half-space in front of p's tangent
+/// plane (the part behind the receiver contributes nothing). Exact for planar
+/// polygons of any size and distance; `polygon` has 3 or more vertices.
+double formFactorPointToPolygon(const Vec3 &p, const Vec3 &n, std::span<const Vec3> polygon);
+
+/// Ray-cast F(dA → source) after Wallace, Elmquist & Haines 1989 (REFERENCE
+/// §2.3): the source polygon (planar, 3 or 4 vertices, front normal
+/// `sourceNormal`) is split into `samples` pieces of equal area (stratified),
+/// each treated as a coaxial disc a = A/n: Σ δ_k cosθ_p cosθ_s a / (π r² + a),
+/// with visibility δ_k from a shadow ray. Only the source's front side
+/// contributes (one-sided, as shooting is). Deterministic for a given `rng`.
+double formFactorRayCast(const RayTracer &tracer, const Vec3 &p, const Vec3 &n, std::span<const Vec3> source,
+                         const Vec3 &sourceNormal, int samples, Pcg32 &rng);
+
+/// Like formFactorRayCast, but also returns the fraction of its samples that
+/// were visible (0: none, 1: all), which hierarchical radiosity records per link.
+double formFactorRayCast(const RayTracer &tracer, const Vec3 &p, const Vec3 &n, std::span<const Vec3> source,
+                         const Vec3 &sourceNormal, int samples, Pcg32 &rng, double &visibleFraction);
+
+}  // namespace radiant

@@ -1,0 +1,109 @@
+// `gauss-seidel` — gathering on the element matrix (C&W §5.3; REFERENCE §3.1).
+//
+// B_i = E_i + ρ_i Σ_j F_ij B_j, swept in place until the largest change of B
+// in a sweep, relative to the largest B, falls below the tolerance. F_ij is the
+// form factor from element i's centre to the front of element j's polygon: exact
+// (Lambert's contour integral, clipped to i's tangent plane) times the
+// fraction of `visibilitySamples` stratified points on j that i's centre sees.
+//
+// The whole matrix is stored, so this is the solver for small meshes (up to
+// a few thousand elements) and for checking the others against; its cost and
+// memory grow as n².
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+
+#include "radiosity/form_factor.h"
+#include "radiosity/solver.h"
+#include "util/error.h"
+
+namespace radiant {
+
+namespace {
+constexpr size_t kMaxGaussSeidelElements = 8000;  // 8000² form factors of 8 bytes at worst: 0.5 GB
+
+struct Coupling {
+  uint32_t element;
+  float formFactor;
+};
+}  // namespace
+
+void solveGaussSeidel(const RayTracer &tracer, Solution &s, const SolverOptions &options,
+                      const SolverProgressCallback &progress) {
+  const size_t n = s.elementCount();
+  if (n > kMaxGaussSeidelElements)
+    throw InputError(InputLocation{"--solver"},
+                     fmt::format("gauss-seidel stores the full form-factor matrix and allows at most {} elements; "
+                                 "this mesh has {} (use --solver progressive, or a larger --mesh-size)",
+                                 kMaxGaussSeidelElements, n));
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<std::vector<Coupling>> rows(n);
+  std::vector<std::vector<Vec3>> polygons(n);
+  for (uint32_t j = 0; j < n; ++j) polygons[j] = s.mesh.polygon(j);
+
+  std::vector<size_t> visibilityRays(n, 0);
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(size_t(0), n, [&](size_t i) {
+      const Element &ei = s.mesh.elements[i];
+      const Vec3 &ni = s.mesh.normalOf(static_cast<uint32_t>(i));
+      Pcg32 rng = sampleGenerator(options.seed, i, 0x6a55);  // one generator per row: thread-count independent
+      for (uint32_t j = 0; j < n; ++j) {
+        if (s.mesh.elements[j].patch == ei.patch) continue;  // a planar patch does not see itself
+        // B_j leaves j's front only: a receiver behind j's plane gets nothing from it
+        // (the ceiling above the Cornell light must not see the light's emission).
+        if (dot(ei.centre - polygons[j][0], s.mesh.normalOf(j)) <= 0) continue;
+        double f = formFactorPointToPolygon(ei.centre, ni, polygons[j]);
+        if (f <= 0) continue;
+        visibilityRays[i] += size_t(options.visibilitySamples);
+        f *= visibleFraction(tracer, ei.centre, ni, polygons[j], s.mesh.normalOf(j), options.visibilitySamples, rng);
+        if (f > 0) rows[i].push_back({j, static_cast<float>(f)});
+      }
+    });
+  });
+  for (size_t rays : visibilityRays) s.stats.formFactorRays += rays;
+
+  // The direct part is one gather from the emitters: ρ_i Σ_j F_ij E_j.
+  for (size_t i = 0; i < n; ++i) {
+    Bands gathered(0.0);
+    for (const Coupling &c : rows[i]) gathered += s.emission[c.element] * double(c.formFactor);
+    s.direct[i] = s.reflectance[i] * gathered;
+  }
+
+  const int maxSweeps = options.maxIterations > 0 ? options.maxIterations : 10000;
+  for (int sweep = 1; sweep <= maxSweeps; ++sweep) {
+    double largestChange = 0, largest = 0;
+    for (size_t i = 0; i < n; ++i) {
+      Bands gathered(0.0);
+      for (const Coupling &c : rows[i]) gathered += s.radiosity[c.element] * double(c.formFactor);
+      Bands updated = s.emission[i] + s.reflectance[i] * gathered;
+      for (int b = 0; b < kBandCount; ++b) {
+        largestChange = std::max(largestChange, std::abs(updated[b] - s.radiosity[i][b]));
+        largest = std::max(largest, std::abs(updated[b]));
+      }
+      s.radiosity[i] = updated;
+    }
+    s.stats.iterations = sweep;
+    s.stats.residual = largest > 0 ? largestChange / largest : 0;
+    if (progress)
+      progress({sweep, s.stats.residual, options.tolerance,
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+    if (s.stats.residual < options.tolerance) break;
+  }
+
+  // Energy balance: irradiance H_i = Σ F_ij B_j; absorbed Σ A (1−ρ) H.
+  s.stats.absorbedPower = Bands(0.0);
+  for (size_t i = 0; i < n; ++i) {
+    Bands irradiance(0.0);
+    for (const Coupling &c : rows[i]) irradiance += s.radiosity[c.element] * double(c.formFactor);
+    s.stats.absorbedPower += (Bands(1.0) - s.reflectance[i]) * irradiance * s.mesh.elements[i].area;
+    s.indirect[i] = s.radiosity[i] - s.emission[i] - s.direct[i];
+    s.unshot[i] = Bands(0.0);
+  }
+  s.stats.escapedPower = s.stats.emittedPower - s.stats.absorbedPower;
+  s.ambient = Bands(0.0);
+}
+
+}  // namespace radiant

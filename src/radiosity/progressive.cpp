@@ -1,0 +1,169 @@
+// `progressive` — progressive refinement radiosity (Cohen, Chen, Wallace &
+// Greenberg 1988; REFERENCE §3.2) with ray-cast form factors (Wallace,
+// Elmquist & Haines 1989; REFERENCE §2.3).
+//
+// Repeatedly the element with the largest unshot power ΔB·A shoots it: every
+// other element j receives ΔB_j = ρ_j ΔB_i F(dA_j → A_i), the form factor from
+// j's centre to the shooter's polygon, estimated with `visibilitySamples`
+// stratified shadow rays. Stops when the unshot power is below `tolerance`
+// of the emitted power.
+//
+// Two things the renderers need are kept on the way:
+// * the ambient term (display only): Σ ΔB_j A_j / (Σ A − Σ ρ A), which makes
+//   the picture plausible from the first shot, and exact in a furnace;
+// * the direct / indirect split: what emitters shoot of their *emission*
+//   lands in `direct`, everything shot after a reflection in `indirect`, so
+//   Shirley's method can recompute the direct part per pixel and add only
+//   the indirect one from the solution (C&W §9.3.1).
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <optional>
+
+#include "radiosity/form_factor.h"
+#include "radiosity/hemicube.h"
+#include "util/error.h"
+#include "radiosity/solver.h"
+
+namespace radiant {
+
+namespace {
+
+/// Σ ΔB_j A_j / (Σ A − Σ ρ A), per band (rad.c's GetAmbient).
+Bands ambientTerm(const Solution &s) {
+  Bands unshotPower(0.0), area(0.0), reflectedArea(0.0);
+  for (size_t j = 0; j < s.elementCount(); ++j) {
+    double a = s.mesh.elements[j].area;
+    unshotPower += s.unshot[j] * a;
+    area += Bands(a);
+    reflectedArea += s.reflectance[j] * a;
+  }
+  Bands ambient(0.0);
+  for (int b = 0; b < kBandCount; ++b)
+    ambient[b] = area[b] - reflectedArea[b] > 0 ? unshotPower[b] / (area[b] - reflectedArea[b]) : 0.0;
+  return ambient;
+}
+
+}  // namespace
+
+void solveProgressive(const RayTracer &tracer, Solution &s, const SolverOptions &options,
+                      const SolverProgressCallback &progress) {
+  const size_t n = s.elementCount();
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<Bands> unshotEmission = s.emission;  // not yet shot emission: becomes `direct` where it lands
+  std::vector<Bands> unshotReflected(n, Bands(0.0));
+  std::vector<Bands> irradiance(n, Bands(0.0));     // H, for the energy balance
+  std::vector<std::vector<Vec3>> polygons(n);
+  for (uint32_t j = 0; j < n; ++j) polygons[j] = s.mesh.polygon(j);
+  const double emitted = s.stats.emittedPower.average();
+
+  auto unshotPowerFraction = [&]() {
+    double unshot = 0;
+    for (size_t j = 0; j < n; ++j) unshot += s.unshot[j].average() * s.mesh.elements[j].area;
+    return emitted > 0 ? unshot / emitted : 0.0;
+  };
+
+  enum class Estimator { Analytic, RayCast, Hemicube };
+  Estimator estimator = Estimator::Analytic;
+  if (options.formFactor == "ray-cast") estimator = Estimator::RayCast;
+  else if (options.formFactor == "hemicube") estimator = Estimator::Hemicube;
+  else if (options.formFactor != "analytic")
+    throw InputError(InputLocation{"--form-factor"},
+                     "unknown form-factor estimator '" + options.formFactor + "' (expected analytic, ray-cast or hemicube)");
+  std::optional<Hemicube> hemicube;
+  if (estimator == Estimator::Hemicube) hemicube.emplace(options.hemicubeResolution);
+  // A hemicube pixel counts for the element it sees, if it sees that element's front.
+  Vec3 hemicubeCentre;
+  std::function<int(const Hit &)> frontElementOf = [&](const Hit &hit) -> int {
+    if (s.mesh.patchOfFace[hit.face] < 0 || dot(hit.geometricNormal, hit.position - hemicubeCentre) >= 0) return -1;
+    return static_cast<int>(s.mesh.locate(hit.face, hit.position).element);
+  };
+
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  const int maxShots = options.maxIterations > 0 ? options.maxIterations : 1'000'000;
+  s.stats.residual = unshotPowerFraction();
+  int shot = 0;
+  while (shot < maxShots && s.stats.residual >= options.tolerance) {
+    // The shooter: the largest unshot power (averaged over bands).
+    size_t shooter = 0;
+    double largest = -1;
+    for (size_t j = 0; j < n; ++j) {
+      double power = s.unshot[j].average() * s.mesh.elements[j].area;
+      if (power > largest) {
+        largest = power;
+        shooter = j;
+      }
+    }
+    if (largest <= 0) break;
+    const Bands shootEmission = unshotEmission[shooter], shootReflected = unshotReflected[shooter];
+    const Vec3 shooterNormal = s.mesh.normalOf(static_cast<uint32_t>(shooter));
+    const uint32_t shooterPatch = s.mesh.elements[shooter].patch;
+    unshotEmission[shooter] = unshotReflected[shooter] = s.unshot[shooter] = Bands(0.0);
+    std::vector<double> formFactor(n, 0.0);
+
+    if (estimator == Estimator::Hemicube) {
+      // One hemicube at the shooter's centre gives F_ij for every j it sees;
+      // reciprocity turns it into F_ji, clamped to 1 (rad.c) for tiny receivers.
+      Pcg32 rng = sampleGenerator(options.seed, shooter, uint64_t(shot) + 1);
+      const Element &source = s.mesh.elements[shooter];
+      hemicubeCentre = source.centre;
+      hemicube->gather(tracer, source.centre, shooterNormal, frontElementOf, formFactor, rng);
+      for (size_t j = 0; j < n; ++j)
+        formFactor[j] = s.mesh.elements[j].patch == shooterPatch
+                            ? 0.0
+                            : std::min(1.0, formFactor[j] * source.area / s.mesh.elements[j].area);
+    } else {
+      arena.execute([&] {
+        tbb::parallel_for(size_t(0), n, [&](size_t j) {
+          const Element &receiver = s.mesh.elements[j];
+          if (receiver.patch == shooterPatch) return;
+          const Vec3 &receiverNormal = s.mesh.normalOf(static_cast<uint32_t>(j));
+          // Only the shooter's front emits: a receiver behind its plane gets nothing.
+          if (dot(receiver.centre - polygons[shooter][0], shooterNormal) <= 0) return;
+          Pcg32 rng = sampleGenerator(options.seed, j, uint64_t(shot) + 1);
+          if (estimator == Estimator::RayCast) {
+            formFactor[j] = formFactorRayCast(tracer, receiver.centre, receiverNormal, polygons[shooter],
+                                              shooterNormal, options.visibilitySamples, rng);
+          } else {
+            double f = formFactorPointToPolygon(receiver.centre, receiverNormal, polygons[shooter]);
+            if (f > 0)
+              f *= visibleFraction(tracer, receiver.centre, receiverNormal, polygons[shooter], shooterNormal,
+                                   options.visibilitySamples, rng);
+            formFactor[j] = f;
+          }
+        });
+      });
+    }
+    for (size_t j = 0; j < n; ++j) {
+      if (formFactor[j] <= 0) continue;
+      Bands fromEmission = shootEmission * formFactor[j], fromReflection = shootReflected * formFactor[j];
+      irradiance[j] += fromEmission + fromReflection;
+      Bands directGain = s.reflectance[j] * fromEmission, indirectGain = s.reflectance[j] * fromReflection;
+      s.direct[j] += directGain;
+      s.indirect[j] += indirectGain;
+      s.radiosity[j] += directGain + indirectGain;
+      unshotReflected[j] += directGain + indirectGain;
+      s.unshot[j] += directGain + indirectGain;
+    }
+    s.stats.formFactorRays += n * size_t(options.visibilitySamples);
+    ++shot;
+    s.stats.iterations = shot;
+    s.stats.residual = unshotPowerFraction();
+    if (progress)
+      progress({shot, s.stats.residual, options.tolerance,
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+  }
+
+  s.ambient = ambientTerm(s);
+  Bands unshotPower(0.0);
+  s.stats.absorbedPower = Bands(0.0);
+  for (size_t j = 0; j < n; ++j) {
+    double a = s.mesh.elements[j].area;
+    s.stats.absorbedPower += (Bands(1.0) - s.reflectance[j]) * irradiance[j] * a;
+    unshotPower += s.unshot[j] * a;
+  }
+  s.stats.escapedPower = s.stats.emittedPower - s.stats.absorbedPower - unshotPower;
+}
+
+}  // namespace radiant

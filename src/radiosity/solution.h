@@ -1,0 +1,56 @@
+// A view-independent radiosity solution: what every radiosity renderer reads.
+//
+// Units: radiosity B, exitance E and irradiance H in W·m⁻² per band
+// ("radiosity units"); a Lambertian surface of radiosity B has radiance B/π.
+// Per element, B = E + direct + indirect, where `direct` is what arrived
+// straight from emitters (ρ Σ F E) and `indirect` the rest — the split that
+// Shirley's two-pass method needs (C&W §9.3).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mesh/mesh.h"
+#include "util/spectrum.h"
+
+namespace radiant {
+
+struct SolveStats {
+  std::string solver;
+  int iterations = 0;            ///< sweeps (Gauss–Seidel) or shots (progressive)
+  double residual = 0;           ///< max relative residual, or unshot power fraction
+  double seconds = 0;
+  Bands emittedPower;            ///< Σ A E, W
+  Bands absorbedPower;           ///< Σ A (1−ρ) H, W
+  Bands escapedPower;            ///< emitted − absorbed − still unshot (open scenes), W
+  size_t formFactorRays = 0;
+};
+
+struct Solution {
+  RadiosityMesh mesh;
+  std::vector<Bands> reflectance;   ///< ρ per element (the diffuse part of its material)
+  std::vector<Bands> emission;      ///< E = π·L_e per element, W·m⁻²
+  std::vector<Bands> radiosity;     ///< B per element, W·m⁻²
+  std::vector<Bands> direct;        ///< received straight from emitters, W·m⁻²
+  std::vector<Bands> indirect;      ///< received after one or more reflections, W·m⁻²
+  std::vector<Bands> unshot;        ///< progressive refinement's unshot radiosity, W·m⁻²
+  Bands ambient;                    ///< progressive refinement's ambient term (display only)
+  std::vector<double> errorEstimate;///< per element: max relative difference between its nodes and itself
+  std::vector<Bands> nodeRadiosity; ///< B interpolated at mesh nodes (area-weighted average of the elements around)
+  SolveStats stats;
+
+  size_t elementCount() const { return mesh.elements.size(); }
+  /// Radiosity for display: B plus, when `withAmbient`, ρ·ambient.
+  Bands displayRadiosity(uint32_t element, bool withAmbient = true) const {
+    return withAmbient ? radiosity[element] + reflectance[element] * ambient : radiosity[element];
+  }
+  /// B interpolated from the nodes at a location (continuous within a patch).
+  Bands interpolatedRadiosity(const MeshLocation &location) const;
+  /// Recomputes nodeRadiosity and errorEstimate from the element radiosities (including ambient).
+  void updateNodesAndErrors();
+};
+
+/// An empty solution on `mesh` with ρ and E from the scene's materials.
+Solution initialSolution(const Scene &scene, RadiosityMesh mesh);
+
+}  // namespace radiant

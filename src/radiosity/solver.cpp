@@ -1,0 +1,62 @@
+#include "radiosity/solver.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+
+#include "render/sampling.h"
+#include "util/error.h"
+
+namespace radiant {
+
+const std::vector<SolverInfo> &solverRegistry() {
+  static const std::vector<SolverInfo> table = {
+      {"gauss-seidel", "gathering on the full element form-factor matrix to a residual tolerance", &solveGaussSeidel},
+      {"progressive", "progressive refinement shooting, with the ambient term and the direct/indirect split",
+       &solveProgressive},
+  };
+  return table;
+}
+
+void solveRadiosity(const RayTracer &tracer, Solution &solution, const SolverOptions &options,
+                    const SolverProgressCallback &progress) {
+  const SolverInfo *chosen = nullptr;
+  std::string names;
+  for (const SolverInfo &info : solverRegistry()) {
+    if (options.solver == info.name) chosen = &info;
+    names += names.empty() ? info.name : std::string(", ") + info.name;
+  }
+  if (!chosen)
+    throw InputError(InputLocation{"--solver"}, fmt::format("unknown solver '{}'; known solvers: {}", options.solver,
+                                                            names));
+  auto start = std::chrono::steady_clock::now();
+  solution.stats.solver = chosen->name;
+  chosen->solve(tracer, solution, options, progress);
+  solution.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  solution.updateNodesAndErrors();
+}
+
+double visibleFraction(const RayTracer &tracer, const Vec3 &p, const Vec3 &n, const std::vector<Vec3> &polygon,
+                       const Vec3 &polygonNormal, int samples, Pcg32 &rng) {
+  // Stratified over the unit square: a k × k jittered grid, mapped onto the
+  // quad bilinearly or onto the triangle by Heitz's map.
+  int k = std::max(1, static_cast<int>(std::lround(std::sqrt(double(samples)))));
+  int visible = 0;
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b < k; ++b) {
+      double u = (a + rng.next()) / k, v = (b + rng.next()) / k;
+      Vec3 y;
+      if (polygon.size() == 4) {
+        y = polygon[0] * ((1 - u) * (1 - v)) + polygon[1] * (u * (1 - v)) + polygon[2] * (u * v) +
+            polygon[3] * ((1 - u) * v);
+      } else {
+        double b1, b2;
+        sampleUniformTriangle(u, v, b1, b2);
+        y = polygon[0] * (1 - b1 - b2) + polygon[1] * b1 + polygon[2] * b2;
+      }
+      if (tracer.visible(p, n, y, polygonNormal)) ++visible;
+    }
+  return double(visible) / (k * k);
+}
+
+}  // namespace radiant

@@ -1,0 +1,62 @@
+// Radiosity solvers: from a mesh and the scene to a Solution.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "radiosity/solution.h"
+#include "raytrace/ray_tracer.h"
+#include "util/random.h"
+
+namespace radiant {
+
+struct SolverOptions {
+  std::string solver = "progressive";
+  /// Gauss–Seidel: max relative change of B in a sweep; progressive: unshot
+  /// power over emitted power.
+  double tolerance = 1e-3;
+  int maxIterations = 0;         ///< sweeps or shots; 0: no limit beyond the tolerance
+  int visibilitySamples = 4;     ///< shadow rays per form factor
+  /// Progressive: how F(dA_j → A_i) is estimated. "analytic": Lambert's contour
+  /// integral × the visible fraction of the shooter; "ray-cast": Wallace et
+  /// al.'s disc sum; "hemicube": one hemicube at the shooter, F_ji = F_ij A_i/A_j.
+  std::string formFactor = "analytic";
+  int hemicubeResolution = 64;
+  uint64_t seed = 1;
+  int threads = 0;               ///< 0: all cores; results do not depend on it
+};
+
+struct SolverProgress {
+  int iteration = 0;
+  double residual = 0;  ///< as SolveStats::residual
+  double tolerance = 0;
+  double elapsedSeconds = 0;
+};
+using SolverProgressCallback = std::function<void(const SolverProgress &)>;
+
+struct SolverInfo {
+  const char *name;
+  const char *summary;
+  void (*solve)(const RayTracer &, Solution &, const SolverOptions &, const SolverProgressCallback &);
+};
+
+/// The table of solvers (radiosity/solver.cpp).
+const std::vector<SolverInfo> &solverRegistry();
+
+/// Builds nothing: solves in place on an initialSolution(). Throws InputError
+/// for an unknown solver name. Fills stats (energy balance, time) and the
+/// nodal values and error estimates.
+void solveRadiosity(const RayTracer &tracer, Solution &solution, const SolverOptions &options,
+                    const SolverProgressCallback &progress = {});
+
+/// Fraction of `samples` stratified points on `polygon` (front normal
+/// `polygonNormal`) visible from p (normal n). Deterministic for `rng`.
+double visibleFraction(const RayTracer &tracer, const Vec3 &p, const Vec3 &n, const std::vector<Vec3> &polygon,
+                       const Vec3 &polygonNormal, int samples, Pcg32 &rng);
+
+// The solvers, one file each.
+void solveGaussSeidel(const RayTracer &, Solution &, const SolverOptions &, const SolverProgressCallback &);
+void solveProgressive(const RayTracer &, Solution &, const SolverOptions &, const SolverProgressCallback &);
+
+}  // namespace radiant
