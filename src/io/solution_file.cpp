@@ -146,7 +146,7 @@ void writeSolution(const Solution &s, const Scene &scene, const std::string &pat
   for (int32_t p : m.patchOfFace) w.put(p);
   for (size_t e = 0; e < m.elements.size(); ++e) {
     w.put(s.reflectance[e]), w.put(s.emission[e]), w.put(s.radiosity[e]);
-    w.put(s.direct[e]), w.put(s.indirect[e]), w.put(s.unshot[e]), w.put(s.errorEstimate[e]);
+    w.put(s.direct[e]), w.put(s.indirect[e]), w.put(s.unshot[e]), w.put(s.irradiance[e]), w.put(s.errorEstimate[e]);
   }
   for (const Bands &b : s.nodeRadiosity) w.put(b);
 
@@ -211,12 +211,13 @@ Solution readSolution(const std::string &path, const Scene &scene) {
   for (size_t v = 0; v < m.nodes.size(); ++v) m.nodes[v] = r.vec3(), m.nodePatch[v] = r.get<uint32_t>();
   m.patchOfFace.resize(r.count(faces, 4, "faces"));
   for (int32_t &p : m.patchOfFace) p = r.get<int32_t>();
-  const size_t n = r.count(elements, (6 * kBandCount + 1) * 8, "element values");
-  for (auto *v : {&s.reflectance, &s.emission, &s.radiosity, &s.direct, &s.indirect, &s.unshot}) v->resize(n);
+  const size_t n = r.count(elements, (7 * kBandCount + 1) * 8, "element values");
+  for (auto *v : {&s.reflectance, &s.emission, &s.radiosity, &s.direct, &s.indirect, &s.unshot, &s.irradiance})
+    v->resize(n);
   s.errorEstimate.resize(n);
   for (size_t e = 0; e < n; ++e) {
     s.reflectance[e] = r.bands(), s.emission[e] = r.bands(), s.radiosity[e] = r.bands();
-    s.direct[e] = r.bands(), s.indirect[e] = r.bands(), s.unshot[e] = r.bands();
+    s.direct[e] = r.bands(), s.indirect[e] = r.bands(), s.unshot[e] = r.bands(), s.irradiance[e] = r.bands();
     s.errorEstimate[e] = r.get<double>();
   }
   s.nodeRadiosity.resize(r.count(nodes, kBandCount * 8, "node values"));

@@ -17,8 +17,9 @@ namespace radiant {
 
 /// Unoccluded F(dA → polygon) by Lambert's contour integral (REFERENCE §1.4),
 /// with the polygon first clipped to the half-space in front of p's tangent
-/// plane (the part behind the receiver contributes nothing). Exact for planar
-/// polygons of any size and distance; `polygon` has 3 or more vertices.
+/// plane (the part behind the receiver contributes nothing; a polygon lying in
+/// that plane gives 0). Exact for planar polygons of any size and distance;
+/// independent of the polygon's winding; `polygon` has 3 or more vertices.
 double formFactorPointToPolygon(const Vec3 &p, const Vec3 &n, std::span<const Vec3> polygon);
 
 /// Ray-cast F(dA → source) after Wallace, Elmquist & Haines 1989 (REFERENCE

@@ -98,6 +98,7 @@ void solveGaussSeidel(const RayTracer &tracer, Solution &s, const SolverOptions 
   for (size_t i = 0; i < n; ++i) {
     Bands irradiance(0.0);
     for (const Coupling &c : rows[i]) irradiance += s.radiosity[c.element] * double(c.formFactor);
+    s.irradiance[i] = irradiance;
     s.stats.absorbedPower += (Bands(1.0) - s.reflectance[i]) * irradiance * s.mesh.elements[i].area;
     s.indirect[i] = s.radiosity[i] - s.emission[i] - s.direct[i];
     s.unshot[i] = Bands(0.0);

@@ -53,7 +53,7 @@ void solveProgressive(const RayTracer &tracer, Solution &s, const SolverOptions 
   const auto start = std::chrono::steady_clock::now();
   std::vector<Bands> unshotEmission = s.emission;  // not yet shot emission: becomes `direct` where it lands
   std::vector<Bands> unshotReflected(n, Bands(0.0));
-  std::vector<Bands> irradiance(n, Bands(0.0));     // H, for the energy balance
+  std::vector<Bands> &irradiance = s.irradiance;    // H: what arrived, for reports and the energy balance
   std::vector<std::vector<Vec3>> polygons(n);
   for (uint32_t j = 0; j < n; ++j) polygons[j] = s.mesh.polygon(j);
   const double emitted = s.stats.emittedPower.average();

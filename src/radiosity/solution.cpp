@@ -18,6 +18,7 @@ Solution initialSolution(const Scene &scene, RadiosityMesh mesh) {
   s.direct.assign(n, Bands(0.0));
   s.indirect.assign(n, Bands(0.0));
   s.unshot = s.emission;
+  s.irradiance.assign(n, Bands(0.0));
   s.mesh = std::move(mesh);
   for (size_t e = 0; e < n; ++e) s.stats.emittedPower += s.emission[e] * s.mesh.elements[e].area;
   s.updateNodesAndErrors();

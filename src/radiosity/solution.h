@@ -34,6 +34,7 @@ struct Solution {
   std::vector<Bands> direct;        ///< received straight from emitters, W·m⁻²
   std::vector<Bands> indirect;      ///< received after one or more reflections, W·m⁻²
   std::vector<Bands> unshot;        ///< progressive refinement's unshot radiosity, W·m⁻²
+  std::vector<Bands> irradiance;    ///< H, arriving at the front, W·m⁻² (B = E + ρH)
   Bands ambient;                    ///< progressive refinement's ambient term (display only)
   std::vector<double> errorEstimate;///< per element: max relative difference between its nodes and itself
   std::vector<Bands> nodeRadiosity; ///< B interpolated at mesh nodes (area-weighted average of the elements around)
