@@ -4,6 +4,7 @@
 
 #include "commands.h"
 #include "io/solution_file.h"
+#include "radiosity/report.h"
 #include "radiosity_options.h"
 #include "scene/load_scene.h"
 
@@ -11,7 +12,7 @@ namespace radiant {
 
 namespace {
 struct SolveCommandOptions {
-  std::string scenePath, outputPath;
+  std::string scenePath, outputPath, reportPath;
   RadiosityCommandOptions radiosity;
   uint64_t seed = 1;
   int threads = 0;
@@ -23,6 +24,9 @@ CommandRunner addSolveCommand(CLI::App &app) {
   auto o = std::make_shared<SolveCommandOptions>();
   app.add_option("scene", o->scenePath, "Scene file: JSON (docs/scene-format.md) or a bare .obj model")->required();
   app.add_option("-o,--output", o->outputPath, "Save the solution (docs/solution-format.md), e.g. scene.rad");
+  app.add_option("--report", o->reportPath,
+                 "Write a CSV with one row per object: area, mean radiosity and irradiance (W/m²), "
+                 "luminance (cd/m²) and illuminance (lux)");
   addRadiosityOptions(app, o->radiosity);
   app.add_option("--seed", o->seed, "Random seed of the form-factor shadow rays")->default_val(1);
   app.add_option("--threads", o->threads, "Worker threads (0: all cores); does not change the solution")
@@ -39,6 +43,10 @@ CommandRunner addSolveCommand(CLI::App &app) {
     if (!o->outputPath.empty()) {
       writeSolution(solution, scene, o->outputPath);
       if (!o->quiet) fmt::print(stderr, "radiant: wrote {}\n", o->outputPath);
+    }
+    if (!o->reportPath.empty()) {
+      writeSurfaceReport(solution, scene, o->reportPath);
+      if (!o->quiet) fmt::print(stderr, "radiant: wrote {}\n", o->reportPath);
     }
     return 0;
   };

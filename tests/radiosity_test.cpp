@@ -3,10 +3,15 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iostream>
+#include <sstream>
 
 #include "io/solution_file.h"
 #include "mesh/mesh.h"
+#include "radiosity/report.h"
 #include "radiosity/solver.h"
+#include "render/driver.h"
+#include "render/renderer.h"
 #include "scene/load_scene.h"
 #include "test_scenes.h"
 #include "util/error.h"
@@ -209,6 +214,85 @@ TEST(Radiosity, UnknownSolverAndHugeMeshAreClearErrors) {
   tiny.maxEdgeLength = 1e-6;
   tiny.maxElements = 1000;
   EXPECT_THROW(buildMesh(scene, tiny), InputError);
+}
+
+}  // namespace
+}  // namespace radiant
+
+namespace radiant {
+namespace {
+
+TEST(SurfaceReport, FurnaceRowsHaveTheClosedFormPhotometry) {
+  // Furnace with L_e = 1 W/(sr·m²), ρ = 0.5: B = H = 2π W/m² everywhere, so the
+  // luminance is 683·B/π = 1366 cd/m² and the illuminance 683·2π = 4291.5 lux.
+  Scene scene = test::furnace(1.0, 0.5);
+  scene.objects[0].name = "box, \"inside\"";  // exercises CSV quoting
+  Solution s = solve(scene, "gauss-seidel", 0.5, 1e-12);
+  auto path = std::filesystem::temp_directory_path() / "radiant-report-test.csv";
+  writeSurfaceReport(s, scene, path.string());
+  std::ifstream in(path);
+  std::string header, row;
+  std::getline(in, header);
+  std::getline(in, row);
+  EXPECT_EQ(header.substr(0, 15), "object,area_m2,");
+  ASSERT_EQ(row.substr(0, 20), "\"box, \"\"inside\"\"\",6,");
+  std::vector<double> values;
+  std::stringstream fields(row.substr(20));
+  for (std::string field; std::getline(fields, field, ',');) values.push_back(std::stod(field));
+  ASSERT_EQ(values.size(), 8u);
+  for (int b = 0; b < 3; ++b) EXPECT_NEAR(values[b], 2 * kPi, 1e-6);      // radiosity
+  for (int b = 3; b < 6; ++b) EXPECT_NEAR(values[b], 2 * kPi, 1e-6);      // irradiance
+  EXPECT_NEAR(values[6], 683.0 * 2, 1e-3);                                 // cd/m²
+  EXPECT_NEAR(values[7], 683.0 * 2 * kPi, 1e-3);                           // lux
+  std::filesystem::remove(path);
+}
+
+TEST(Radiosity, InterpolatedImageApproachesThePathTracerAsTheMeshIsRefined) {
+  // The classic radiosity image converges to the reference as elements shrink.
+  // Error: mean over 8×8-pixel blocks of |block mean − reference block mean| /
+  // reference, which averages the path tracer's noise down (at 512 spp its
+  // block means are within ~0.3%, well below the differences between meshes).
+  Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
+  RayTracer tracer(scene);
+  const int size = 64;
+  PinholeCamera camera(scene.camera, size, size);
+  auto render = [&](const std::string &method, const Solution *solution, int spp) {
+    RendererOptions options;
+    options.solution = solution;
+    auto renderer = createRenderer(method, tracer, options);
+    Film film(size, size);
+    DriverOptions driver;
+    driver.samplesPerPixel = spp;
+    renderImage(camera, *renderer, driver, film);
+    return film;
+  };
+  Film reference = render("path", nullptr, 512);
+  auto blockError = [&](const Film &film) {
+    double sum = 0;
+    int blocks = 0;
+    for (int by = 0; by < size; by += 8)
+      for (int bx = 0; bx < size; bx += 8) {
+        double t = 0, r = 0;
+        for (int y = by; y < by + 8; ++y)
+          for (int x = bx; x < bx + 8; ++x) {
+            t += film.mean(size_t(y) * size + x).average();
+            r += reference.mean(size_t(y) * size + x).average();
+          }
+        if (r <= 0) continue;
+        sum += std::abs(t - r) / r;
+        ++blocks;
+      }
+    return sum / blocks;
+  };
+  std::vector<double> errors;
+  for (double meshSize : {0.2, 0.1, 0.05}) {
+    Solution s = solve(scene, "progressive", meshSize, 1e-3);
+    errors.push_back(blockError(render("interpolate", &s, 4)));
+  }
+  EXPECT_LT(errors[1], errors[0]);
+  EXPECT_LT(errors[2], errors[1]);
+  EXPECT_LT(errors[2], 0.1);
+  std::cout << "block errors at 0.2, 0.1, 0.05 m: " << errors[0] << " " << errors[1] << " " << errors[2] << "\n";
 }
 
 }  // namespace
