@@ -122,6 +122,9 @@ void writeSolution(const Solution &s, const Scene &scene, const std::string &pat
   w.put(uint64_t(m.elements.size()));
   w.put(uint64_t(m.nodes.size()));
   w.put(uint64_t(m.patchOfFace.size()));
+  w.put(uint64_t(m.tree.size()));
+  w.put(uint64_t(m.tVertices.size()));
+  w.put(uint64_t(s.links.size()));
   w.put(s.stats.solver);
   w.put(int64_t(s.stats.iterations));
   w.put(s.stats.residual);
@@ -134,7 +137,7 @@ void writeSolution(const Solution &s, const Scene &scene, const std::string &pat
   for (const Patch &p : m.patches) {
     w.put(p.face), w.put(p.material), w.put(p.object), w.put(int32_t(p.vertexCount));
     for (const Vec3 &c : p.corners) w.put(c);
-    w.put(p.normal), w.put(p.area), w.put(int32_t(p.divisionsU)), w.put(int32_t(p.divisionsV));
+    w.put(p.normal), w.put(p.area), w.put(int32_t(p.divisionsU)), w.put(int32_t(p.divisionsV)), w.put(p.treeRoot);
     w.put(p.firstElement), w.put(p.elementCount), w.put(p.firstNode), w.put(p.nodeCount);
   }
   for (const Element &e : m.elements) {
@@ -149,6 +152,19 @@ void writeSolution(const Solution &s, const Scene &scene, const std::string &pat
     w.put(s.direct[e]), w.put(s.indirect[e]), w.put(s.unshot[e]), w.put(s.irradiance[e]), w.put(s.errorEstimate[e]);
   }
   for (const Bands &b : s.nodeRadiosity) w.put(b);
+  // Version 2: the hierarchy (subdivision trees, T-vertices, links, node radiosities).
+  for (size_t n = 0; n < m.tree.size(); ++n) {
+    const MeshTreeNode &t = m.tree[n];
+    for (int32_t c : t.children) w.put(c);
+    w.put(t.element), w.put(t.patch), w.put(int32_t(t.vertexCount));
+    for (const Vec3 &c : t.corners) w.put(c);
+    w.put(t.area), w.put(s.treeRadiosity[n]);
+  }
+  for (const RadiosityMesh::TVertex &t : m.tVertices) w.put(t.node), w.put(t.edgeStart), w.put(t.edgeEnd);
+  for (const Link &l : s.links) {
+    w.put(l.receiver), w.put(l.source), w.put(l.formFactor), w.put(l.visibleFraction);
+    w.put(uint8_t(l.visibility)), w.put(l.carriedPower);
+  }
 
   writeAtomically(path, [&](const std::string &temporary) {
     std::ofstream out(temporary, std::ios::binary);
@@ -180,7 +196,8 @@ Solution readSolution(const std::string &path, const Scene &scene) {
   Solution s;
   RadiosityMesh &m = s.mesh;
   uint64_t patches = r.get<uint64_t>(), elements = r.get<uint64_t>(), nodes = r.get<uint64_t>(),
-           faces = r.get<uint64_t>();
+           faces = r.get<uint64_t>(), treeNodes = r.get<uint64_t>(), tVertices = r.get<uint64_t>(),
+           links = r.get<uint64_t>();
   s.stats.solver = r.string();
   s.stats.iterations = static_cast<int>(r.get<int64_t>());
   s.stats.residual = r.get<double>();
@@ -190,13 +207,13 @@ Solution readSolution(const std::string &path, const Scene &scene) {
   s.stats.absorbedPower = r.bands();
   s.stats.escapedPower = r.bands();
   s.ambient = r.bands();
-  m.patches.resize(r.count(patches, 4 * 4 + 15 * 8 + 8 + 4 * 4 + 8, "patches"));
+  m.patches.resize(r.count(patches, 4 * 4 + 15 * 8 + 8 + 4 * 4 + 8 + 4, "patches"));
   for (Patch &p : m.patches) {
     p.face = r.get<uint32_t>(), p.material = r.get<uint32_t>(), p.object = r.get<uint32_t>();
     p.vertexCount = r.get<int32_t>();
     for (Vec3 &c : p.corners) c = r.vec3();
     p.normal = r.vec3(), p.area = r.get<double>();
-    p.divisionsU = r.get<int32_t>(), p.divisionsV = r.get<int32_t>();
+    p.divisionsU = r.get<int32_t>(), p.divisionsV = r.get<int32_t>(), p.treeRoot = r.get<int32_t>();
     p.firstElement = r.get<uint32_t>(), p.elementCount = r.get<uint32_t>();
     p.firstNode = r.get<uint32_t>(), p.nodeCount = r.get<uint32_t>();
   }
@@ -222,6 +239,26 @@ Solution readSolution(const std::string &path, const Scene &scene) {
   }
   s.nodeRadiosity.resize(r.count(nodes, kBandCount * 8, "node values"));
   for (Bands &b : s.nodeRadiosity) b = r.bands();
+  m.tree.resize(r.count(treeNodes, 4 * 4 + 3 * 4 + 12 * 8 + 8 + kBandCount * 8, "tree nodes"));
+  s.treeRadiosity.resize(m.tree.size());
+  for (size_t n = 0; n < m.tree.size(); ++n) {
+    MeshTreeNode &t = m.tree[n];
+    for (int32_t &c : t.children) c = r.get<int32_t>();
+    t.element = r.get<int32_t>(), t.patch = r.get<uint32_t>(), t.vertexCount = r.get<int32_t>();
+    for (Vec3 &c : t.corners) c = r.vec3();
+    t.area = r.get<double>(), s.treeRadiosity[n] = r.bands();
+  }
+  m.tVertices.resize(r.count(tVertices, 3 * 4, "T-vertices"));
+  for (RadiosityMesh::TVertex &t : m.tVertices) t.node = r.get<uint32_t>(), t.edgeStart = r.get<uint32_t>(), t.edgeEnd = r.get<uint32_t>();
+  s.links.resize(r.count(links, 4 * 4 + 1 + 4, "links"));
+  for (Link &l : s.links) {
+    l.receiver = r.get<uint32_t>(), l.source = r.get<uint32_t>();
+    l.formFactor = r.get<float>(), l.visibleFraction = r.get<float>();
+    uint8_t visibility = r.get<uint8_t>();
+    if (visibility > 2) r.fail("a link's visibility is not none, partial or full");
+    l.visibility = static_cast<LinkVisibility>(visibility);
+    l.carriedPower = r.get<float>();
+  }
   if (!r.atEnd()) r.fail("unexpected data after the solution");
 
   // Cross-references must stay inside their arrays: a corrupt file must not crash a renderer.
@@ -231,9 +268,26 @@ Solution readSolution(const std::string &path, const Scene &scene) {
   for (const Patch &p : m.patches)
     if (p.vertexCount < 3 || p.vertexCount > 4 || p.divisionsU < 1 || p.divisionsV < 1 ||
         uint64_t(p.firstElement) + p.elementCount > m.elements.size() ||
-        uint64_t(p.firstNode) + p.nodeCount > m.nodes.size() ||
-        p.elementCount != uint32_t(p.vertexCount == 4 ? p.divisionsU * p.divisionsV : p.divisionsU * p.divisionsU))
+        uint64_t(p.firstNode) + p.nodeCount > m.nodes.size() || p.treeRoot >= int32_t(m.tree.size()) ||
+        (p.treeRoot < 0 &&
+         p.elementCount != uint32_t(p.vertexCount == 4 ? p.divisionsU * p.divisionsV : p.divisionsU * p.divisionsU)))
       r.fail("a patch's subdivision is inconsistent");
+  // Trees: children inside the array and after their parent (no cycles), leaves name elements.
+  for (size_t n = 0; n < m.tree.size(); ++n) {
+    const MeshTreeNode &t = m.tree[n];
+    bool leaf = t.children[0] < 0;
+    for (int32_t c : t.children)
+      if ((leaf && c >= 0) || (!leaf && (c <= int32_t(n) || c >= int32_t(m.tree.size()))))
+        r.fail("the subdivision tree is inconsistent");
+    if (leaf && (t.element < 0 || t.element >= int32_t(m.elements.size())))
+      r.fail("a subdivision leaf refers to an element that does not exist");
+    if (t.vertexCount < 3 || t.vertexCount > 4) r.fail("a subdivision node is inconsistent");
+  }
+  for (const RadiosityMesh::TVertex &t : m.tVertices)
+    if (t.node >= m.nodes.size() || t.edgeStart >= m.nodes.size() || t.edgeEnd >= m.nodes.size())
+      r.fail("a T-vertex refers to a node that does not exist");
+  for (const Link &l : s.links)
+    if (l.receiver >= m.tree.size() || l.source >= m.tree.size()) r.fail("a link refers to a node that does not exist");
   for (const Element &e : m.elements) {
     if (e.patch >= m.patches.size() || e.vertexCount < 3 || e.vertexCount > 4) r.fail("an element is inconsistent");
     for (int k = 0; k < e.vertexCount; ++k)

@@ -61,6 +61,7 @@ std::vector<Vec3> RadiosityMesh::polygon(uint32_t element) const {
 MeshLocation RadiosityMesh::locate(uint32_t face, const Vec3 &position) const {
   const Patch &patch = patches[patchOfFace[face]];
   MeshLocation location;
+  if (patch.treeRoot >= 0) return locateInTree(patch, position);
   if (patch.vertexCount == 4) {
     double u, v;
     inverseBilinear(patch, position, u, v);
@@ -100,6 +101,44 @@ MeshLocation RadiosityMesh::locate(uint32_t face, const Vec3 &position) const {
     location.s = fi;
     location.t = fj;
   }
+  return location;
+}
+
+MeshLocation RadiosityMesh::locateInTree(const Patch &patch, const Vec3 &position) const {
+  // Parameters in the patch, then down the tree, re-expressing them in each child.
+  double a, b;
+  if (patch.vertexCount == 4) {
+    inverseBilinear(patch, position, a, b);
+  } else {
+    const Vec3 &p0 = patch.corners[0], &p1 = patch.corners[1], &p2 = patch.corners[2];
+    Vec3 n = cross(p1 - p0, p2 - p0);
+    double n2 = dot(n, n);
+    a = dot(cross(position - p0, p2 - p0), n) / n2;
+    b = dot(cross(p1 - p0, position - p0), n) / n2;
+  }
+  int32_t node = patch.treeRoot;
+  while (!tree[node].isLeaf()) {
+    const MeshTreeNode &t = tree[node];
+    if (t.vertexCount == 4) {
+      a = std::clamp(a, 0.0, 1.0), b = std::clamp(b, 0.0, 1.0);
+      int i = a >= 0.5 ? 1 : 0, j = b >= 0.5 ? 1 : 0;
+      node = t.children[j == 0 ? i : 3 - i];  // children: (0,0), (1,0), (1,1), (0,1)
+      a = 2 * a - i, b = 2 * b - j;
+    } else {
+      a = std::clamp(a, 0.0, 1.0), b = std::clamp(b, 0.0, 1.0 - a);
+      if (a >= 0.5) node = t.children[1], a = 2 * a - 1, b = 2 * b;
+      else if (b >= 0.5) node = t.children[2], a = 2 * a, b = 2 * b - 1;
+      else if (a + b <= 0.5) node = t.children[0], a = 2 * a, b = 2 * b;
+      else {
+        double s = 2 * a + 2 * b - 1, u = 1 - 2 * a;  // middle child (mab, mbc, mac)
+        node = t.children[3], a = s, b = u;
+      }
+    }
+  }
+  MeshLocation location;
+  location.element = static_cast<uint32_t>(tree[node].element);
+  location.s = std::clamp(a, 0.0, 1.0);
+  location.t = std::clamp(b, 0.0, tree[node].vertexCount == 4 ? 1.0 : 1.0 - location.s);
   return location;
 }
 

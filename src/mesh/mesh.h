@@ -30,8 +30,25 @@ struct MeshOptions {
   size_t maxElements = 2'000'000;
 };
 
+/// A node of a patch's subdivision tree (hierarchical radiosity): four
+/// children, or a leaf that is an element. Quads split at their bilinear
+/// midpoints, triangles into four by their edge midpoints (children: the
+/// corners at vertex 0, 1, 2, then the middle triangle).
+struct MeshTreeNode {
+  std::array<int32_t, 4> children{-1, -1, -1, -1};
+  int32_t element = -1;  ///< ≥ 0 for a leaf
+  uint32_t patch = 0;
+  int vertexCount = 4;
+  std::array<Vec3, 4> corners{};
+  double area = 0;
+  bool isLeaf() const { return children[0] < 0; }
+};
+
 struct Patch {
   uint32_t face = 0, material = 0, object = 0;
+  /// ≥ 0: the patch's elements are the leaves of this subdivision tree
+  /// (RadiosityMesh::tree) instead of a uniform nU × nV grid.
+  int32_t treeRoot = -1;
   int vertexCount = 3;
   std::array<Vec3, 4> corners{};
   Vec3 normal;  ///< front side, unit
@@ -62,6 +79,14 @@ struct RadiosityMesh {
   std::vector<Vec3> nodes;              ///< positions, metres
   std::vector<uint32_t> nodePatch;      ///< the patch each node belongs to
   std::vector<int32_t> patchOfFace;     ///< Scene::faces index → patch, −1 if none
+  std::vector<MeshTreeNode> tree;       ///< subdivision trees of hierarchical patches
+  /// Nodes in the middle of a coarser neighbour's edge (adaptive meshes), in
+  /// coarse-to-fine order: their value must be the average of the edge's ends,
+  /// or interpolation would crack there.
+  struct TVertex {
+    uint32_t node, edgeStart, edgeEnd;
+  };
+  std::vector<TVertex> tVertices;
 
   const Patch &patchOf(uint32_t element) const { return patches[elements[element].patch]; }
   const Vec3 &normalOf(uint32_t element) const { return patchOf(element).normal; }
@@ -72,6 +97,7 @@ struct RadiosityMesh {
   /// a patch), with local coordinates for interpolation. Points slightly
   /// outside (round-off) are clamped to the nearest element.
   MeshLocation locate(uint32_t face, const Vec3 &position) const;
+  MeshLocation locateInTree(const Patch &patch, const Vec3 &position) const;
   /// Interpolation weights of the element's nodes at a location (sum to 1).
   std::array<double, 4> nodeWeights(const MeshLocation &location) const;
 };

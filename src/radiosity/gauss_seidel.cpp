@@ -1,7 +1,8 @@
 // `gauss-seidel` — gathering on the element matrix (C&W §5.3; REFERENCE §3.1).
 //
 // B_i = E_i + ρ_i Σ_j F_ij B_j, swept in place until the largest change of B
-// in a sweep, relative to the largest B, falls below the tolerance. F_ij is the
+// in a sweep, relative to the largest reflected radiosity B − E, falls below
+// the tolerance. F_ij is the
 // form factor from element i's centre to the front of element j's polygon: exact
 // (Lambert's contour integral, clipped to i's tangent plane) times the
 // fraction of `visibilitySamples` stratified points on j that i's centre sees.
@@ -81,7 +82,9 @@ void solveGaussSeidel(const RayTracer &tracer, Solution &s, const SolverOptions 
       Bands updated = s.emission[i] + s.reflectance[i] * gathered;
       for (int b = 0; b < kBandCount; ++b) {
         largestChange = std::max(largestChange, std::abs(updated[b] - s.radiosity[i][b]));
-        largest = std::max(largest, std::abs(updated[b]));
+        // Against the largest *reflected* radiosity: next to an emitter's B the
+        // walls' changes would look negligible long before they are.
+        largest = std::max(largest, std::abs(updated[b] - s.emission[i][b]));
       }
       s.radiosity[i] = updated;
     }

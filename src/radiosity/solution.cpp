@@ -46,6 +46,8 @@ void Solution::updateNodesAndErrors() {
   }
   for (size_t v = 0; v < nodeRadiosity.size(); ++v)
     if (weight[v] > 0) nodeRadiosity[v] = nodeRadiosity[v] / weight[v];
+  for (const RadiosityMesh::TVertex &t : mesh.tVertices)
+    nodeRadiosity[t.node] = (nodeRadiosity[t.edgeStart] + nodeRadiosity[t.edgeEnd]) * 0.5;
   // Gradient estimate (C&W ch. 6, Cohen et al. 1986): how far the nodes around
   // an element stray from its own value, relative to it. Large where the
   // constant element misrepresents a shadow edge or a steep falloff.

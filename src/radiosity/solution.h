@@ -26,6 +26,19 @@ struct SolveStats {
   size_t formFactorRays = 0;
 };
 
+/// How much of a hierarchical link's source its receiver sees (from shadow rays).
+enum class LinkVisibility : uint8_t { None = 0, Partial = 1, Full = 2 };
+
+/// A hierarchical-radiosity link: `receiver` gathers F·B from `source`
+/// (indices into RadiosityMesh::tree, at any level).
+struct Link {
+  uint32_t receiver = 0, source = 0;
+  float formFactor = 0;        ///< F(receiver ← source), visibility included
+  float visibleFraction = 0;   ///< of the shadow rays between them
+  LinkVisibility visibility = LinkVisibility::Full;
+  float carriedPower = 0;      ///< ρ_r F B_s A_r, W (band average): what the link transports
+};
+
 struct Solution {
   RadiosityMesh mesh;
   std::vector<Bands> reflectance;   ///< ρ per element (the diffuse part of its material)
@@ -38,6 +51,8 @@ struct Solution {
   Bands ambient;                    ///< progressive refinement's ambient term (display only)
   std::vector<double> errorEstimate;///< per element: max relative difference between its nodes and itself
   std::vector<Bands> nodeRadiosity; ///< B interpolated at mesh nodes (area-weighted average of the elements around)
+  std::vector<Link> links;          ///< hierarchical solver only
+  std::vector<Bands> treeRadiosity; ///< B of every mesh.tree node (hierarchical solver only)
   SolveStats stats;
 
   size_t elementCount() const { return mesh.elements.size(); }

@@ -14,6 +14,8 @@ const std::vector<SolverInfo> &solverRegistry() {
       {"gauss-seidel", "gathering on the full element form-factor matrix to a residual tolerance", &solveGaussSeidel},
       {"progressive", "progressive refinement shooting, with the ambient term and the direct/indirect split",
        &solveProgressive},
+      {"hierarchical", "Hanrahan-Salzman-Aupperle hierarchical radiosity with BF refinement and push-pull",
+       &solveHierarchical},
   };
   return table;
 }
@@ -41,7 +43,7 @@ double visibleFraction(const RayTracer &tracer, const Vec3 &p, const Vec3 &n, co
   // Stratified over the unit square: a k × k jittered grid, mapped onto the
   // quad bilinearly or onto the triangle by Heitz's map.
   int k = std::max(1, static_cast<int>(std::lround(std::sqrt(double(samples)))));
-  int visible = 0;
+  int visible = 0, inFront = 0;
   for (int a = 0; a < k; ++a)
     for (int b = 0; b < k; ++b) {
       double u = (a + rng.next()) / k, v = (b + rng.next()) / k;
@@ -54,9 +56,14 @@ double visibleFraction(const RayTracer &tracer, const Vec3 &p, const Vec3 &n, co
         sampleUniformTriangle(u, v, b1, b2);
         y = polygon[0] * (1 - b1 - b2) + polygon[1] * b1 + polygon[2] * b2;
       }
+      // The form factor this fraction multiplies covers only the part of the
+      // polygon in front of p's tangent plane; a sample behind it would always
+      // read as occluded and bias the fraction low.
+      if (dot(y - p, n) <= 0) continue;
+      ++inFront;
       if (tracer.visible(p, n, y, polygonNormal)) ++visible;
     }
-  return double(visible) / (k * k);
+  return inFront ? double(visible) / inFront : 0.0;
 }
 
 }  // namespace radiant

@@ -13,8 +13,9 @@ namespace radiant {
 
 struct SolverOptions {
   std::string solver = "progressive";
-  /// Gauss–Seidel: max relative change of B in a sweep; progressive: unshot
-  /// power over emitted power.
+  /// Gauss–Seidel and hierarchical: max change of B in a sweep over the
+  /// largest reflected radiosity B − E; progressive: unshot power over
+  /// emitted power.
   double tolerance = 1e-3;
   int maxIterations = 0;         ///< sweeps or shots; 0: no limit beyond the tolerance
   int visibilitySamples = 4;     ///< shadow rays per form factor
@@ -23,6 +24,12 @@ struct SolverOptions {
   /// al.'s disc sum; "hemicube": one hemicube at the shooter, F_ji = F_ij A_i/A_j.
   std::string formFactor = "analytic";
   int hemicubeResolution = 64;
+  /// Hierarchical: link when the radiosity a link would carry, F·B_source,
+  /// is below this fraction of the largest emitted radiosity (BF refinement).
+  double linkThreshold = 1e-4;
+  /// Hierarchical: elements are not subdivided below this area, m² (0: from the mesh size).
+  double minimumArea = 0;
+  int refinementRounds = 6;      ///< hierarchical: refine, solve, re-refine with the new B, … (at most)
   uint64_t seed = 1;
   int threads = 0;               ///< 0: all cores; results do not depend on it
 };
@@ -51,12 +58,14 @@ void solveRadiosity(const RayTracer &tracer, Solution &solution, const SolverOpt
                     const SolverProgressCallback &progress = {});
 
 /// Fraction of `samples` stratified points on `polygon` (front normal
-/// `polygonNormal`) visible from p (normal n). Deterministic for `rng`.
+/// `polygonNormal`) visible from p (normal n), among those in front of p's
+/// tangent plane (the part a clipped form factor covers). Deterministic for `rng`.
 double visibleFraction(const RayTracer &tracer, const Vec3 &p, const Vec3 &n, const std::vector<Vec3> &polygon,
                        const Vec3 &polygonNormal, int samples, Pcg32 &rng);
 
 // The solvers, one file each.
 void solveGaussSeidel(const RayTracer &, Solution &, const SolverOptions &, const SolverProgressCallback &);
 void solveProgressive(const RayTracer &, Solution &, const SolverOptions &, const SolverProgressCallback &);
+void solveHierarchical(const RayTracer &, Solution &, const SolverOptions &, const SolverProgressCallback &);
 
 }  // namespace radiant

@@ -1,0 +1,499 @@
+// `hierarchical` — hierarchical radiosity (Hanrahan, Salzman & Aupperle,
+// SIGGRAPH 1991; REFERENCE §3.3), with BF refinement and multigridding.
+//
+// Every input patch is the root of a quadtree (quads split at their bilinear
+// midpoints, triangles into four). Energy moves along links between nodes at
+// any level: Refine(p, q) links receiver p to source q when the radiosity the
+// link would carry, F_pq·B_q, is below ε = linkThreshold · max E; otherwise it
+// subdivides whichever of the two looks larger from the other (F_pq against
+// F_qp) and recurses, down to the minimum area. Each link's form factor is the
+// point-to-polygon form factor (Lambert's contour integral) at a grid of
+// receiver points, each times the visibility of a stratified source point,
+// averaged; the fraction of those shadow rays that arrive classifies the link
+// as none, partial or full visibility.
+//
+// Solve: Gather (each node: H_g = Σ_links F·B_source) then Push–Pull (push
+// irradiance down to the leaves, B_leaf = E + ρ·H, pull area-weighted
+// averages up), repeated until B changes by less than the tolerance.
+// Multigridding: the first round refines against B = E (only emitters have
+// radiosity, so only their links refine), then every link is re-examined with
+// the solved B and refined where it now carries too much, and the system is
+// solved again (`refinementRounds` times in all).
+//
+// The leaves become the solution's elements; their corners become nodes
+// shared within a patch, and T-vertices (a node in the middle of a coarser
+// neighbour's edge) are recorded so interpolation stays continuous.
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cstring>
+#include <map>
+
+#include "radiosity/form_factor.h"
+#include "radiosity/solver.h"
+#include "render/sampling.h"
+#include "util/error.h"
+
+namespace radiant {
+
+namespace {
+
+struct Node {
+  uint32_t patch = 0;
+  int vertexCount = 4;
+  std::array<Vec3, 4> corners{};
+  Vec3 centre, normal;
+  double area = 0;
+  int level = 0;
+  std::array<int32_t, 4> children{-1, -1, -1, -1};
+  Bands emission, reflectance;
+  Bands radiosity;                  ///< B: at a leaf E + ρH, above the area average of the children
+  Bands gathered, gatheredDirect;   ///< Σ F·B_source and Σ F·E_source over this node's links
+  Bands irradiance, irradianceDirect;  ///< leaves: everything pushed down to them
+  std::vector<uint32_t> links;      ///< incoming links (indices into Hierarchy::links_)
+  bool isLeaf() const { return children[0] < 0; }
+};
+
+struct HierarchicalLink {
+  uint32_t receiver, source;
+  double formFactor, visibleFraction;
+  double unoccludedFormFactor;  ///< F as if nothing were in between
+  bool alive = true;
+};
+
+class Hierarchy {
+ public:
+  Hierarchy(const RayTracer &tracer, const Solution &initial, const SolverOptions &options)
+      : tracer_(tracer), options_(options) {
+    double maxEmission = 0, largestElement = 0;
+    for (const Element &e : initial.mesh.elements) largestElement = std::max(largestElement, e.area);
+    for (uint32_t p = 0; p < initial.mesh.patches.size(); ++p) {
+      const Patch &patch = initial.mesh.patches[p];
+      Node n;
+      n.patch = p;
+      n.vertexCount = patch.vertexCount;
+      n.corners = patch.corners;
+      n.normal = patch.normal;
+      n.area = patch.area;
+      n.centre = centreOf(n);
+      // A patch's elements share its material: take ρ and E from its first element.
+      n.emission = initial.emission[patch.firstElement];
+      n.reflectance = initial.reflectance[patch.firstElement];
+      n.radiosity = n.emission;
+      maxEmission = std::max(maxEmission, n.emission.max());
+      nodes_.push_back(n);
+    }
+    patchCount_ = static_cast<uint32_t>(nodes_.size());
+    threshold_ = options.linkThreshold * maxEmission;
+    minimumArea_ = options.minimumArea > 0 ? options.minimumArea : largestElement;
+  }
+
+  /// Links every pair of patches that can see each other, refining as needed.
+  void linkPatches() {
+    const uint32_t patches = static_cast<uint32_t>(nodes_.size());
+    for (uint32_t p = 0; p < patches; ++p)
+      for (uint32_t q = 0; q < patches; ++q)
+        if (p != q && facing(nodes_[p], nodes_[q])) refine(p, q);
+  }
+
+  /// Multigridding: re-examines every link with the current radiosities.
+  /// Returns how many links were refined.
+  size_t rerefine() {
+    size_t refined = 0;
+    const size_t count = links_.size();
+    for (size_t l = 0; l < count; ++l) {
+      HierarchicalLink link = links_[l];
+      if (!link.alive) continue;
+      // A partly occluded link is judged by what it could carry unoccluded:
+      // its visibility was sampled by area, while the form factor weights the
+      // near parts of the source most, so a coarse partial link is the least
+      // trustworthy kind (HSA refine them further for the same reason).
+      bool partial = link.visibleFraction > 0 && link.visibleFraction < 1;
+      double factor = partial ? link.unoccludedFormFactor : link.formFactor;
+      if (factor * nodes_[link.source].radiosity.max() <= threshold_) continue;
+      if (!canSubdivide(link.receiver) && !canSubdivide(link.source)) continue;
+      links_[l].alive = false;
+      auto &incoming = nodes_[link.receiver].links;
+      incoming.erase(std::find(incoming.begin(), incoming.end(), uint32_t(l)));
+      refineChildren(link.receiver, link.source);
+      ++refined;
+    }
+    return refined;
+  }
+
+  /// Gather + push–pull until B settles; returns the sweeps taken.
+  int solve(double tolerance, int maxSweeps, int &totalSweeps, double &residual,
+            const SolverProgressCallback &progress, std::chrono::steady_clock::time_point start) {
+    int sweeps = 0;
+    for (; sweeps < maxSweeps; ++sweeps) {
+      for (Node &n : nodes_) {
+        n.gathered = n.gatheredDirect = Bands(0.0);
+        for (uint32_t l : n.links) {
+          const HierarchicalLink &link = links_[l];
+          n.gathered += nodes_[link.source].radiosity * link.formFactor;
+          n.gatheredDirect += nodes_[link.source].emission * link.formFactor;
+        }
+      }
+      double change = 0, largest = 0;
+      for (uint32_t root = 0; root < patchCount(); ++root)
+        pushPull(root, Bands(0.0), Bands(0.0), change, largest);
+      residual = largest > 0 ? change / largest : 0;
+      ++totalSweeps;
+      if (progress)
+        progress({totalSweeps, residual, tolerance,
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+      if (residual < tolerance) {
+        ++sweeps;
+        break;
+      }
+    }
+    return sweeps;
+  }
+
+  void writeTo(Solution &s) const;
+  size_t shadowRays() const { return shadowRays_; }
+
+ private:
+  /// The roots (one per patch) are the first nodes.
+  uint32_t patchCount() const { return patchCount_; }
+
+  static Vec3 centreOf(const Node &n) {
+    Vec3 c;
+    for (int k = 0; k < n.vertexCount; ++k) c += n.corners[k];
+    return c / n.vertexCount;
+  }
+  std::span<const Vec3> polygon(const Node &n) const { return {n.corners.data(), size_t(n.vertexCount)}; }
+
+  /// Some part of q lies in front of p's plane and some part of p in front of q's.
+  static bool facing(const Node &p, const Node &q) {
+    auto anyInFront = [](const Node &of, const Node &plane) {
+      double size = std::sqrt(plane.area);
+      for (int k = 0; k < of.vertexCount; ++k)
+        if (dot(of.corners[k] - plane.centre, plane.normal) > 1e-9 * size) return true;
+      return false;
+    };
+    return anyInFront(q, p) && anyInFront(p, q);
+  }
+
+  /// Cheap estimate of F(p ← q): the point-to-polygon factor at p's centre,
+  /// zero when p's centre is behind q (q's front does not face it).
+  double estimate(const Node &p, const Node &q) const {
+    if (dot(p.centre - q.centre, q.normal) <= 0) return 0;
+    return formFactorPointToPolygon(p.centre, p.normal, polygon(q));
+  }
+
+  bool canSubdivide(uint32_t n) const { return nodes_[n].area > minimumArea_; }
+
+  void refine(uint32_t p, uint32_t q) {
+    double fpq = estimate(nodes_[p], nodes_[q]), fqp = estimate(nodes_[q], nodes_[p]);
+    double carried = std::max(fpq, 0.0) * nodes_[q].radiosity.max();
+    // Neither centre sees the other's front, but the nodes still face each
+    // other (perpendicular neighbours): the estimate is unreliable, so refine.
+    bool unreliable = fpq <= 0 && fqp <= 0;
+    if (!unreliable && carried <= threshold_) return link(p, q);
+    if (unreliable && nodes_[q].radiosity.max() <= 0) return link(p, q);
+    refineChildren(p, q, fpq, fqp);
+  }
+
+  void refineChildren(uint32_t p, uint32_t q) {
+    refineChildren(p, q, estimate(nodes_[p], nodes_[q]), estimate(nodes_[q], nodes_[p]));
+  }
+
+  void refineChildren(uint32_t p, uint32_t q, double fpq, double fqp) {
+    bool splitSource = canSubdivide(q) && (fpq >= fqp || !canSubdivide(p));
+    if (splitSource) {
+      subdivide(q);
+      for (int c = 0; c < 4; ++c) {
+        uint32_t child = static_cast<uint32_t>(nodes_[q].children[c]);
+        if (facing(nodes_[p], nodes_[child])) refine(p, child);
+      }
+    } else if (canSubdivide(p)) {
+      subdivide(p);
+      for (int c = 0; c < 4; ++c) {
+        uint32_t child = static_cast<uint32_t>(nodes_[p].children[c]);
+        if (facing(nodes_[child], nodes_[q])) refine(child, q);
+      }
+    } else {
+      link(p, q);
+    }
+  }
+
+  void subdivide(uint32_t n) {
+    if (!nodes_[n].isLeaf()) return;
+    Node parent = nodes_[n];
+    const auto &c = parent.corners;
+    auto mid = [](const Vec3 &a, const Vec3 &b) { return (a + b) * 0.5; };
+    std::array<std::array<Vec3, 4>, 4> children;
+    if (parent.vertexCount == 4) {
+      Vec3 m01 = mid(c[0], c[1]), m12 = mid(c[1], c[2]), m23 = mid(c[2], c[3]), m30 = mid(c[3], c[0]);
+      Vec3 centre = mid(m01, m23);
+      children = {{{c[0], m01, centre, m30}, {m01, c[1], m12, centre}, {centre, m12, c[2], m23},
+                   {m30, centre, m23, c[3]}}};
+    } else {
+      Vec3 mab = mid(c[0], c[1]), mbc = mid(c[1], c[2]), mac = mid(c[0], c[2]);
+      children = {{{c[0], mab, mac, Vec3{}}, {mab, c[1], mbc, Vec3{}}, {mac, mbc, c[2], Vec3{}},
+                   {mab, mbc, mac, Vec3{}}}};
+    }
+    for (int k = 0; k < 4; ++k) {
+      Node child;
+      child.patch = parent.patch;
+      child.vertexCount = parent.vertexCount;
+      child.corners = children[k];
+      child.normal = parent.normal;
+      child.area = parent.area / 4;
+      child.centre = centreOf(child);
+      child.level = parent.level + 1;
+      child.emission = parent.emission;
+      child.reflectance = parent.reflectance;
+      child.radiosity = parent.radiosity;
+      nodes_[n].children[k] = static_cast<int32_t>(nodes_.size());
+      nodes_.push_back(child);
+    }
+  }
+
+  /// Point of node n at parameters (u, v) in [0,1]² (bilinear, or Heitz's map on triangles).
+  static Vec3 pointAt(const Node &n, double u, double v) {
+    const auto &c = n.corners;
+    if (n.vertexCount == 4)
+      return c[0] * ((1 - u) * (1 - v)) + c[1] * (u * (1 - v)) + c[2] * (u * v) + c[3] * ((1 - u) * v);
+    double b1, b2;
+    sampleUniformTriangle(u, v, b1, b2);
+    return c[0] * (1 - b1 - b2) + c[1] * b1 + c[2] * b2;
+  }
+
+  /// F(p ← q) = F_unoccluded × V. F_unoccluded is the point-to-polygon
+  /// factor averaged over an m × m grid of receiver points (m = max(4,
+  /// √visibilitySamples)): deterministic, so links between neighbours that
+  /// share an edge, where F(x → q) has a log singularity, stay accurate. V is
+  /// the visibility of pairs (grid point, random source point), each pair
+  /// weighted by the kernel cosθ_p cosθ_q /(π r² + a) it stands for: the near
+  /// parts of a source dominate its form factor, and plain area-weighted
+  /// visibility halved the Cornell back wall's factor to the floor, whose far
+  /// half hides behind the tall block while its near half is in plain view.
+  /// The unweighted fraction of rays that arrive classifies the link.
+  void link(uint32_t p, uint32_t q) {
+    const Node &receiver = nodes_[p], &source = nodes_[q];
+    const int m = std::max(4, static_cast<int>(std::lround(std::sqrt(double(options_.visibilitySamples)))));
+    Pcg32 rng = sampleGenerator(options_.seed, (uint64_t(p) << 32) | q, 0x4852);
+    // Receiver points and source strata are paired by a random permutation:
+    // a fixed pairing (row j of the receiver always with row j of the source)
+    // correlates where the receiver looks with where it looks from, and
+    // halved the back wall's factor to the floor in the Cornell box.
+    std::vector<int> strata(size_t(m) * m);
+    for (int k = 0; k < m * m; ++k) strata[k] = k;
+    for (int k = m * m - 1; k > 0; --k) std::swap(strata[k], strata[static_cast<int>(rng.next() * (k + 1))]);
+    double unoccluded = 0, weightVisible = 0, weightAll = 0;
+    const double pieceArea = source.area / (m * m);
+    int visible = 0, tested = 0;
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < m; ++j) {
+        Vec3 x = pointAt(receiver, (i + 0.5) / m, (j + 0.5) / m);
+        int stratum = strata[i * m + j];
+        double su = (stratum % m + rng.next()) / m, sv = (stratum / m + rng.next()) / m;
+        if (dot(x - source.centre, source.normal) <= 0) continue;  // behind the source's front
+        double f = formFactorPointToPolygon(x, receiver.normal, polygon(source));
+        if (f <= 0) continue;
+        unoccluded += f;
+        // The form factor counts only the part of the source in front of x's
+        // tangent plane, so visibility must be sampled there too: a point
+        // behind it (a floor point under a block, seen from the block's side)
+        // would always read as occluded. Retry a few times before giving up.
+        Vec3 y = pointAt(source, su, sv);
+        for (int retry = 0; retry < 8 && dot(y - x, receiver.normal) <= 0; ++retry)
+          y = pointAt(source, rng.next(), rng.next());
+        Vec3 d = y - x;
+        double r2 = dot(d, d), r = std::sqrt(r2);
+        double cosX = dot(d, receiver.normal) / r, cosY = -dot(d, source.normal) / r;
+        if (cosX <= 0 || cosY <= 0) continue;
+        double weight = cosX * cosY / (kPi * r2 + pieceArea);
+        ++tested;
+        ++shadowRays_;
+        weightAll += weight;
+        if (tracer_.visible(x, receiver.normal, y, source.normal)) {
+          weightVisible += weight;
+          ++visible;
+        }
+      }
+    HierarchicalLink l;
+    l.receiver = p;
+    l.source = q;
+    l.unoccludedFormFactor = unoccluded / (m * m);
+    l.formFactor = weightAll > 0 ? l.unoccludedFormFactor * weightVisible / weightAll : 0.0;
+    l.visibleFraction = tested ? double(visible) / tested : 0.0;
+    nodes_[p].links.push_back(static_cast<uint32_t>(links_.size()));
+    links_.push_back(l);
+  }
+
+  Bands pushPull(uint32_t n, const Bands &down, const Bands &downDirect, double &change, double &largest) {
+    Node &node = nodes_[n];
+    Bands h = down + node.gathered, hd = downDirect + node.gatheredDirect;
+    Bands b;
+    if (node.isLeaf()) {
+      node.irradiance = h;
+      node.irradianceDirect = hd;
+      b = node.emission + node.reflectance * h;
+      change = std::max(change, (b - node.radiosity).max());
+      change = std::max(change, (node.radiosity - b).max());
+      largest = std::max(largest, (b - node.emission).max());  // reflected radiosity: emitters would mask the walls
+    } else {
+      b = Bands(0.0);
+      for (int c = 0; c < 4; ++c) {
+        uint32_t child = static_cast<uint32_t>(node.children[c]);
+        b += pushPull(child, h, hd, change, largest) * (nodes_[child].area / nodes_[n].area);
+      }
+    }
+    nodes_[n].radiosity = b;
+    return b;
+  }
+
+  const RayTracer &tracer_;
+  const SolverOptions &options_;
+  std::vector<Node> nodes_;
+  std::vector<HierarchicalLink> links_;
+  double threshold_ = 0, minimumArea_ = 0;
+  size_t shadowRays_ = 0;
+  uint32_t patchCount_ = 0;
+};
+
+/// Exact bit pattern of a position: shared corners are computed by the same
+/// arithmetic from the same parents, so equal corners have equal bits.
+struct PositionKey {
+  uint64_t x, y, z;
+  bool operator<(const PositionKey &o) const { return std::tie(x, y, z) < std::tie(o.x, o.y, o.z); }
+};
+PositionKey keyOf(const Vec3 &p) {
+  PositionKey k;
+  std::memcpy(&k.x, &p.x, 8);
+  std::memcpy(&k.y, &p.y, 8);
+  std::memcpy(&k.z, &p.z, 8);
+  return k;
+}
+
+void Hierarchy::writeTo(Solution &s) const {
+  RadiosityMesh mesh;
+  mesh.patchOfFace = s.mesh.patchOfFace;
+  mesh.patches = s.mesh.patches;
+  mesh.tree.resize(nodes_.size());
+  std::vector<int32_t> elementOfNode(nodes_.size(), -1);
+  s.reflectance.clear(), s.emission.clear(), s.radiosity.clear(), s.direct.clear(), s.indirect.clear();
+  s.irradiance.clear(), s.unshot.clear();
+  for (uint32_t p = 0; p < patchCount(); ++p) {
+    Patch &patch = mesh.patches[p];
+    patch.treeRoot = static_cast<int32_t>(p);
+    patch.divisionsU = patch.divisionsV = 1;
+    patch.firstElement = static_cast<uint32_t>(mesh.elements.size());
+    patch.firstNode = static_cast<uint32_t>(mesh.nodes.size());
+    std::map<PositionKey, uint32_t> nodeAt;
+    auto nodeIndex = [&](const Vec3 &position) {
+      auto [it, inserted] = nodeAt.try_emplace(keyOf(position), static_cast<uint32_t>(mesh.nodes.size()));
+      if (inserted) {
+        mesh.nodes.push_back(position);
+        mesh.nodePatch.push_back(p);
+      }
+      return it->second;
+    };
+    // Leaves in depth-first order, so a patch's elements are contiguous.
+    std::vector<uint32_t> stack{p}, leaves;
+    while (!stack.empty()) {
+      uint32_t n = stack.back();
+      stack.pop_back();
+      const Node &node = nodes_[n];
+      if (node.isLeaf()) {
+        leaves.push_back(n);
+        continue;
+      }
+      for (int c = 3; c >= 0; --c) stack.push_back(static_cast<uint32_t>(node.children[c]));
+    }
+    for (uint32_t n : leaves) {
+      const Node &node = nodes_[n];
+      Element e;
+      e.patch = p;
+      e.vertexCount = node.vertexCount;
+      for (int k = 0; k < node.vertexCount; ++k) e.nodes[k] = nodeIndex(node.corners[k]);
+      e.centre = node.centre;
+      e.area = node.area;
+      elementOfNode[n] = static_cast<int32_t>(mesh.elements.size());
+      mesh.elements.push_back(e);
+      s.reflectance.push_back(node.reflectance);
+      s.emission.push_back(node.emission);
+      s.radiosity.push_back(node.radiosity);
+      s.irradiance.push_back(node.irradiance);
+      s.direct.push_back(node.reflectance * node.irradianceDirect);
+      s.indirect.push_back(node.radiosity - node.emission - node.reflectance * node.irradianceDirect);
+      s.unshot.push_back(Bands(0.0));
+    }
+    // T-vertices: a node at the midpoint of a leaf's edge belongs to finer
+    // neighbours only; coarse leaves first, so an edge's ends are final before
+    // its midpoint is set from them.
+    std::sort(leaves.begin(), leaves.end(), [&](uint32_t a, uint32_t b) { return nodes_[a].level < nodes_[b].level; });
+    std::function<void(const Vec3 &, const Vec3 &)> splitEdge = [&](const Vec3 &a, const Vec3 &b) {
+      Vec3 m = (a + b) * 0.5;
+      auto it = nodeAt.find(keyOf(m));
+      if (it == nodeAt.end()) return;
+      mesh.tVertices.push_back({it->second, nodeAt.at(keyOf(a)), nodeAt.at(keyOf(b))});
+      splitEdge(a, m);
+      splitEdge(m, b);
+    };
+    for (uint32_t n : leaves) {
+      const Node &node = nodes_[n];
+      for (int k = 0; k < node.vertexCount; ++k) splitEdge(node.corners[k], node.corners[(k + 1) % node.vertexCount]);
+    }
+    patch.elementCount = static_cast<uint32_t>(mesh.elements.size()) - patch.firstElement;
+    patch.nodeCount = static_cast<uint32_t>(mesh.nodes.size()) - patch.firstNode;
+  }
+  for (uint32_t n = 0; n < nodes_.size(); ++n) {
+    const Node &node = nodes_[n];
+    MeshTreeNode &t = mesh.tree[n];
+    t.children = node.children;
+    t.element = elementOfNode[n];
+    t.patch = node.patch;
+    t.vertexCount = node.vertexCount;
+    t.corners = node.corners;
+    t.area = node.area;
+  }
+  s.treeRadiosity.resize(nodes_.size());
+  for (uint32_t n = 0; n < nodes_.size(); ++n) s.treeRadiosity[n] = nodes_[n].radiosity;
+  s.links.clear();
+  for (const HierarchicalLink &l : links_) {
+    if (!l.alive) continue;
+    Link out;
+    out.receiver = l.receiver;
+    out.source = l.source;
+    out.formFactor = static_cast<float>(l.formFactor);
+    out.visibleFraction = static_cast<float>(l.visibleFraction);
+    out.visibility = l.visibleFraction <= 0 ? LinkVisibility::None
+                     : l.visibleFraction >= 1 ? LinkVisibility::Full
+                                              : LinkVisibility::Partial;
+    const Node &r = nodes_[l.receiver];
+    out.carriedPower = static_cast<float>((r.reflectance * nodes_[l.source].radiosity).average() * l.formFactor * r.area);
+    s.links.push_back(out);
+  }
+  s.mesh = std::move(mesh);
+  s.ambient = Bands(0.0);
+  s.stats.absorbedPower = Bands(0.0);
+  for (size_t e = 0; e < s.elementCount(); ++e)
+    s.stats.absorbedPower += (Bands(1.0) - s.reflectance[e]) * s.irradiance[e] * s.mesh.elements[e].area;
+  s.stats.escapedPower = s.stats.emittedPower - s.stats.absorbedPower;
+}
+
+}  // namespace
+
+void solveHierarchical(const RayTracer &tracer, Solution &s, const SolverOptions &options,
+                       const SolverProgressCallback &progress) {
+  const auto start = std::chrono::steady_clock::now();
+  Hierarchy hierarchy(tracer, s, options);
+  hierarchy.linkPatches();
+  const int maxSweeps = options.maxIterations > 0 ? options.maxIterations : 1000;
+  int totalSweeps = 0;
+  double residual = 0;
+  for (int round = 0; round < std::max(1, options.refinementRounds); ++round) {
+    if (round > 0 && hierarchy.rerefine() == 0) break;
+    hierarchy.solve(options.tolerance, maxSweeps, totalSweeps, residual, progress, start);
+  }
+  s.stats.iterations = totalSweeps;
+  s.stats.residual = residual;
+  hierarchy.writeTo(s);
+  s.stats.formFactorRays = hierarchy.shadowRays();
+}
+
+}  // namespace radiant
