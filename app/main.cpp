@@ -24,7 +24,8 @@ int main(int argc, char **argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError &e) {
-    return app.exit(e);
+    // --help and --version exit 0; a bad flag is bad input, exit 2 like every other.
+    return app.exit(e) == 0 ? 0 : 2;
   }
   try {
     if (render->parsed()) return runRender();

@@ -9,6 +9,7 @@
 
 #include "mesh/mesh.h"
 #include "radiosity/solver.h"
+#include "util/error.h"
 
 namespace radiant {
 
@@ -25,11 +26,16 @@ void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &o) {
   app.add_option("--tolerance", o.tolerance,
                  "Convergence: unshot power fraction (progressive) or relative change per sweep (gauss-seidel)")
       ->default_val(1e-3)
-      ->check(CLI::Range(1e-12, 1.0));
+      ->check(CLI::Validator(
+          [](std::string &text) {
+            double value = std::strtod(text.c_str(), nullptr);
+            return value > 0 && value <= 1 ? std::string() : "must be in (0, 1], got " + text;
+          },
+          "in (0, 1]"));
   app.add_option("--max-iterations", o.maxIterations, "Stop after this many shots or sweeps (0: no limit)")
       ->default_val(0)
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--ff-samples", o.formFactorSamples, "Shadow rays per form factor (a square number is used fully)")
+  app.add_option("--ff-samples", o.formFactorSamples, "Shadow rays per form factor, rounded to a square number k x k (stratified)")
       ->default_val(4)
       ->check(CLI::Range(1, 1024));
   app.add_option("--form-factor", o.formFactor,
@@ -40,6 +46,19 @@ void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &o) {
   app.add_option("--hemicube-resolution", o.hemicubeResolution, "Hemicube pixels across the top face")
       ->default_val(64)
       ->check(CLI::Range(4, 4096));
+}
+
+void rejectUnusedRadiosityOptions(const CLI::App &app, bool solving, const std::string &reason,
+                                  const RadiosityCommandOptions &options) {
+  const char *all[] = {"--solver", "--mesh-size", "--max-elements", "--tolerance", "--max-iterations",
+                       "--ff-samples", "--form-factor", "--hemicube-resolution"};
+  for (const char *name : all) {
+    if (app.get_option(name)->count() == 0) continue;
+    if (!solving) throw InputError(InputLocation{name}, "has no effect here: " + reason);
+    bool progressiveOnly = std::string(name) == "--form-factor" || std::string(name) == "--hemicube-resolution";
+    if (progressiveOnly && options.solver != "progressive")
+      throw InputError(InputLocation{name}, "applies only to --solver progressive");
+  }
 }
 
 Solution solveScene(const Scene &scene, const RayTracer &tracer, const RadiosityCommandOptions &o, uint64_t seed,

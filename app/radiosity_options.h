@@ -23,6 +23,12 @@ struct RadiosityCommandOptions {
 
 void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &options);
 
+/// An option nothing will use is an error, not a silent no-op (STYLE.md §5):
+/// radiosity options when no solution is computed (`reason` says why), and
+/// progressive-only options with another solver.
+void rejectUnusedRadiosityOptions(const CLI::App &app, bool solving, const std::string &reason,
+                                  const RadiosityCommandOptions &options);
+
 /// Meshes and solves the scene, printing progress and a summary unless quiet.
 Solution solveScene(const Scene &scene, const RayTracer &tracer, const RadiosityCommandOptions &options,
                     uint64_t seed, int threads, bool quiet);

@@ -89,7 +89,17 @@ CommandRunner addRenderCommand(CLI::App &app) {
                  "Radiosity solution from `radiant solve -o` to display instead of solving (methods that read one)");
   addRadiosityOptions(app, o->radiosity);
 
-  return [o]() {
+  return [o, &app]() {
+    {
+      const RendererInfo &method = findRenderer(o->method);
+      bool solving = method.needsSolution && o->solutionPath.empty();
+      rejectUnusedRadiosityOptions(app, solving,
+                                   method.needsSolution ? "the solution comes from --solution"
+                                                        : "--method " + o->method + " does not read a radiosity solution",
+                                   o->radiosity);
+      if (!o->solutionPath.empty() && !method.needsSolution)
+        throw InputError(InputLocation{"--solution"}, "--method " + o->method + " does not read a radiosity solution");
+    }
     Scene scene = loadScene(o->scenePath);
     const double unit = scene.metresPerUnit;
     if (!o->eye.empty()) scene.camera.eye = parseVector(o->eye, "--eye") * unit;

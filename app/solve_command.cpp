@@ -34,7 +34,8 @@ CommandRunner addSolveCommand(CLI::App &app) {
       ->check(CLI::Range(0, 4096));
   app.add_flag("-q,--quiet", o->quiet, "No progress or summary on stderr");
 
-  return [o]() {
+  return [o, &app]() {
+    rejectUnusedRadiosityOptions(app, true, "", o->radiosity);
     Scene scene = loadScene(o->scenePath);
     if (!o->quiet)
       for (const std::string &warning : scene.warnings) fmt::print(stderr, "radiant: warning: {}\n", warning);

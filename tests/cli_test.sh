@@ -80,5 +80,29 @@ OBJ
 "$radiant" render quad.obj --eye 0.5,0.5,2 --target 0.5,0.5,0 --up 0,1,0 --fov 30 --width 8 --height 8 --spp 1 \
   -o q.exr -q 2>err.txt && pass || { fail "bare OBJ render"; cat err.txt; }
 
+# Radiosity: solve, save, reuse, report; refuse a solution for another scene.
+furnace="$source_dir/scenes/furnace/scene.json"
+if "$radiant" solve "$cornell" --mesh-size 150 -o box.rad --report box.csv -q; then
+  [ -s box.rad ] && pass || fail "solve -o wrote nothing"
+  head -1 box.csv | grep -q "^object,area_m2," && grep -q "^floor," box.csv && pass || fail "solve --report"
+  "$radiant" render "$cornell" --method interpolate --solution box.rad --spp 1 --width 16 --height 16 -o i.exr -q \
+    && [ -s i.exr ] && pass || fail "render --solution"
+  expect_error "solution for another scene" "another scene" \
+    "$radiant" render "$furnace" --method flat --solution box.rad --width 8 --height 8 -q
+else
+  fail "solve failed"
+fi
+for solver in gauss-seidel progressive hierarchical; do
+  "$radiant" render "$cornell" --method flat --solver "$solver" --mesh-size 200 --spp 1 --width 16 --height 16 \
+    -o "flat-$solver.png" -q && pass || fail "render --method flat --solver $solver"
+done
+printf 'garbage' > bad.rad
+expect_error "not a solution file" "not a Radiant solution" "$radiant" render "$cornell" --method flat --solution bad.rad -q
+expect_error "unused radiosity option" "has no effect" "$radiant" render "$cornell" --mesh-size 50 -q
+expect_error "progressive-only option" "only to --solver progressive" \
+  "$radiant" solve "$cornell" --solver hierarchical --form-factor hemicube -q
+expect_error "bad tolerance" "must be in" "$radiant" solve "$cornell" --tolerance 0 -q
+expect_error "unknown solver" "solver" "$radiant" solve "$cornell" --solver jacobi -q
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -82,6 +82,9 @@ class Reader {
   }
   [[noreturn]] void fail(const std::string &message) const { throw InputError(InputLocation{path_}, message); }
   bool atEnd() const { return offset_ == data_.size(); }
+  bool startsWith(const char *prefix, size_t n) const {
+    return data_.size() >= n && std::memcmp(data_.data(), prefix, n) == 0;
+  }
 
  private:
   void need(size_t n) {
@@ -178,17 +181,15 @@ Solution readSolution(const std::string &path, const Scene &scene) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(InputLocation{path}, "cannot open the solution file");
   Reader r(std::string(std::istreambuf_iterator<char>(in), {}), path);
-  char magic[16];
-  for (char &c : magic) c = r.get<char>();
-  if (std::memcmp(magic, kMagic, sizeof magic) != 0)
-    r.fail("not a Radiant solution file (written by `radiant solve -o`)");
+  if (!r.startsWith(kMagic, sizeof kMagic)) r.fail("not a Radiant solution file (written by `radiant solve -o`)");
+  for (size_t i = 0; i < sizeof kMagic; ++i) r.get<char>();
   uint32_t version = r.get<uint32_t>();
   if (version != kSolutionFormatVersion)
     r.fail(fmt::format("solution format version {}; this radiant reads version {} (solve the scene again)", version,
                        kSolutionFormatVersion));
   uint32_t bands = r.get<uint32_t>();
   if (bands != uint32_t(kBandCount))
-    r.fail(fmt::format("the solution has {} bands; this scene has {}", bands, kBandCount));
+    r.fail(fmt::format("the solution has {} bands; this build of radiant computes {}", bands, kBandCount));
   if (r.get<uint64_t>() != sceneFingerprint(scene))
     r.fail("the solution was made for another scene (its geometry or materials differ from '" + scene.sourceFile +
            "'); solve this scene again with `radiant solve`");
@@ -288,6 +289,14 @@ Solution readSolution(const std::string &path, const Scene &scene) {
       r.fail("a T-vertex refers to a node that does not exist");
   for (const Link &l : s.links)
     if (l.receiver >= m.tree.size() || l.source >= m.tree.size()) r.fail("a link refers to a node that does not exist");
+  for (uint32_t p : m.nodePatch)
+    if (p >= m.patches.size()) r.fail("a node refers to a patch that does not exist");
+  // Values a renderer divides by or displays must be finite and physical.
+  for (size_t e = 0; e < n; ++e)
+    for (const Bands *b : {&s.reflectance[e], &s.emission[e], &s.radiosity[e]})
+      if (!b->isFinite() || b->min() < 0) r.fail(fmt::format("element {} has a negative or non-finite value", e));
+  for (const Bands &b : s.nodeRadiosity)
+    if (!b.isFinite()) r.fail("a node radiosity is not finite");
   for (const Element &e : m.elements) {
     if (e.patch >= m.patches.size() || e.vertexCount < 3 || e.vertexCount > 4) r.fail("an element is inconsistent");
     for (int k = 0; k < e.vertexCount; ++k)

@@ -15,6 +15,7 @@
 #include <tbb/task_arena.h>
 
 #include <chrono>
+#include <cmath>
 
 #include "radiosity/form_factor.h"
 #include "radiosity/solver.h"
@@ -45,6 +46,8 @@ void solveGaussSeidel(const RayTracer &tracer, Solution &s, const SolverOptions 
   for (uint32_t j = 0; j < n; ++j) polygons[j] = s.mesh.polygon(j);
 
   std::vector<size_t> visibilityRays(n, 0);
+  const size_t k = size_t(std::max(1L, std::lround(std::sqrt(double(options.visibilitySamples)))));
+  const size_t raysPerFactor = k * k;  // visibleFraction's stratified k × k grid
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
     tbb::parallel_for(size_t(0), n, [&](size_t i) {
@@ -58,7 +61,7 @@ void solveGaussSeidel(const RayTracer &tracer, Solution &s, const SolverOptions 
         if (dot(ei.centre - polygons[j][0], s.mesh.normalOf(j)) <= 0) continue;
         double f = formFactorPointToPolygon(ei.centre, ni, polygons[j]);
         if (f <= 0) continue;
-        visibilityRays[i] += size_t(options.visibilitySamples);
+        visibilityRays[i] += raysPerFactor;
         f *= visibleFraction(tracer, ei.centre, ni, polygons[j], s.mesh.normalOf(j), options.visibilitySamples, rng);
         if (f > 0) rows[i].push_back({j, static_cast<float>(f)});
       }

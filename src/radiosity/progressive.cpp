@@ -18,7 +18,9 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <atomic>
 #include <chrono>
+#include <cmath>
 #include <optional>
 
 #include "radiosity/form_factor.h"
@@ -101,6 +103,7 @@ void solveProgressive(const RayTracer &tracer, Solution &s, const SolverOptions 
     const uint32_t shooterPatch = s.mesh.elements[shooter].patch;
     unshotEmission[shooter] = unshotReflected[shooter] = s.unshot[shooter] = Bands(0.0);
     std::vector<double> formFactor(n, 0.0);
+    std::atomic<size_t> receiversTraced{0};
 
     if (estimator == Estimator::Hemicube) {
       // One hemicube at the shooter's centre gives F_ij for every j it sees;
@@ -125,11 +128,14 @@ void solveProgressive(const RayTracer &tracer, Solution &s, const SolverOptions 
           if (estimator == Estimator::RayCast) {
             formFactor[j] = formFactorRayCast(tracer, receiver.centre, receiverNormal, polygons[shooter],
                                               shooterNormal, options.visibilitySamples, rng);
+            ++receiversTraced;
           } else {
             double f = formFactorPointToPolygon(receiver.centre, receiverNormal, polygons[shooter]);
-            if (f > 0)
+            if (f > 0) {
               f *= visibleFraction(tracer, receiver.centre, receiverNormal, polygons[shooter], shooterNormal,
                                    options.visibilitySamples, rng);
+              ++receiversTraced;
+            }
             formFactor[j] = f;
           }
         });
@@ -146,7 +152,11 @@ void solveProgressive(const RayTracer &tracer, Solution &s, const SolverOptions 
       unshotReflected[j] += directGain + indirectGain;
       s.unshot[j] += directGain + indirectGain;
     }
-    s.stats.formFactorRays += n * size_t(options.visibilitySamples);
+    // Shadow rays cast (at most: samples behind a receiver's plane are skipped).
+    const size_t k = size_t(std::max(1L, std::lround(std::sqrt(double(options.visibilitySamples)))));
+    s.stats.formFactorRays += estimator == Estimator::Hemicube ? size_t(3) * hemicube->resolution() * hemicube->resolution()
+                              : estimator == Estimator::RayCast ? receiversTraced * size_t(options.visibilitySamples)
+                                                                : receiversTraced * k * k;
     ++shot;
     s.stats.iterations = shot;
     s.stats.residual = unshotPowerFraction();

@@ -31,7 +31,9 @@ void writeSurfaceReport(const Solution &s, const Scene &scene, const std::string
     double a = s.mesh.elements[e].area;
     t.area += a;
     t.radiosity += s.displayRadiosity(e) * a;
-    t.irradiance += s.irradiance[e] * a;
+    // The ambient term stands for radiosity not yet shot: it arrives as
+    // irradiance too, so that the reported B = E + ρH holds (progressive).
+    t.irradiance += (s.irradiance[e] + s.ambient) * a;
   }
   std::string csv =
       "object,area_m2,radiosity_R_W_m2,radiosity_G_W_m2,radiosity_B_W_m2,irradiance_R_W_m2,irradiance_G_W_m2,"

@@ -18,7 +18,7 @@ namespace radiant {
 struct SolveStats {
   std::string solver;
   int iterations = 0;            ///< sweeps (Gauss–Seidel) or shots (progressive)
-  double residual = 0;           ///< max relative residual, or unshot power fraction
+  double residual = 0;           ///< last sweep's max change of B over the largest B − E, or the unshot power fraction
   double seconds = 0;
   Bands emittedPower;            ///< Σ A E, W
   Bands absorbedPower;           ///< Σ A (1−ρ) H, W
@@ -50,7 +50,7 @@ struct Solution {
   std::vector<Bands> irradiance;    ///< H, arriving at the front, W·m⁻² (B = E + ρH)
   Bands ambient;                    ///< progressive refinement's ambient term (display only)
   std::vector<double> errorEstimate;///< per element: max relative difference between its nodes and itself
-  std::vector<Bands> nodeRadiosity; ///< B interpolated at mesh nodes (area-weighted average of the elements around)
+  std::vector<Bands> nodeRadiosity; ///< display B (ambient included) at mesh nodes: area-weighted average of the elements around
   std::vector<Link> links;          ///< hierarchical solver only
   std::vector<Bands> treeRadiosity; ///< B of every mesh.tree node (hierarchical solver only)
   SolveStats stats;
