@@ -14,9 +14,9 @@
 namespace radiant {
 
 void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &o) {
-  std::string solvers;
+  std::string solvers = fmt::format("\n  {:<13} {}", "auto", "hierarchical up to 2000 input patches, else stochastic");
   for (const SolverInfo &info : solverRegistry()) solvers += fmt::format("\n  {:<13} {}", info.name, info.summary);
-  app.add_option("--solver", o.solver, "Radiosity solver:" + solvers)->default_val("progressive");
+  app.add_option("--solver", o.solver, "Radiosity solver:" + solvers)->default_val("auto");
   app.add_option("--mesh-size", o.meshSize,
                  "Target element edge length in scene units (default: 1/8 of the scene's largest extent)")
       ->check(CLI::PositiveNumber);
@@ -46,18 +46,32 @@ void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &o) {
   app.add_option("--hemicube-resolution", o.hemicubeResolution, "Hemicube pixels across the top face")
       ->default_val(64)
       ->check(CLI::Range(4, 4096));
+  app.add_option("--link-threshold", o.linkThreshold,
+                 "Hierarchical: link when F*B_source is below this fraction of the largest emitted radiosity")
+      ->default_val(1e-4)
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--rays-per-element", o.raysPerElement,
+                 "Stochastic: rays of the first iteration per element (noise falls as 1/sqrt)")
+      ->default_val(64)
+      ->check(CLI::Range(1, 100000));
 }
 
 void rejectUnusedRadiosityOptions(const CLI::App &app, bool solving, const std::string &reason,
                                   const RadiosityCommandOptions &options) {
-  const char *all[] = {"--solver", "--mesh-size", "--max-elements", "--tolerance", "--max-iterations",
-                       "--ff-samples", "--form-factor", "--hemicube-resolution"};
+  const char *all[] = {"--solver",      "--mesh-size",           "--max-elements",   "--tolerance",
+                       "--max-iterations", "--ff-samples",    "--form-factor",      "--hemicube-resolution",
+                       "--link-threshold", "--rays-per-element"};
   for (const char *name : all) {
     if (app.get_option(name)->count() == 0) continue;
     if (!solving) throw InputError(InputLocation{name}, "has no effect here: " + reason);
-    bool progressiveOnly = std::string(name) == "--form-factor" || std::string(name) == "--hemicube-resolution";
-    if (progressiveOnly && options.solver != "progressive")
-      throw InputError(InputLocation{name}, "applies only to --solver progressive");
+    std::string flag = name;
+    auto only = [&](const char *solver) {
+      if (options.solver != solver)
+        throw InputError(InputLocation{name}, std::string("applies only to --solver ") + solver);
+    };
+    if (flag == "--form-factor" || flag == "--hemicube-resolution") only("progressive");
+    if (flag == "--link-threshold") only("hierarchical");
+    if (flag == "--rays-per-element") only("stochastic");
   }
 }
 
@@ -74,6 +88,8 @@ Solution solveScene(const Scene &scene, const RayTracer &tracer, const Radiosity
   solverOptions.visibilitySamples = o.formFactorSamples;
   solverOptions.formFactor = o.formFactor;
   solverOptions.hemicubeResolution = o.hemicubeResolution;
+  solverOptions.linkThreshold = o.linkThreshold;
+  solverOptions.raysPerElement = o.raysPerElement;
   solverOptions.seed = seed;
   solverOptions.threads = threads;
 
@@ -98,8 +114,8 @@ Solution solveScene(const Scene &scene, const RayTracer &tracer, const Radiosity
       fmt::print(stderr, "{}{}: iteration {}, residual {:.3g} (target {:.3g}), {:.1f}s, ETA {}{}", terminal ? "\r" : "",
                  name, p.iteration, p.residual, p.tolerance, p.elapsedSeconds, eta, terminal ? "   " : "\n");
     };
-    fmt::print(stderr, "radiant: meshing gave {} elements on {} patches; solving with {}\n",
-               solution.elementCount(), solution.mesh.patches.size(), o.solver);
+    fmt::print(stderr, "radiant: meshing gave {} elements on {} patches\n", solution.elementCount(),
+               solution.mesh.patches.size());
   }
   solveRadiosity(tracer, solution, solverOptions, progress);
   if (!quiet) {

@@ -11,7 +11,7 @@
 namespace radiant {
 
 struct RadiosityCommandOptions {
-  std::string solver = "progressive";
+  std::string solver = "auto";
   std::optional<double> meshSize;  ///< scene units
   size_t maxElements = 2'000'000;
   double tolerance = 1e-3;
@@ -19,6 +19,8 @@ struct RadiosityCommandOptions {
   int formFactorSamples = 4;
   std::string formFactor = "analytic";
   int hemicubeResolution = 64;
+  double linkThreshold = 1e-4;
+  int raysPerElement = 64;
 };
 
 void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &options);

@@ -195,7 +195,7 @@ TEST(Radiosity, SolutionDoesNotDependOnThreadCount) {
   RayTracer tracer(scene);
   MeshOptions meshOptions;
   meshOptions.maxEdgeLength = 0.15;
-  for (const char *solver : {"gauss-seidel", "progressive"}) {
+  for (const char *solver : {"gauss-seidel", "progressive", "hierarchical", "stochastic"}) {
     Solution a = initialSolution(scene, buildMesh(scene, meshOptions)), b = a;
     SolverOptions options;
     options.solver = solver;
@@ -413,6 +413,93 @@ TEST(Hierarchical, InterpolationHasNoCracksAtTVertices) {
     Vec3 mid = (s.mesh.nodes[t.edgeStart] + s.mesh.nodes[t.edgeEnd]) * 0.5;
     EXPECT_LT(length(mid - s.mesh.nodes[t.node]), 1e-12);
   }
+}
+
+}  // namespace
+}  // namespace radiant
+
+namespace radiant {
+namespace {
+
+TEST(Stochastic, FurnaceMeanIsExactAndElementsWithinNoise) {
+  // In a closed box no ray escapes, so the power is exact up to what is left
+  // unshot; each element's value is a Monte Carlo estimate whose relative
+  // noise is about 1/√(rays that hit it). First iteration: N = 64·n rays,
+  // spread over the elements roughly by area.
+  const double rho = 0.5, expected = kPi / (1 - rho);
+  Scene scene = test::furnace(1.0, rho);
+  Solution s = solve(scene, "stochastic", 0.1, 1e-6);
+  double area = 0, power = 0;
+  for (size_t e = 0; e < s.elementCount(); ++e) {
+    area += s.mesh.elements[e].area;
+    power += s.radiosity[e].average() * s.mesh.elements[e].area;
+  }
+  EXPECT_NEAR(power / area, expected, 1e-5 * expected);
+  const double raysPerElement = 64;
+  for (size_t e = 0; e < s.elementCount(); ++e) {
+    double sigma = expected * rho / std::sqrt(raysPerElement);  // the reflected part carries the noise
+    EXPECT_NEAR(s.radiosity[e][0], expected, 5 * sigma) << "element " << e;
+  }
+}
+
+TEST(Stochastic, AgreesWithHierarchicalOnTheCornellBox) {
+  // Both estimate element-averaged (Galerkin) transport: the stochastic solver
+  // by rays from anywhere on an element, the hierarchical one by a 4×4
+  // receiver grid. (Gauss–Seidel and progressive collocate at element
+  // centres and let ~3% less power escape on this mesh.)
+  Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
+  Solution gs = solve(scene, "hierarchical", 0.08, 1e-5);
+  Solution mc = solve(scene, "stochastic", 0.08, 1e-4);
+  std::cout << "escaped: hierarchical " << gs.stats.escapedPower.average() << ", stochastic "
+            << mc.stats.escapedPower.average() << "\n";
+  EXPECT_NEAR(mc.stats.escapedPower.average() / gs.stats.escapedPower.average(), 1.0, 0.02);
+  // Direct and indirect are kept apart: the first iteration is all emission.
+  double directGs = 0, directMc = 0;
+  for (size_t e = 0; e < gs.elementCount(); ++e) directGs += gs.direct[e].average() * gs.mesh.elements[e].area;
+  for (size_t e = 0; e < mc.elementCount(); ++e) directMc += mc.direct[e].average() * mc.mesh.elements[e].area;
+  EXPECT_NEAR(directMc / directGs, 1.0, 0.02);
+}
+
+TEST(Radiosity, AutoPicksHierarchicalForARoomAndStochasticForManyPatches) {
+  Scene room = test::furnace(1.0, 0.5);
+  EXPECT_EQ(solve(room, "auto", 0.5, 1e-3).stats.solver, "hierarchical");
+  // A box whose walls are each cut into 25 × 25 quads: 3750 input patches.
+  Scene many;
+  many.objects.push_back({"cut box", "test"});
+  Material wall;
+  wall.diffuse = Bands(0.5);
+  wall.emission = Bands(1.0);
+  many.materials.push_back(wall);
+  const int cuts = 25;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side)
+      for (int i = 0; i < cuts; ++i)
+        for (int j = 0; j < cuts; ++j) {
+          auto point = [&](double u, double v) {
+            Vec3 p;
+            p[axis] = side;
+            p[(axis + 1) % 3] = u / cuts;
+            p[(axis + 2) % 3] = v / cuts;
+            return p;
+          };
+          uint32_t base = static_cast<uint32_t>(many.positions.size());
+          many.positions.push_back(point(i, j));
+          many.positions.push_back(point(i + 1, j));
+          many.positions.push_back(point(i + 1, j + 1));
+          many.positions.push_back(point(i, j + 1));
+          Face f;
+          f.vertexCount = 4;
+          for (int k = 0; k < 4; ++k) f.vertices[k] = base + uint32_t(side == 0 ? k : 3 - k);
+          many.addFace(f);
+        }
+  Solution s = solve(many, "auto", 1.0, 1e-3);
+  EXPECT_EQ(s.stats.solver, "stochastic");
+  double area = 0, power = 0;
+  for (size_t e = 0; e < s.elementCount(); ++e) {
+    area += s.mesh.elements[e].area;
+    power += s.radiosity[e].average() * s.mesh.elements[e].area;
+  }
+  EXPECT_NEAR(power / area, 2 * kPi, 2e-3 * 2 * kPi);  // inward faces: the furnace again
 }
 
 }  // namespace

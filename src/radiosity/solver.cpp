@@ -16,17 +16,25 @@ const std::vector<SolverInfo> &solverRegistry() {
        &solveProgressive},
       {"hierarchical", "Hanrahan-Salzman-Aupperle hierarchical radiosity with BF refinement and push-pull",
        &solveHierarchical},
+      {"stochastic", "stochastic Jacobi radiosity: shoots unshot power with rays, no form factors; for large scenes",
+       &solveStochasticJacobi},
   };
   return table;
 }
 
 void solveRadiosity(const RayTracer &tracer, Solution &solution, const SolverOptions &options,
                     const SolverProgressCallback &progress) {
+  // "auto": hierarchical radiosity links every pair of input patches first,
+  // which is cheap for a room of tens of patches and hopeless for 10⁵ of them;
+  // beyond a few thousand patches the stochastic solver takes over.
+  constexpr size_t kAutoHierarchicalPatches = 2000;
+  std::string name = options.solver;
+  if (name == "auto") name = solution.mesh.patches.size() <= kAutoHierarchicalPatches ? "hierarchical" : "stochastic";
   const SolverInfo *chosen = nullptr;
-  std::string names;
+  std::string names = "auto";
   for (const SolverInfo &info : solverRegistry()) {
-    if (options.solver == info.name) chosen = &info;
-    names += names.empty() ? info.name : std::string(", ") + info.name;
+    if (name == info.name) chosen = &info;
+    names += std::string(", ") + info.name;
   }
   if (!chosen)
     throw InputError(InputLocation{"--solver"}, fmt::format("unknown solver '{}'; known solvers: {}", options.solver,

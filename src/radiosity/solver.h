@@ -12,7 +12,9 @@
 namespace radiant {
 
 struct SolverOptions {
-  std::string solver = "progressive";
+  /// A name from solverRegistry(), or "auto": hierarchical for up to 2000
+  /// input patches, stochastic beyond.
+  std::string solver = "auto";
   /// Gauss–Seidel and hierarchical: max change of B in a sweep over the
   /// largest reflected radiosity B − E; progressive: unshot power over
   /// emitted power.
@@ -29,6 +31,9 @@ struct SolverOptions {
   double linkThreshold = 1e-4;
   /// Hierarchical: elements are not subdivided below this area, m² (0: from the mesh size).
   double minimumArea = 0;
+  /// Stochastic: rays in the first iteration per element (later iterations
+  /// shoot fewer, in proportion to the unshot power left).
+  int raysPerElement = 64;
   int refinementRounds = 6;      ///< hierarchical: refine, solve, re-refine with the new B, … (at most)
   uint64_t seed = 1;
   int threads = 0;               ///< 0: all cores; results do not depend on it
@@ -67,5 +72,6 @@ double visibleFraction(const RayTracer &tracer, const Vec3 &p, const Vec3 &n, co
 void solveGaussSeidel(const RayTracer &, Solution &, const SolverOptions &, const SolverProgressCallback &);
 void solveProgressive(const RayTracer &, Solution &, const SolverOptions &, const SolverProgressCallback &);
 void solveHierarchical(const RayTracer &, Solution &, const SolverOptions &, const SolverProgressCallback &);
+void solveStochasticJacobi(const RayTracer &, Solution &, const SolverOptions &, const SolverProgressCallback &);
 
 }  // namespace radiant

@@ -1,0 +1,155 @@
+// `stochastic` — stochastic Jacobi radiosity with incremental shooting
+// (Neumann et al. 1994; Bekaert, "Hierarchical and stochastic algorithms for
+// radiosity", 1999, ch. 4), the solver for scenes too large to link every
+// pair of patches.
+//
+// Each iteration shoots all the unshot power at once with rays: N rays, N in
+// proportion to the unshot power left, each from an element chosen with
+// probability ∝ its unshot power, from a uniform point on it, in a
+// cosine-distributed direction about its front normal. A ray carries the
+// total unshot power / N (coloured by its source's unshot radiosity); the
+// element it hits (front side) receives it as irradiance and keeps ρ of it as
+// new unshot radiosity. The form factors are never computed: the rays sample
+// them, and the cost per iteration is O(N log n) in rays through Embree, not
+// O(n²). Iterations stop when the unshot power falls below the tolerance.
+//
+// The estimate is noisy: an element hit by k rays has a relative error of
+// about 1/√k. `raysPerElement` sets the first iteration's N as a multiple of
+// the element count. The first iteration shoots emission only, so `direct`
+// is kept apart from `indirect` as in the progressive solver. Deterministic:
+// rays are drawn in fixed chunks with their own generators and merged in
+// chunk order, whatever the thread count.
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+
+#include "radiosity/solver.h"
+#include "render/sampling.h"
+
+namespace radiant {
+
+namespace {
+
+struct Deposit {
+  uint32_t element;
+  Bands power;  ///< W per band arriving at the element's front
+};
+
+}  // namespace
+
+void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOptions &options,
+                           const SolverProgressCallback &progress) {
+  const size_t n = s.elementCount();
+  const auto start = std::chrono::steady_clock::now();
+  const double emitted = s.stats.emittedPower.average();
+  if (n == 0 || emitted <= 0) return;
+  const size_t firstRays = std::max<size_t>(1000, n * size_t(std::max(1, options.raysPerElement)));
+  constexpr size_t kChunk = 4096;
+
+  tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  const int maxIterations = options.maxIterations > 0 ? options.maxIterations : 1000;
+
+  for (int iteration = 1; iteration <= maxIterations; ++iteration) {
+    // Sources: the CDF of unshot power (band average).
+    std::vector<double> cdf(n);
+    double total = 0;
+    for (size_t e = 0; e < n; ++e) {
+      total += s.unshot[e].average() * s.mesh.elements[e].area;
+      cdf[e] = total;
+    }
+    s.stats.residual = total / emitted;
+    if (s.stats.residual < options.tolerance || total <= 0) break;
+    const size_t rays = std::max<size_t>(1000, static_cast<size_t>(double(firstRays) * total / emitted));
+    const double powerPerRay = total / double(rays);
+    const size_t chunks = (rays + kChunk - 1) / kChunk;
+    // Chunks run in parallel a batch at a time and are merged in order: the
+    // sum is deterministic and the deposits held at once stay bounded.
+    constexpr size_t kBatch = 64;
+    std::vector<Bands> arrived(n, Bands(0.0));
+    std::vector<std::vector<Deposit>> deposits(kBatch);
+    for (size_t batchStart = 0; batchStart < chunks; batchStart += kBatch) {
+      const size_t batchEnd = std::min(chunks, batchStart + kBatch);
+      arena.execute([&] {
+        tbb::parallel_for(batchStart, batchEnd, [&](size_t c) {
+          Pcg32 rng = sampleGenerator(options.seed, c, uint64_t(iteration) << 20 | 0x5a);
+          const size_t begin = c * kChunk, end = std::min(rays, begin + kChunk);
+          std::vector<Deposit> &out = deposits[c - batchStart];
+          out.clear();
+          out.reserve(end - begin);
+          for (size_t r = begin; r < end; ++r) {
+            // Stratify the source choice across all rays of the iteration.
+            double u = (double(r) + rng.next()) / double(rays) * total;
+            size_t source = std::min(n - 1, size_t(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin()));
+            const Element &element = s.mesh.elements[source];
+            const Vec3 &normal = s.mesh.normalOf(static_cast<uint32_t>(source));
+            double a = rng.next(), b = rng.next(), d1 = rng.next(), d2 = rng.next();
+            Vec3 origin;
+            const auto &nodes = element.nodes;
+            if (element.vertexCount == 4) {
+              const Vec3 &p0 = s.mesh.nodes[nodes[0]], &p1 = s.mesh.nodes[nodes[1]], &p2 = s.mesh.nodes[nodes[2]],
+                         &p3 = s.mesh.nodes[nodes[3]];
+              // Planar quad: pick a triangle by area, then a uniform point in it.
+              double a1 = length(cross(p1 - p0, p2 - p0)), a2 = length(cross(p2 - p0, p3 - p0));
+              double b1, b2;
+              if (a * (a1 + a2) < a1) {
+                sampleUniformTriangle(a * (a1 + a2) / a1, b, b1, b2);
+                origin = p0 * (1 - b1 - b2) + p1 * b1 + p2 * b2;
+              } else {
+                sampleUniformTriangle((a * (a1 + a2) - a1) / a2, b, b1, b2);
+                origin = p0 * (1 - b1 - b2) + p2 * b1 + p3 * b2;
+              }
+            } else {
+              double b1, b2;
+              sampleUniformTriangle(a, b, b1, b2);
+              origin = s.mesh.nodes[nodes[0]] * (1 - b1 - b2) + s.mesh.nodes[nodes[1]] * b1 +
+                       s.mesh.nodes[nodes[2]] * b2;
+            }
+            Vec3 direction = Frame::fromNormal(normal).toWorld(sampleCosineHemisphere(d1, d2));
+            Hit hit;
+            if (!tracer.intersect(tracer.spawnRay(origin, normal, direction), hit)) continue;  // escaped
+            if (dot(hit.geometricNormal, direction) >= 0) continue;  // a back side: not in the solution
+            int32_t patch = s.mesh.patchOfFace[hit.face];
+            if (patch < 0) continue;
+            const Bands &colour = s.unshot[source];
+            out.push_back({s.mesh.locate(hit.face, hit.position).element, colour * (powerPerRay / colour.average())});
+          }
+        });
+      });
+      for (size_t c = batchStart; c < batchEnd; ++c)
+        for (const Deposit &d : deposits[c - batchStart]) arrived[d.element] += d.power;
+    }
+
+    // The first iteration shoots all the unshot radiosity there is, the
+    // emission, so what it deposits is the direct part; later ones, reflections.
+    const bool direct = iteration == 1;
+    for (size_t e = 0; e < n; ++e) s.unshot[e] = Bands(0.0);
+    for (size_t e = 0; e < n; ++e) {
+      if (arrived[e].max() <= 0) continue;
+      Bands irradiance = arrived[e] / s.mesh.elements[e].area;
+      Bands gain = s.reflectance[e] * irradiance;
+      s.irradiance[e] += irradiance;
+      s.radiosity[e] += gain;
+      (direct ? s.direct[e] : s.indirect[e]) += gain;
+      s.unshot[e] = gain;
+    }
+    s.stats.formFactorRays += rays;
+    s.stats.iterations = iteration;
+    if (progress)
+      progress({iteration, s.stats.residual, options.tolerance,
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+  }
+  // Final residual and energy balance.
+  Bands unshotPower(0.0);
+  s.stats.absorbedPower = Bands(0.0);
+  for (size_t e = 0; e < n; ++e) {
+    double a = s.mesh.elements[e].area;
+    unshotPower += s.unshot[e] * a;
+    s.stats.absorbedPower += (Bands(1.0) - s.reflectance[e]) * s.irradiance[e] * a;
+  }
+  s.stats.residual = unshotPower.average() / emitted;
+  s.stats.escapedPower = s.stats.emittedPower - s.stats.absorbedPower - unshotPower;
+  s.ambient = Bands(0.0);
+}
+
+}  // namespace radiant
