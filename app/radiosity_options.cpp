@@ -65,13 +65,14 @@ void rejectUnusedRadiosityOptions(const CLI::App &app, bool solving, const std::
     if (app.get_option(name)->count() == 0) continue;
     if (!solving) throw InputError(InputLocation{name}, "has no effect here: " + reason);
     std::string flag = name;
-    auto only = [&](const char *solver) {
-      if (options.solver != solver)
+    // "auto" may pick hierarchical or stochastic, so their options stay valid with it.
+    auto only = [&](const char *solver, bool autoMayPickIt) {
+      if (options.solver != solver && !(autoMayPickIt && options.solver == "auto"))
         throw InputError(InputLocation{name}, std::string("applies only to --solver ") + solver);
     };
-    if (flag == "--form-factor" || flag == "--hemicube-resolution") only("progressive");
-    if (flag == "--link-threshold") only("hierarchical");
-    if (flag == "--rays-per-element") only("stochastic");
+    if (flag == "--form-factor" || flag == "--hemicube-resolution") only("progressive", false);
+    if (flag == "--link-threshold") only("hierarchical", true);
+    if (flag == "--rays-per-element") only("stochastic", true);
   }
 }
 

@@ -269,7 +269,8 @@ Solution readSolution(const std::string &path, const Scene &scene) {
   for (const Patch &p : m.patches)
     if (p.vertexCount < 3 || p.vertexCount > 4 || p.divisionsU < 1 || p.divisionsV < 1 ||
         uint64_t(p.firstElement) + p.elementCount > m.elements.size() ||
-        uint64_t(p.firstNode) + p.nodeCount > m.nodes.size() || p.treeRoot >= int32_t(m.tree.size()) ||
+        uint64_t(p.firstNode) + p.nodeCount > m.nodes.size() || p.treeRoot < -1 ||
+        p.treeRoot >= int32_t(m.tree.size()) ||
         (p.treeRoot < 0 &&
          p.elementCount != uint32_t(p.vertexCount == 4 ? p.divisionsU * p.divisionsV : p.divisionsU * p.divisionsU)))
       r.fail("a patch's subdivision is inconsistent");
@@ -282,6 +283,8 @@ Solution readSolution(const std::string &path, const Scene &scene) {
         r.fail("the subdivision tree is inconsistent");
     if (leaf && (t.element < 0 || t.element >= int32_t(m.elements.size())))
       r.fail("a subdivision leaf refers to an element that does not exist");
+    if (t.patch >= m.patches.size() || (leaf && m.elements[t.element].patch != t.patch))
+      r.fail("a subdivision node refers to another patch's element");
     if (t.vertexCount < 3 || t.vertexCount > 4) r.fail("a subdivision node is inconsistent");
   }
   for (const RadiosityMesh::TVertex &t : m.tVertices)

@@ -240,7 +240,9 @@ class Hierarchy {
       child.vertexCount = parent.vertexCount;
       child.corners = children[k];
       child.normal = parent.normal;
-      child.area = parent.area / 4;
+      child.area = 0;
+      for (int v = 1; v + 1 < child.vertexCount; ++v)
+        child.area += 0.5 * length(cross(child.corners[v] - child.corners[0], child.corners[v + 1] - child.corners[0]));
       child.centre = centreOf(child);
       child.level = parent.level + 1;
       child.emission = parent.emission;
@@ -318,8 +320,10 @@ class Hierarchy {
     l.receiver = p;
     l.source = q;
     l.unoccludedFormFactor = unoccluded / (m * m);
-    l.formFactor = weightAll > 0 ? l.unoccludedFormFactor * weightVisible / weightAll : 0.0;
-    l.visibleFraction = tested ? double(visible) / tested : 0.0;
+    // No ray could be aimed (every grid point saw the source edge-on): no
+    // evidence of occlusion, so keep the unoccluded factor, which is tiny then.
+    l.formFactor = weightAll > 0 ? l.unoccludedFormFactor * weightVisible / weightAll : l.unoccludedFormFactor;
+    l.visibleFraction = tested ? double(visible) / tested : 1.0;
     nodes_[p].links.push_back(static_cast<uint32_t>(links_.size()));
     links_.push_back(l);
   }
