@@ -20,7 +20,8 @@ void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &o) {
   app.add_option("--mesh-size", o.meshSize,
                  "Target element edge length in scene units (default: 1/8 of the scene's largest extent)")
       ->check(CLI::PositiveNumber);
-  app.add_option("--max-elements", o.maxElements, "Refuse meshes with more elements than this")
+  app.add_option("--max-elements", o.maxElements,
+                 "Refuse uniform meshes with more elements than this; hierarchical stops refining there")
       ->default_val(2'000'000)
       ->check(CLI::Range(size_t(1), size_t(100'000'000)));
   app.add_option("--tolerance", o.tolerance,
@@ -90,6 +91,7 @@ Solution solveScene(const Scene &scene, const RayTracer &tracer, const Radiosity
   solverOptions.formFactor = o.formFactor;
   solverOptions.hemicubeResolution = o.hemicubeResolution;
   solverOptions.linkThreshold = o.linkThreshold;
+  solverOptions.maxElements = o.maxElements;
   solverOptions.raysPerElement = o.raysPerElement;
   solverOptions.seed = seed;
   solverOptions.threads = threads;

@@ -313,6 +313,20 @@ TEST(Hierarchical, FurnaceGivesEmissionOverOneMinusReflectanceOnEveryLeaf) {
   }
 }
 
+TEST(Hierarchical, MaxElementsBoundsTheRefinement) {
+  Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
+  RayTracer tracer(scene);
+  MeshOptions meshOptions;
+  meshOptions.maxEdgeLength = 0.01;
+  Solution s = initialSolution(scene, buildMesh(scene, meshOptions));
+  SolverOptions options;
+  options.solver = "hierarchical";
+  options.maxElements = 500;
+  solveRadiosity(tracer, s, options);
+  EXPECT_LE(s.elementCount(), 500u);
+  EXPECT_GT(s.elementCount(), 400u);  // it refines up to the bound
+}
+
 TEST(Hierarchical, PushPullConservesPower) {
   // A node's radiosity is the area-weighted mean of its children's, so each
   // root carries exactly the power of its leaves.

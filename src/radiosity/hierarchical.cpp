@@ -84,6 +84,7 @@ class Hierarchy {
       nodes_.push_back(n);
     }
     patchCount_ = static_cast<uint32_t>(nodes_.size());
+    leaves_ = patchCount_;
     threshold_ = options.linkThreshold * maxEmission;
     minimumArea_ = options.minimumArea > 0 ? options.minimumArea : largestElement;
   }
@@ -182,7 +183,9 @@ class Hierarchy {
     return formFactorPointToPolygon(p.centre, p.normal, polygon(q));
   }
 
-  bool canSubdivide(uint32_t n) const { return nodes_[n].area > minimumArea_; }
+  bool canSubdivide(uint32_t n) const {
+    return nodes_[n].area > minimumArea_ && leaves_ + 3 <= options_.maxElements;
+  }
 
   void refine(uint32_t p, uint32_t q) {
     double fpq = estimate(nodes_[p], nodes_[q]), fqp = estimate(nodes_[q], nodes_[p]);
@@ -220,6 +223,7 @@ class Hierarchy {
 
   void subdivide(uint32_t n) {
     if (!nodes_[n].isLeaf()) return;
+    leaves_ += 3;
     Node parent = nodes_[n];
     const auto &c = parent.corners;
     auto mid = [](const Vec3 &a, const Vec3 &b) { return (a + b) * 0.5; };
@@ -357,6 +361,7 @@ class Hierarchy {
   double threshold_ = 0, minimumArea_ = 0;
   size_t shadowRays_ = 0;
   uint32_t patchCount_ = 0;
+  size_t leaves_ = 0;  ///< current leaf count, bounded by options.maxElements
 };
 
 /// Exact bit pattern of a position: shared corners are computed by the same

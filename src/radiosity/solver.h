@@ -34,7 +34,9 @@ struct SolverOptions {
   /// Stochastic: rays in the first iteration per element (later iterations
   /// shoot fewer, in proportion to the unshot power left).
   int raysPerElement = 64;
-  int refinementRounds = 6;      ///< hierarchical: refine, solve, re-refine with the new B, … (at most)
+  int refinementRounds = 6;
+  /// Hierarchical: stop subdividing when the leaves would exceed this (--max-elements).
+  size_t maxElements = 2'000'000;      ///< hierarchical: refine, solve, re-refine with the new B, … (at most)
   uint64_t seed = 1;
   int threads = 0;               ///< 0: all cores; results do not depend on it
 };
