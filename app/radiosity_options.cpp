@@ -25,7 +25,8 @@ void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &o) {
       ->default_val(2'000'000)
       ->check(CLI::Range(size_t(1), size_t(100'000'000)));
   app.add_option("--tolerance", o.tolerance,
-                 "Convergence: unshot power fraction (progressive) or relative change per sweep (gauss-seidel)")
+                 "Convergence in (0, 1]: unshot power over emitted power (progressive, stochastic), or the largest change "
+                 "of B in a sweep over the largest reflected radiosity (gauss-seidel, hierarchical)")
       ->default_val(1e-3)
       ->check(CLI::Validator(
           [](std::string &text) {

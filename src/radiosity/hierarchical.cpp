@@ -183,8 +183,10 @@ class Hierarchy {
     return formFactorPointToPolygon(p.centre, p.normal, polygon(q));
   }
 
+  /// Splitting stops once children would be under half the uniform mesh's
+  /// element area, so the finest leaves are about --mesh-size across.
   bool canSubdivide(uint32_t n) const {
-    return nodes_[n].area > minimumArea_ && leaves_ + 3 <= options_.maxElements;
+    return nodes_[n].area > 2 * minimumArea_ && leaves_ + 3 <= options_.maxElements;
   }
 
   void refine(uint32_t p, uint32_t q) {
