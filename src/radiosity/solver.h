@@ -29,7 +29,8 @@ struct SolverOptions {
   /// Hierarchical: link when the radiosity a link would carry, F·B_source,
   /// is below this fraction of the largest emitted radiosity (BF refinement).
   double linkThreshold = 1e-4;
-  /// Hierarchical: elements are not subdivided below this area, m² (0: from the mesh size).
+  /// Hierarchical: a node is split only while its area exceeds twice this,
+  /// m² (0: the largest element of the uniform mesh), so leaves end at ½–2×.
   double minimumArea = 0;
   /// Stochastic: rays in the first iteration per element (later iterations
   /// shoot fewer, in proportion to the unshot power left).
