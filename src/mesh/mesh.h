@@ -105,4 +105,23 @@ struct RadiosityMesh {
 /// Throws InputError when the mesh would exceed options.maxElements.
 RadiosityMesh buildMesh(const Scene &scene, const MeshOptions &options);
 
+// Tree meshes (src/mesh/tree_mesh.cpp): every patch a subdivision tree, its
+// leaves the elements, for adaptive refinement.
+
+/// Like buildMesh, but each patch is a tree split four-way until every leaf
+/// is no longer than the uniform mesh's longest element edge.
+RadiosityMesh buildTreeMesh(const Scene &scene, const MeshOptions &options);
+/// Splits the leaves whose element error estimate exceeds `threshold`, worst
+/// first, while the element count stays within `maxElements`; rebuilds the
+/// elements, nodes and T-vertices. Returns how many elements were split.
+size_t refineMesh(RadiosityMesh &mesh, const std::vector<double> &errorEstimate, double threshold,
+                  size_t maxElements);
+/// Splits one tree leaf into four children (elements are not rebuilt).
+void splitTreeNode(RadiosityMesh &mesh, uint32_t node);
+/// The four children's corners of a tree node, in locateInTree's order.
+std::array<std::array<Vec3, 4>, 4> childCorners(const MeshTreeNode &node);
+/// Elements from the trees' leaves (depth-first per patch), nodes shared by
+/// position within a patch, T-vertices coarse to fine.
+void rebuildElementsFromTrees(RadiosityMesh &mesh);
+
 }  // namespace radiant

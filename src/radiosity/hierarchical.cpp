@@ -26,8 +26,6 @@
 #include <fmt/format.h>
 
 #include <chrono>
-#include <cstring>
-#include <map>
 
 #include "radiosity/form_factor.h"
 #include "radiosity/solver.h"
@@ -227,19 +225,10 @@ class Hierarchy {
     if (!nodes_[n].isLeaf()) return;
     leaves_ += 3;
     Node parent = nodes_[n];
-    const auto &c = parent.corners;
-    auto mid = [](const Vec3 &a, const Vec3 &b) { return (a + b) * 0.5; };
-    std::array<std::array<Vec3, 4>, 4> children;
-    if (parent.vertexCount == 4) {
-      Vec3 m01 = mid(c[0], c[1]), m12 = mid(c[1], c[2]), m23 = mid(c[2], c[3]), m30 = mid(c[3], c[0]);
-      Vec3 centre = mid(m01, m23);
-      children = {{{c[0], m01, centre, m30}, {m01, c[1], m12, centre}, {centre, m12, c[2], m23},
-                   {m30, centre, m23, c[3]}}};
-    } else {
-      Vec3 mab = mid(c[0], c[1]), mbc = mid(c[1], c[2]), mac = mid(c[0], c[2]);
-      children = {{{c[0], mab, mac, Vec3{}}, {mab, c[1], mbc, Vec3{}}, {mac, mbc, c[2], Vec3{}},
-                   {mab, mbc, mac, Vec3{}}}};
-    }
+    MeshTreeNode shape;
+    shape.vertexCount = parent.vertexCount;
+    shape.corners = parent.corners;
+    const auto children = childCorners(shape);  // the layout the mesh's point location descends
     for (int k = 0; k < 4; ++k) {
       Node child;
       child.patch = parent.patch;
@@ -366,101 +355,39 @@ class Hierarchy {
   size_t leaves_ = 0;  ///< current leaf count, bounded by options.maxElements
 };
 
-/// Exact bit pattern of a position: shared corners are computed by the same
-/// arithmetic from the same parents, so equal corners have equal bits.
-struct PositionKey {
-  uint64_t x, y, z;
-  bool operator<(const PositionKey &o) const { return std::tie(x, y, z) < std::tie(o.x, o.y, o.z); }
-};
-PositionKey keyOf(const Vec3 &p) {
-  PositionKey k;
-  std::memcpy(&k.x, &p.x, 8);
-  std::memcpy(&k.y, &p.y, 8);
-  std::memcpy(&k.z, &p.z, 8);
-  return k;
-}
-
 void Hierarchy::writeTo(Solution &s) const {
   RadiosityMesh mesh;
   mesh.patchOfFace = s.mesh.patchOfFace;
   mesh.patches = s.mesh.patches;
   mesh.tree.resize(nodes_.size());
-  std::vector<int32_t> elementOfNode(nodes_.size(), -1);
-  s.reflectance.clear(), s.emission.clear(), s.radiosity.clear(), s.direct.clear(), s.indirect.clear();
-  s.irradiance.clear(), s.unshot.clear();
-  for (uint32_t p = 0; p < patchCount(); ++p) {
-    Patch &patch = mesh.patches[p];
-    patch.treeRoot = static_cast<int32_t>(p);
-    patch.divisionsU = patch.divisionsV = 1;
-    patch.firstElement = static_cast<uint32_t>(mesh.elements.size());
-    patch.firstNode = static_cast<uint32_t>(mesh.nodes.size());
-    std::map<PositionKey, uint32_t> nodeAt;
-    auto nodeIndex = [&](const Vec3 &position) {
-      auto [it, inserted] = nodeAt.try_emplace(keyOf(position), static_cast<uint32_t>(mesh.nodes.size()));
-      if (inserted) {
-        mesh.nodes.push_back(position);
-        mesh.nodePatch.push_back(p);
-      }
-      return it->second;
-    };
-    // Leaves in depth-first order, so a patch's elements are contiguous.
-    std::vector<uint32_t> stack{p}, leaves;
-    while (!stack.empty()) {
-      uint32_t n = stack.back();
-      stack.pop_back();
-      const Node &node = nodes_[n];
-      if (node.isLeaf()) {
-        leaves.push_back(n);
-        continue;
-      }
-      for (int c = 3; c >= 0; --c) stack.push_back(static_cast<uint32_t>(node.children[c]));
-    }
-    for (uint32_t n : leaves) {
-      const Node &node = nodes_[n];
-      Element e;
-      e.patch = p;
-      e.vertexCount = node.vertexCount;
-      for (int k = 0; k < node.vertexCount; ++k) e.nodes[k] = nodeIndex(node.corners[k]);
-      e.centre = node.centre;
-      e.area = node.area;
-      elementOfNode[n] = static_cast<int32_t>(mesh.elements.size());
-      mesh.elements.push_back(e);
-      s.reflectance.push_back(node.reflectance);
-      s.emission.push_back(node.emission);
-      s.radiosity.push_back(node.radiosity);
-      s.irradiance.push_back(node.irradiance);
-      s.direct.push_back(node.reflectance * node.irradianceDirect);
-      s.indirect.push_back(node.radiosity - node.emission - node.reflectance * node.irradianceDirect);
-      s.unshot.push_back(Bands(0.0));
-    }
-    // T-vertices: a node at the midpoint of a leaf's edge belongs to finer
-    // neighbours only; coarse leaves first, so an edge's ends are final before
-    // its midpoint is set from them.
-    std::sort(leaves.begin(), leaves.end(), [&](uint32_t a, uint32_t b) { return nodes_[a].level < nodes_[b].level; });
-    std::function<void(const Vec3 &, const Vec3 &)> splitEdge = [&](const Vec3 &a, const Vec3 &b) {
-      Vec3 m = (a + b) * 0.5;
-      auto it = nodeAt.find(keyOf(m));
-      if (it == nodeAt.end()) return;
-      mesh.tVertices.push_back({it->second, nodeAt.at(keyOf(a)), nodeAt.at(keyOf(b))});
-      splitEdge(a, m);
-      splitEdge(m, b);
-    };
-    for (uint32_t n : leaves) {
-      const Node &node = nodes_[n];
-      for (int k = 0; k < node.vertexCount; ++k) splitEdge(node.corners[k], node.corners[(k + 1) % node.vertexCount]);
-    }
-    patch.elementCount = static_cast<uint32_t>(mesh.elements.size()) - patch.firstElement;
-    patch.nodeCount = static_cast<uint32_t>(mesh.nodes.size()) - patch.firstNode;
-  }
   for (uint32_t n = 0; n < nodes_.size(); ++n) {
     const Node &node = nodes_[n];
     MeshTreeNode &t = mesh.tree[n];
     t.children = node.children;
-    t.element = elementOfNode[n];
     t.patch = node.patch;
     t.vertexCount = node.vertexCount;
     t.corners = node.corners;
     t.area = node.area;
+  }
+  for (uint32_t p = 0; p < patchCount(); ++p) {
+    mesh.patches[p].treeRoot = static_cast<int32_t>(p);
+    mesh.patches[p].divisionsU = mesh.patches[p].divisionsV = 1;
+  }
+  rebuildElementsFromTrees(mesh);
+
+  const size_t elements = mesh.elements.size();
+  for (auto *v : {&s.reflectance, &s.emission, &s.radiosity, &s.direct, &s.indirect, &s.irradiance, &s.unshot})
+    v->assign(elements, Bands(0.0));
+  for (uint32_t n = 0; n < nodes_.size(); ++n) {
+    if (mesh.tree[n].element < 0) continue;
+    const Node &node = nodes_[n];
+    const size_t e = static_cast<size_t>(mesh.tree[n].element);
+    s.reflectance[e] = node.reflectance;
+    s.emission[e] = node.emission;
+    s.radiosity[e] = node.radiosity;
+    s.irradiance[e] = node.irradiance;
+    s.direct[e] = node.reflectance * node.irradianceDirect;
+    s.indirect[e] = node.radiosity - node.emission - s.direct[e];
   }
   s.treeRadiosity.resize(nodes_.size());
   for (uint32_t n = 0; n < nodes_.size(); ++n) s.treeRadiosity[n] = nodes_[n].radiosity;
