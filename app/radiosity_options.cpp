@@ -52,6 +52,15 @@ void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &o) {
                  "Hierarchical: link when F*B_source is below this fraction of the largest emitted radiosity")
       ->default_val(1e-4)
       ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--adaptive-rounds", o.adaptiveRounds,
+                 "Gauss-Seidel, progressive, stochastic: rounds of splitting the elements whose error estimate "
+                 "exceeds --adaptive-threshold and solving again (0: uniform mesh)")
+      ->default_val(0)
+      ->check(CLI::Range(0, 20));
+  app.add_option("--adaptive-threshold", o.adaptiveThreshold,
+                 "Split elements whose nodes differ from them by more than this fraction of their radiosity")
+      ->default_val(0.1)
+      ->check(CLI::Range(0.0, 100.0));
   app.add_option("--rays-per-element", o.raysPerElement,
                  "Stochastic: rays of the first iteration per element (noise falls as 1/sqrt)")
       ->default_val(64)
@@ -62,7 +71,7 @@ void rejectUnusedRadiosityOptions(const CLI::App &app, bool solving, const std::
                                   const RadiosityCommandOptions &options) {
   const char *all[] = {"--solver",      "--mesh-size",           "--max-elements",   "--tolerance",
                        "--max-iterations", "--ff-samples",    "--form-factor",      "--hemicube-resolution",
-                       "--link-threshold", "--rays-per-element"};
+                       "--link-threshold", "--rays-per-element", "--adaptive-rounds", "--adaptive-threshold"};
   for (const char *name : all) {
     if (app.get_option(name)->count() == 0) continue;
     if (!solving) throw InputError(InputLocation{name}, "has no effect here: " + reason);
@@ -75,6 +84,11 @@ void rejectUnusedRadiosityOptions(const CLI::App &app, bool solving, const std::
     if (flag == "--form-factor" || flag == "--hemicube-resolution") only("progressive", false);
     if (flag == "--link-threshold") only("hierarchical", true);
     if (flag == "--rays-per-element") only("stochastic", true);
+    if ((flag == "--adaptive-rounds" || flag == "--adaptive-threshold") && options.solver == "hierarchical")
+      throw InputError(InputLocation{name}, "the hierarchical solver refines by itself; use --solver gauss-seidel, "
+                                            "progressive or stochastic");
+    if (flag == "--adaptive-threshold" && app.get_option("--adaptive-rounds")->count() == 0)
+      throw InputError(InputLocation{name}, "needs --adaptive-rounds");
   }
 }
 
@@ -83,7 +97,6 @@ Solution solveScene(const Scene &scene, const RayTracer &tracer, const Radiosity
   MeshOptions meshOptions;
   if (o.meshSize) meshOptions.maxEdgeLength = *o.meshSize * scene.metresPerUnit;
   meshOptions.maxElements = o.maxElements;
-  Solution solution = initialSolution(scene, buildMesh(scene, meshOptions));
   SolverOptions solverOptions;
   solverOptions.solver = o.solver;
   solverOptions.tolerance = o.tolerance;
@@ -94,6 +107,8 @@ Solution solveScene(const Scene &scene, const RayTracer &tracer, const Radiosity
   solverOptions.linkThreshold = o.linkThreshold;
   solverOptions.maxElements = o.maxElements;
   solverOptions.raysPerElement = o.raysPerElement;
+  solverOptions.adaptiveRounds = o.adaptiveRounds;
+  solverOptions.adaptiveThreshold = o.adaptiveThreshold;
   solverOptions.seed = seed;
   solverOptions.threads = threads;
 
@@ -118,10 +133,8 @@ Solution solveScene(const Scene &scene, const RayTracer &tracer, const Radiosity
       fmt::print(stderr, "{}{}: iteration {}, residual {:.3g} (target {:.3g}), {:.1f}s, ETA {}{}", terminal ? "\r" : "",
                  name, p.iteration, p.residual, p.tolerance, p.elapsedSeconds, eta, terminal ? "   " : "\n");
     };
-    fmt::print(stderr, "radiant: meshing gave {} elements on {} patches\n", solution.elementCount(),
-               solution.mesh.patches.size());
   }
-  solveRadiosity(tracer, solution, solverOptions, progress);
+  Solution solution = meshAndSolve(scene, tracer, meshOptions, solverOptions, progress);
   if (!quiet) {
     if (isatty(fileno(stderr))) fmt::print(stderr, "\n");
     printSolveSummary(solution);

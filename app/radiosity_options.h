@@ -21,6 +21,8 @@ struct RadiosityCommandOptions {
   int hemicubeResolution = 64;
   double linkThreshold = 1e-4;
   int raysPerElement = 64;
+  int adaptiveRounds = 0;
+  double adaptiveThreshold = 0.1;
 };
 
 void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &options);

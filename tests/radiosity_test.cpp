@@ -667,3 +667,82 @@ TEST(ClosedForm, TwoParallelPlates) {
 
 }  // namespace
 }  // namespace radiant
+
+namespace radiant {
+namespace {
+
+TEST(Adaptive, RefiningByTheErrorEstimateImprovesTheImage) {
+  // Cohen et al. 1986: split where nodes disagree with their element, solve
+  // again. Each round must refine (more elements, T-vertices consistent), and
+  // the interpolated image must move towards the path tracer's.
+  Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
+  RayTracer tracer(scene);
+  const int size = 48;
+  PinholeCamera camera(scene.camera, size, size);
+  auto render = [&](const std::string &method, const Solution *solution, int spp) {
+    RendererOptions options;
+    options.solution = solution;
+    auto renderer = createRenderer(method, tracer, options);
+    Film film(size, size);
+    DriverOptions driver;
+    driver.samplesPerPixel = spp;
+    renderImage(camera, *renderer, driver, film);
+    return film;
+  };
+  Film reference = render("path", nullptr, 512);
+  auto error = [&](const Film &film) {  // mean relative error of 8×8-pixel block means
+    double sum = 0;
+    int blocks = 0;
+    for (int by = 0; by < size; by += 8)
+      for (int bx = 0; bx < size; bx += 8) {
+        double t = 0, r = 0;
+        for (int y = by; y < by + 8; ++y)
+          for (int x = bx; x < bx + 8; ++x) {
+            t += film.mean(size_t(y) * size + x).average();
+            r += reference.mean(size_t(y) * size + x).average();
+          }
+        if (r > 0) sum += std::abs(t - r) / r, ++blocks;
+      }
+    return sum / blocks;
+  };
+  MeshOptions meshOptions;
+  meshOptions.maxEdgeLength = 0.2;
+  std::vector<double> errors;
+  std::vector<size_t> elements;
+  for (int rounds : {0, 1, 2}) {
+    SolverOptions options;
+    options.solver = "gauss-seidel";
+    options.adaptiveRounds = rounds;
+    options.adaptiveThreshold = 0.1;
+    Solution s = meshAndSolve(scene, tracer, meshOptions, options);
+    for (const RadiosityMesh::TVertex &t : s.mesh.tVertices)
+      ASSERT_NEAR(s.nodeRadiosity[t.node][1], 0.5 * (s.nodeRadiosity[t.edgeStart][1] + s.nodeRadiosity[t.edgeEnd][1]),
+                  1e-12);
+    elements.push_back(s.elementCount());
+    errors.push_back(error(render("interpolate", &s, 4)));
+  }
+  std::cout << "adaptive rounds 0, 1, 2: elements " << elements[0] << " " << elements[1] << " " << elements[2]
+            << ", block errors " << errors[0] << " " << errors[1] << " " << errors[2] << "\n";
+  EXPECT_GT(elements[1], elements[0]);
+  EXPECT_GT(elements[2], elements[1]);
+  EXPECT_LT(errors[1], errors[0]);
+  EXPECT_LT(errors[2], errors[1]);
+}
+
+TEST(Adaptive, HierarchicalRefusesRoundsAndTheBoundHolds) {
+  Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
+  RayTracer tracer(scene);
+  MeshOptions meshOptions;
+  meshOptions.maxEdgeLength = 0.1;
+  SolverOptions options;
+  options.adaptiveRounds = 2;
+  options.solver = "hierarchical";
+  EXPECT_THROW(meshAndSolve(scene, tracer, meshOptions, options), InputError);
+  options.solver = "stochastic";
+  options.maxElements = 600;
+  Solution s = meshAndSolve(scene, tracer, meshOptions, options);
+  EXPECT_LE(s.elementCount(), 600u);
+}
+
+}  // namespace
+}  // namespace radiant

@@ -22,14 +22,51 @@ const std::vector<SolverInfo> &solverRegistry() {
   return table;
 }
 
+std::string resolveSolverName(const std::string &name, size_t patches) {
+  constexpr size_t kAutoHierarchicalPatches = 2000;
+  if (name != "auto") return name;
+  return patches <= kAutoHierarchicalPatches ? "hierarchical" : "stochastic";
+}
+
+Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOptions &meshOptions,
+                      const SolverOptions &options, const SolverProgressCallback &progress) {
+  if (options.adaptiveRounds <= 0) {
+    Solution s = initialSolution(scene, buildMesh(scene, meshOptions));
+    solveRadiosity(tracer, s, options, progress);
+    return s;
+  }
+  RadiosityMesh mesh = buildTreeMesh(scene, meshOptions);
+  SolverOptions round = options;
+  round.solver = resolveSolverName(options.solver, mesh.patches.size());
+  if (round.solver == "hierarchical")
+    throw InputError(InputLocation{"--adaptive-rounds"},
+                     "the hierarchical solver refines by itself; adaptive rounds are for --solver gauss-seidel, "
+                     "progressive or stochastic");
+  Solution s = initialSolution(scene, mesh);
+  solveRadiosity(tracer, s, round, progress);
+  double seconds = s.stats.seconds;
+  int iterations = s.stats.iterations;
+  size_t rays = s.stats.formFactorRays;
+  for (int r = 0; r < options.adaptiveRounds; ++r) {
+    if (refineMesh(mesh, s.errorEstimate, options.adaptiveThreshold, options.maxElements) == 0) break;
+    s = initialSolution(scene, mesh);
+    solveRadiosity(tracer, s, round, progress);
+    seconds += s.stats.seconds;
+    iterations += s.stats.iterations;
+    rays += s.stats.formFactorRays;
+  }
+  s.stats.seconds = seconds;  // all rounds together
+  s.stats.iterations = iterations;
+  s.stats.formFactorRays = rays;
+  return s;
+}
+
 void solveRadiosity(const RayTracer &tracer, Solution &solution, const SolverOptions &options,
                     const SolverProgressCallback &progress) {
   // "auto": hierarchical radiosity links every pair of input patches first,
   // which is cheap for a room of tens of patches and hopeless for 10⁵ of them;
   // beyond a few thousand patches the stochastic solver takes over.
-  constexpr size_t kAutoHierarchicalPatches = 2000;
-  std::string name = options.solver;
-  if (name == "auto") name = solution.mesh.patches.size() <= kAutoHierarchicalPatches ? "hierarchical" : "stochastic";
+  std::string name = resolveSolverName(options.solver, solution.mesh.patches.size());
   const SolverInfo *chosen = nullptr;
   std::string names = "auto";
   for (const SolverInfo &info : solverRegistry()) {

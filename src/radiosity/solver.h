@@ -37,7 +37,11 @@ struct SolverOptions {
   int raysPerElement = 64;
   int refinementRounds = 6;
   /// Hierarchical: stop subdividing when the leaves would exceed this (--max-elements).
-  size_t maxElements = 2'000'000;      ///< hierarchical: refine, solve, re-refine with the new B, … (at most)
+  size_t maxElements = 2'000'000;
+  /// meshAndSolve with another solver: rounds of "split the elements whose
+  /// error estimate exceeds adaptiveThreshold, solve again" (0: uniform mesh).
+  int adaptiveRounds = 0;
+  double adaptiveThreshold = 0.1;      ///< hierarchical: refine, solve, re-refine with the new B, … (at most)
   uint64_t seed = 1;
   int threads = 0;               ///< 0: all cores; results do not depend on it
 };
@@ -64,6 +68,17 @@ const std::vector<SolverInfo> &solverRegistry();
 /// nodal values and error estimates.
 void solveRadiosity(const RayTracer &tracer, Solution &solution, const SolverOptions &options,
                     const SolverProgressCallback &progress = {});
+
+/// "auto" resolved for a mesh of `patches` input patches; other names unchanged.
+std::string resolveSolverName(const std::string &name, size_t patches);
+
+/// Meshes the scene and solves it. With options.adaptiveRounds > 0 the mesh is
+/// a tree mesh, and each round splits the elements whose error estimate
+/// (Solution::errorEstimate) exceeds options.adaptiveThreshold, worst first
+/// within options.maxElements, and solves again (Cohen et al. 1986's adaptive
+/// subdivision). The hierarchical solver refines by itself and refuses rounds.
+Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOptions &meshOptions,
+                      const SolverOptions &options, const SolverProgressCallback &progress = {});
 
 /// Fraction of `samples` stratified points on `polygon` (front normal
 /// `polygonNormal`) visible from p (normal n), among those in front of p's
