@@ -3,6 +3,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <tuple>
 #include <iostream>
 #include <sstream>
 
@@ -742,6 +744,42 @@ TEST(Adaptive, HierarchicalRefusesRoundsAndTheBoundHolds) {
   options.maxElements = 600;
   Solution s = meshAndSolve(scene, tracer, meshOptions, options);
   EXPECT_LE(s.elementCount(), 600u);
+}
+
+}  // namespace
+}  // namespace radiant
+
+namespace radiant {
+namespace {
+
+TEST(Mesh, NodesAreSharedAcrossASplitSurfaceButNotAcrossCreases) {
+  // The Cornell left wall is 3.2 mm off planar, so the loader splits it into
+  // two triangles: their nodes along the shared diagonal must carry one value
+  // (no seam), while the floor and the back wall keep their own along the crease.
+  Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
+  Solution s = solve(scene, "gauss-seidel", 0.1, 1e-4);
+  std::map<std::tuple<long long, long long, long long>, std::vector<uint32_t>> at;
+  for (uint32_t v = 0; v < s.mesh.nodes.size(); ++v) {
+    const Vec3 &p = s.mesh.nodes[v];
+    at[{std::llround(p.x * 1e5), std::llround(p.y * 1e5), std::llround(p.z * 1e5)}].push_back(v);
+  }
+  int seamPairs = 0, creasePairs = 0;
+  for (const auto &[key, nodes] : at)
+    for (size_t a = 0; a < nodes.size(); ++a)
+      for (size_t b = a + 1; b < nodes.size(); ++b) {
+        const Patch &pa = s.mesh.patches[s.mesh.nodePatch[nodes[a]]], &pb = s.mesh.patches[s.mesh.nodePatch[nodes[b]]];
+        std::string oa = scene.objects[pa.object].name, ob = scene.objects[pb.object].name;
+        if (oa == "left-wall" && ob == "left-wall") {
+          ++seamPairs;
+          EXPECT_DOUBLE_EQ(s.nodeRadiosity[nodes[a]][0], s.nodeRadiosity[nodes[b]][0]);
+        }
+        if ((oa == "floor" && ob == "back-wall") || (oa == "back-wall" && ob == "floor")) {
+          ++creasePairs;
+          EXPECT_NE(s.nodeRadiosity[nodes[a]][0], s.nodeRadiosity[nodes[b]][0]);
+        }
+      }
+  EXPECT_GT(seamPairs, 2);
+  EXPECT_GT(creasePairs, 2);
 }
 
 }  // namespace

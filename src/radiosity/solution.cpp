@@ -1,5 +1,8 @@
 #include "radiosity/solution.h"
 
+#include <cmath>
+#include <unordered_map>
+
 namespace radiant {
 
 Solution initialSolution(const Scene &scene, RadiosityMesh mesh) {
@@ -33,6 +36,56 @@ Bands Solution::interpolatedRadiosity(const MeshLocation &location) const {
   return b;
 }
 
+void Solution::shareNodesAcrossPatches(std::vector<double> &weight) {
+  // Nodes at the same place on neighbouring patches of one smooth surface
+  // (same material, normals within 2°: a quad the input split in two, a
+  // floor modelled as tiles) pool their sums, so the interpolated radiosity
+  // has no seam there. Creases (normals further apart) keep their jump.
+  // Positions are matched on a grid of 10⁻⁶ of the scene's size: the two
+  // patches computed their nodes with different arithmetic.
+  double extent = 0;
+  for (const Vec3 &p : mesh.nodes) extent = std::max({extent, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  if (extent <= 0) return;
+  const double cell = extent * 1e-6;
+  struct Key {
+    int64_t x, y, z;
+    bool operator==(const Key &o) const { return x == o.x && y == o.y && z == o.z; }
+  };
+  struct KeyHash {
+    size_t operator()(const Key &k) const {
+      return std::hash<int64_t>()(k.x * 73856093 ^ k.y * 19349663 ^ k.z * 83492791);
+    }
+  };
+  std::unordered_map<Key, std::vector<uint32_t>, KeyHash> at;
+  for (uint32_t v = 0; v < mesh.nodes.size(); ++v) {
+    const Vec3 &p = mesh.nodes[v];
+    at[{std::llround(p.x / cell), std::llround(p.y / cell), std::llround(p.z / cell)}].push_back(v);
+  }
+  constexpr double kCos2Degrees = 0.99939;
+  for (auto &[key, nodes] : at) {
+    if (nodes.size() < 2) continue;
+    // Group the nodes that may pool: same material and nearly the same normal as the first of a group.
+    std::vector<bool> used(nodes.size(), false);
+    for (size_t a = 0; a < nodes.size(); ++a) {
+      if (used[a]) continue;
+      const Patch &pa = mesh.patches[mesh.nodePatch[nodes[a]]];
+      std::vector<uint32_t> group{nodes[a]};
+      for (size_t b = a + 1; b < nodes.size(); ++b) {
+        const Patch &pb = mesh.patches[mesh.nodePatch[nodes[b]]];
+        if (!used[b] && pb.material == pa.material && dot(pa.normal, pb.normal) > kCos2Degrees) {
+          used[b] = true;
+          group.push_back(nodes[b]);
+        }
+      }
+      if (group.size() < 2) continue;
+      Bands sum(0.0);
+      double w = 0;
+      for (uint32_t v : group) sum += nodeRadiosity[v], w += weight[v];
+      for (uint32_t v : group) nodeRadiosity[v] = sum, weight[v] = w;
+    }
+  }
+}
+
 void Solution::updateNodesAndErrors() {
   std::vector<double> weight(mesh.nodes.size(), 0.0);
   nodeRadiosity.assign(mesh.nodes.size(), Bands(0.0));
@@ -44,6 +97,7 @@ void Solution::updateNodesAndErrors() {
       weight[element.nodes[k]] += element.area;
     }
   }
+  shareNodesAcrossPatches(weight);
   for (size_t v = 0; v < nodeRadiosity.size(); ++v)
     if (weight[v] > 0) nodeRadiosity[v] = nodeRadiosity[v] / weight[v];
   for (const RadiosityMesh::TVertex &t : mesh.tVertices)

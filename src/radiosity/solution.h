@@ -64,6 +64,12 @@ struct Solution {
   Bands interpolatedRadiosity(const MeshLocation &location) const;
   /// Recomputes nodeRadiosity and errorEstimate from the element radiosities (including ambient).
   void updateNodesAndErrors();
+
+ private:
+  /// Pools the area-weighted sums of coincident nodes of neighbouring patches of one smooth surface.
+  void shareNodesAcrossPatches(std::vector<double> &weight);
+
+ public:
 };
 
 /// An empty solution on `mesh` with ρ and E from the scene's materials.
