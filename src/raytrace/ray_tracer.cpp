@@ -30,8 +30,12 @@ RayTracer::RayTracer(const Scene &scene) : scene_(scene) {
   // Float has 24 bits; 2^-17 of the scene's magnitude is ~100 ulps of it.
   epsilon_ = std::max(1e-9, extent * 7.6e-6);
 
-  triangleNormals_.reserve(scene.triangles.size());
-  for (const Triangle &t : scene.triangles) triangleNormals_.push_back(scene.triangleNormal(t));
+  geometry_.reserve(scene.triangles.size());
+  for (const Triangle &t : scene.triangles) {
+    const Vec3 &p0 = scene.positions[t.v[0]];
+    geometry_.push_back({p0, scene.positions[t.v[1]] - p0, scene.positions[t.v[2]] - p0, scene.triangleNormal(t),
+                         t.material, t.face, t.n[0] >= 0 && t.n[1] >= 0 && t.n[2] >= 0});
+  }
 
   if (!scene.triangles.empty()) {
     RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -93,24 +97,22 @@ inline void setEmbreeRayHit(RTCRayHit &out, const Ray &ray, double tMax) {
 }
 
 void RayTracer::completeHit(const Ray &ray, float tfar, unsigned primitive, float u, float v, Hit &hit) const {
-  const Triangle &t = scene_.triangles[primitive];
+  const TriangleGeometry &g = geometry_[primitive];
   hit.triangle = primitive;
   hit.b1 = u;
   hit.b2 = v;
-  hit.material = t.material;
-  hit.face = t.face;
-  const Vec3 &p0 = scene_.positions[t.v[0]], &p1 = scene_.positions[t.v[1]], &p2 = scene_.positions[t.v[2]];
-  double b0 = 1.0 - hit.b1 - hit.b2;
-  hit.position = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;
+  hit.material = g.material;
+  hit.face = g.face;
+  hit.position = g.p0 + g.edge1 * hit.b1 + g.edge2 * hit.b2;
   double distance = dot(hit.position - ray.origin, ray.direction);
   hit.distance = std::isfinite(distance) ? distance : static_cast<double>(tfar);
-  hit.geometricNormal = triangleNormals_[primitive];
-  if (t.n[0] >= 0 && t.n[1] >= 0 && t.n[2] >= 0) {
+  hit.geometricNormal = g.normal;
+  hit.shadingNormal = g.normal;
+  if (g.hasVertexNormals) {
+    const Triangle &t = scene_.triangles[primitive];
+    double b0 = 1.0 - hit.b1 - hit.b2;
     Vec3 n = normalize(scene_.normals[t.n[0]] * b0 + scene_.normals[t.n[1]] * hit.b1 + scene_.normals[t.n[2]] * hit.b2);
-    hit.shadingNormal = dot(n, hit.geometricNormal) < 0 ? -n : n;
-    if (!isFinite(hit.shadingNormal) || length(n) == 0) hit.shadingNormal = hit.geometricNormal;
-  } else {
-    hit.shadingNormal = hit.geometricNormal;
+    if (isFinite(n) && length(n) > 0) hit.shadingNormal = dot(n, g.normal) < 0 ? -n : n;
   }
 }
 
@@ -150,7 +152,7 @@ bool RayTracer::visible(const Vec3 &from, const Vec3 &fromNormal, const Vec3 &to
   return tMax <= 0 || !occluded(ray, tMax);
 }
 
-void RayTracer::intersectMany(std::span<const Ray> rays, std::span<Hit> hits, std::span<uint8_t> found) const {
+void RayTracer::intersectMany(std::span<const Ray> rays, std::span<HitRecord> records) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -161,10 +163,25 @@ void RayTracer::intersectMany(std::span<const Ray> rays, std::span<Hit> hits, st
     for (size_t i = 0; i < count; ++i) setEmbreeRayHit(batch[i], rays[start + i], INFINITY);
     rtcIntersect1M(rtcScene_, &context, batch, static_cast<unsigned>(count), sizeof(RTCRayHit));
     for (size_t i = 0; i < count; ++i) {
-      found[start + i] = batch[i].hit.geomID != RTC_INVALID_GEOMETRY_ID;
-      if (found[start + i])
-        completeHit(rays[start + i], batch[i].ray.tfar, batch[i].hit.primID, batch[i].hit.u, batch[i].hit.v,
-                    hits[start + i]);
+      const RTCRayHit &rh = batch[i];
+      HitRecord &r = records[start + i];
+      r.triangle = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? rh.hit.primID : HitRecord::kNone;
+      r.distance = rh.ray.tfar;
+      r.b1 = rh.hit.u;
+      r.b2 = rh.hit.v;
+    }
+  }
+}
+
+void RayTracer::intersectMany(std::span<const Ray> rays, std::span<Hit> hits, std::span<uint8_t> found) const {
+  constexpr size_t kChunk = 256;
+  HitRecord records[kChunk];
+  for (size_t start = 0; start < rays.size(); start += kChunk) {
+    size_t count = std::min(kChunk, rays.size() - start);
+    intersectMany(rays.subspan(start, count), std::span<HitRecord>(records, count));
+    for (size_t i = 0; i < count; ++i) {
+      found[start + i] = records[i].found();
+      if (found[start + i]) completeHit(rays[start + i], records[i], hits[start + i]);
     }
   }
 }

@@ -26,6 +26,16 @@ struct Hit {
   uint32_t face = 0;
 };
 
+/// What a stream query returns per ray: 16 bytes, enough to complete a Hit
+/// later (RayTracer::completeHit) for the rays a caller actually needs.
+struct HitRecord {
+  static constexpr uint32_t kNone = 0xFFFFFFFFu;
+  uint32_t triangle = kNone;  ///< kNone: the ray hit nothing
+  float distance = 0;         ///< Embree's t along the ray
+  float b1 = 0, b2 = 0;       ///< barycentrics of vertices 1 and 2
+  bool found() const { return triangle != kNone; }
+};
+
 class RayTracer {
  public:
   explicit RayTracer(const Scene &scene);
@@ -40,8 +50,14 @@ class RayTracer {
   /// True if the two points see each other (both offset off their surfaces).
   bool visible(const Vec3 &from, const Vec3 &fromNormal, const Vec3 &to, const Vec3 &toNormal) const;
 
-  /// Many rays at once (Embree's stream API, coherent flag): `hits[i]` is valid where `found[i]`.
+  /// Many rays at once (Embree's stream API, coherent flag), compact results.
+  void intersectMany(std::span<const Ray> rays, std::span<HitRecord> records) const;
+  /// The same, completing every hit: `hits[i]` is valid where `found[i]`.
   void intersectMany(std::span<const Ray> rays, std::span<Hit> hits, std::span<uint8_t> found) const;
+  /// A full Hit (double-precision position, normals, material) from a stream record.
+  void completeHit(const Ray &ray, const HitRecord &record, Hit &hit) const {
+    completeHit(ray, record.distance, record.triangle, record.b1, record.b2, hit);
+  }
 
   /// Offset that lifts a ray origin off a surface: large enough to clear float
   /// round-off of Embree's copy of the geometry, small against the scene.
@@ -62,7 +78,15 @@ class RayTracer {
   RTCDevice device_ = nullptr;
   RTCScene rtcScene_ = nullptr;
   double epsilon_ = 1e-6;
-  std::vector<Vec3> triangleNormals_;  ///< unit front-side normal per triangle, computed once
+  /// What completing a hit reads, per triangle, in one place: a hit touches
+  /// one record instead of the triangle, three vertices and a normal.
+  struct TriangleGeometry {
+    Vec3 p0, edge1, edge2;  ///< vertex 0 and the edges to vertices 1 and 2
+    Vec3 normal;            ///< unit front-side normal
+    uint32_t material, face;
+    bool hasVertexNormals;
+  };
+  std::vector<TriangleGeometry> geometry_;
 };
 
 }  // namespace radiant
