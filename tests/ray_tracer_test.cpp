@@ -82,12 +82,19 @@ TEST(RayTracer, StreamQueriesAgreeWithSingleRays) {
   std::vector<Hit> hits(rays.size());
   std::vector<uint8_t> found(rays.size());
   tracer.intersectMany(rays, hits, found);
+  std::vector<HitRecord> records(rays.size());
+  tracer.intersectMany(rays, records);
   for (size_t i = 0; i < rays.size(); ++i) {
     Hit single;
     ASSERT_EQ(bool(found[i]), tracer.intersect(rays[i], single));
+    ASSERT_EQ(records[i].found(), bool(found[i]));
     if (found[i]) {
       EXPECT_EQ(hits[i].triangle, single.triangle);
       EXPECT_DOUBLE_EQ(hits[i].distance, single.distance);
+      Hit completed;
+      tracer.completeHit(rays[i], records[i], completed);
+      EXPECT_EQ(completed.triangle, single.triangle);
+      EXPECT_DOUBLE_EQ(completed.position.x, single.position.x);
     }
   }
 }
