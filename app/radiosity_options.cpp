@@ -16,15 +16,15 @@ namespace radiant {
 void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &o) {
   std::string solvers = fmt::format("\n  {:<13} {}", "auto", "hierarchical up to 2000 input patches, else stochastic");
   for (const SolverInfo &info : solverRegistry()) solvers += fmt::format("\n  {:<13} {}", info.name, info.summary);
-  app.add_option("--solver", o.solver, "Radiosity solver:" + solvers)->default_val("auto");
+  app.add_option("--solver", o.solver.solver, "Radiosity solver:" + solvers)->default_val("auto");
   app.add_option("--mesh-size", o.meshSize,
                  "Target element edge length in scene units (default: 1/8 of the scene's largest extent)")
       ->check(CLI::PositiveNumber);
-  app.add_option("--max-elements", o.maxElements,
+  app.add_option("--max-elements", o.solver.maxElements,
                  "Refuse uniform meshes with more elements than this; hierarchical stops refining there")
       ->default_val(2'000'000)
       ->check(CLI::Range(size_t(1), size_t(100'000'000)));
-  app.add_option("--tolerance", o.tolerance,
+  app.add_option("--tolerance", o.solver.tolerance,
                  "Convergence in (0, 1]: unshot power over emitted power (progressive, stochastic), or the largest change "
                  "of B in a sweep over the largest reflected radiosity (gauss-seidel, hierarchical)")
       ->default_val(1e-3)
@@ -34,34 +34,34 @@ void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &o) {
             return value > 0 && value <= 1 ? std::string() : "must be in (0, 1], got " + text;
           },
           "in (0, 1]"));
-  app.add_option("--max-iterations", o.maxIterations, "Stop after this many shots or sweeps (0: no limit)")
+  app.add_option("--max-iterations", o.solver.maxIterations, "Stop after this many shots or sweeps (0: no limit)")
       ->default_val(0)
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--ff-samples", o.formFactorSamples, "Shadow rays per form factor, rounded to a square number k x k (stratified)")
+  app.add_option("--ff-samples", o.solver.visibilitySamples, "Shadow rays per form factor, rounded to a square number k x k (stratified)")
       ->default_val(4)
       ->check(CLI::Range(1, 1024));
-  app.add_option("--form-factor", o.formFactor,
+  app.add_option("--form-factor", o.solver.formFactor,
                  "Progressive solver's form factors: analytic (contour integral x visible fraction), ray-cast "
                  "(Wallace 1989 disc sum), hemicube (Cohen & Greenberg 1985)")
       ->default_val("analytic")
       ->check(CLI::IsMember({"analytic", "ray-cast", "hemicube"}));
-  app.add_option("--hemicube-resolution", o.hemicubeResolution, "Hemicube pixels across the top face")
+  app.add_option("--hemicube-resolution", o.solver.hemicubeResolution, "Hemicube pixels across the top face")
       ->default_val(64)
       ->check(CLI::Range(4, 4096));
-  app.add_option("--link-threshold", o.linkThreshold,
+  app.add_option("--link-threshold", o.solver.linkThreshold,
                  "Hierarchical: link when F*B_source is below this fraction of the largest emitted radiosity")
       ->default_val(1e-4)
       ->check(CLI::Range(0.0, 1.0));
-  app.add_option("--adaptive-rounds", o.adaptiveRounds,
+  app.add_option("--adaptive-rounds", o.solver.adaptiveRounds,
                  "Gauss-Seidel, progressive, stochastic: rounds of splitting the elements whose error estimate "
                  "exceeds --adaptive-threshold and solving again (0: uniform mesh)")
       ->default_val(0)
       ->check(CLI::Range(0, 20));
-  app.add_option("--adaptive-threshold", o.adaptiveThreshold,
+  app.add_option("--adaptive-threshold", o.solver.adaptiveThreshold,
                  "Split elements whose nodes differ from them by more than this fraction of their radiosity")
       ->default_val(0.1)
       ->check(CLI::Range(0.0, 100.0));
-  app.add_option("--rays-per-element", o.raysPerElement,
+  app.add_option("--rays-per-element", o.solver.raysPerElement,
                  "Stochastic: rays of the first iteration per element (noise falls as 1/sqrt)")
       ->default_val(64)
       ->check(CLI::Range(1, 100000));
@@ -78,13 +78,13 @@ void rejectUnusedRadiosityOptions(const CLI::App &app, bool solving, const std::
     std::string flag = name;
     // "auto" may pick hierarchical or stochastic, so their options stay valid with it.
     auto only = [&](const char *solver, bool autoMayPickIt) {
-      if (options.solver != solver && !(autoMayPickIt && options.solver == "auto"))
+      if (options.solver.solver != solver && !(autoMayPickIt && options.solver.solver == "auto"))
         throw InputError(InputLocation{name}, std::string("applies only to --solver ") + solver);
     };
     if (flag == "--form-factor" || flag == "--hemicube-resolution") only("progressive", false);
     if (flag == "--link-threshold") only("hierarchical", true);
     if (flag == "--rays-per-element") only("stochastic", true);
-    if ((flag == "--adaptive-rounds" || flag == "--adaptive-threshold") && options.solver == "hierarchical")
+    if ((flag == "--adaptive-rounds" || flag == "--adaptive-threshold") && options.solver.solver == "hierarchical")
       throw InputError(InputLocation{name}, "the hierarchical solver refines by itself; use --solver gauss-seidel, "
                                             "progressive or stochastic");
     if (flag == "--adaptive-threshold" && app.get_option("--adaptive-rounds")->count() == 0)
@@ -96,19 +96,8 @@ Solution solveScene(const Scene &scene, const RayTracer &tracer, const Radiosity
                     int threads, bool quiet) {
   MeshOptions meshOptions;
   if (o.meshSize) meshOptions.maxEdgeLength = *o.meshSize * scene.metresPerUnit;
-  meshOptions.maxElements = o.maxElements;
-  SolverOptions solverOptions;
-  solverOptions.solver = o.solver;
-  solverOptions.tolerance = o.tolerance;
-  solverOptions.maxIterations = o.maxIterations;
-  solverOptions.visibilitySamples = o.formFactorSamples;
-  solverOptions.formFactor = o.formFactor;
-  solverOptions.hemicubeResolution = o.hemicubeResolution;
-  solverOptions.linkThreshold = o.linkThreshold;
-  solverOptions.maxElements = o.maxElements;
-  solverOptions.raysPerElement = o.raysPerElement;
-  solverOptions.adaptiveRounds = o.adaptiveRounds;
-  solverOptions.adaptiveThreshold = o.adaptiveThreshold;
+  meshOptions.maxElements = o.solver.maxElements;
+  SolverOptions solverOptions = o.solver;
   solverOptions.seed = seed;
   solverOptions.threads = threads;
 
@@ -116,7 +105,7 @@ Solution solveScene(const Scene &scene, const RayTracer &tracer, const Radiosity
   if (!quiet) {
     bool terminal = isatty(fileno(stderr));
     auto last = std::make_shared<std::chrono::steady_clock::time_point>(std::chrono::steady_clock::now());
-    std::string name = o.solver;
+    std::string name = o.solver.solver;
     auto first = std::make_shared<SolverProgress>();
     progress = [terminal, last, first, name](const SolverProgress &p) {
       if (first->iteration == 0) *first = p;

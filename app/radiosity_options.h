@@ -6,23 +6,16 @@
 #include <string>
 
 #include "radiosity/solution.h"
+#include "radiosity/solver.h"
 #include "raytrace/ray_tracer.h"
 
 namespace radiant {
 
+/// The flags fill the solver's own options directly; only the mesh size,
+/// given in scene units, waits for the scene to be converted.
 struct RadiosityCommandOptions {
-  std::string solver = "auto";
+  SolverOptions solver;
   std::optional<double> meshSize;  ///< scene units
-  size_t maxElements = 2'000'000;
-  double tolerance = 1e-3;
-  int maxIterations = 0;
-  int formFactorSamples = 4;
-  std::string formFactor = "analytic";
-  int hemicubeResolution = 64;
-  double linkThreshold = 1e-4;
-  int raysPerElement = 64;
-  int adaptiveRounds = 0;
-  double adaptiveThreshold = 0.1;
 };
 
 void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &options);

@@ -249,16 +249,18 @@ TEST(SurfaceReport, FurnaceRowsHaveTheClosedFormPhotometry) {
   std::filesystem::remove(path);
 }
 
-TEST(Radiosity, InterpolatedImageApproachesThePathTracerAsTheMeshIsRefined) {
-  // The classic radiosity image converges to the reference as elements shrink.
-  // Error: mean over 8×8-pixel blocks of |block mean − reference block mean| /
-  // reference, which averages the path tracer's noise down (at 512 spp its
-  // block means are within ~0.3%, well below the differences between meshes).
-  Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
-  RayTracer tracer(scene);
-  const int size = 64;
-  PinholeCamera camera(scene.camera, size, size);
-  auto render = [&](const std::string &method, const Solution *solution, int spp) {
+/// Renders the Cornell box's view small, for comparing a radiosity display
+/// with the path tracer. Error: the mean over 8×8-pixel blocks of
+/// |block mean − reference block mean| / reference, which averages the path
+/// tracer's noise down (at 512 spp its block means are within ~0.3%).
+struct ImageAgainstPath {
+  const Scene &scene;
+  const RayTracer &tracer;
+  int size;
+  PinholeCamera camera{scene.camera, size, size};
+  Film reference = render("path", nullptr, 512);
+
+  Film render(const std::string &method, const Solution *solution, int spp) const {
     RendererOptions options;
     options.solution = solution;
     auto renderer = createRenderer(method, tracer, options);
@@ -267,9 +269,9 @@ TEST(Radiosity, InterpolatedImageApproachesThePathTracerAsTheMeshIsRefined) {
     driver.samplesPerPixel = spp;
     renderImage(camera, *renderer, driver, film);
     return film;
-  };
-  Film reference = render("path", nullptr, 512);
-  auto blockError = [&](const Film &film) {
+  }
+  double blockError(const Solution &solution) const {
+    Film film = render("interpolate", &solution, 4);
     double sum = 0;
     int blocks = 0;
     for (int by = 0; by < size; by += 8)
@@ -285,11 +287,18 @@ TEST(Radiosity, InterpolatedImageApproachesThePathTracerAsTheMeshIsRefined) {
         ++blocks;
       }
     return sum / blocks;
-  };
+  }
+};
+
+TEST(Radiosity, InterpolatedImageApproachesThePathTracerAsTheMeshIsRefined) {
+  // The classic radiosity image converges to the reference as elements shrink.
+  Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
+  RayTracer tracer(scene);
+  ImageAgainstPath image{scene, tracer, 64};
   std::vector<double> errors;
   for (double meshSize : {0.2, 0.1, 0.05}) {
     Solution s = solve(scene, "progressive", meshSize, 1e-3);
-    errors.push_back(blockError(render("interpolate", &s, 4)));
+    errors.push_back(image.blockError(s));
   }
   EXPECT_LT(errors[1], errors[0]);
   EXPECT_LT(errors[2], errors[1]);
@@ -679,34 +688,7 @@ TEST(Adaptive, RefiningByTheErrorEstimateImprovesTheImage) {
   // the interpolated image must move towards the path tracer's.
   Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
   RayTracer tracer(scene);
-  const int size = 48;
-  PinholeCamera camera(scene.camera, size, size);
-  auto render = [&](const std::string &method, const Solution *solution, int spp) {
-    RendererOptions options;
-    options.solution = solution;
-    auto renderer = createRenderer(method, tracer, options);
-    Film film(size, size);
-    DriverOptions driver;
-    driver.samplesPerPixel = spp;
-    renderImage(camera, *renderer, driver, film);
-    return film;
-  };
-  Film reference = render("path", nullptr, 512);
-  auto error = [&](const Film &film) {  // mean relative error of 8×8-pixel block means
-    double sum = 0;
-    int blocks = 0;
-    for (int by = 0; by < size; by += 8)
-      for (int bx = 0; bx < size; bx += 8) {
-        double t = 0, r = 0;
-        for (int y = by; y < by + 8; ++y)
-          for (int x = bx; x < bx + 8; ++x) {
-            t += film.mean(size_t(y) * size + x).average();
-            r += reference.mean(size_t(y) * size + x).average();
-          }
-        if (r > 0) sum += std::abs(t - r) / r, ++blocks;
-      }
-    return sum / blocks;
-  };
+  ImageAgainstPath image{scene, tracer, 48};
   MeshOptions meshOptions;
   meshOptions.maxEdgeLength = 0.2;
   std::vector<double> errors;
@@ -721,7 +703,7 @@ TEST(Adaptive, RefiningByTheErrorEstimateImprovesTheImage) {
       ASSERT_NEAR(s.nodeRadiosity[t.node][1], 0.5 * (s.nodeRadiosity[t.edgeStart][1] + s.nodeRadiosity[t.edgeEnd][1]),
                   1e-12);
     elements.push_back(s.elementCount());
-    errors.push_back(error(render("interpolate", &s, 4)));
+    errors.push_back(image.blockError(s));
   }
   std::cout << "adaptive rounds 0, 1, 2: elements " << elements[0] << " " << elements[1] << " " << elements[2]
             << ", block errors " << errors[0] << " " << errors[1] << " " << errors[2] << "\n";
