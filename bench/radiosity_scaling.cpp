@@ -46,6 +46,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_common.h"
 #include "mesh/mesh.h"
 #include "radiosity/solution.h"
 #include "radiosity/solver.h"
@@ -77,11 +78,6 @@ bool resetPeakResident() {
   clear << "5";
   clear.flush();
   return bool(clear);
-}
-
-double loadAverage() {
-  double load[1] = {-1};
-  return getloadavg(load, 1) == 1 ? load[0] : -1;
 }
 
 /// The edge length (metres) whose uniform mesh comes closest to `target` elements:
@@ -169,20 +165,10 @@ void printRow(const char *solver, double meshSize, const Run &r, const std::stri
 int main(int argc, char **argv) {
   std::string scenePath = "scenes/cornell-box/scene.json";
   double maxSeconds = 60;
-  for (int i = 1; i < argc; ++i) {
-    std::string arg = argv[i];
-    if (arg == "--max-seconds" && i + 1 < argc) {
-      maxSeconds = std::atof(argv[++i]);
-    } else if (arg.rfind("--", 0) == 0) {
-      std::fprintf(stderr, "usage: %s [scene.json] [--max-seconds S]\n", argv[0]);
-      return 2;
-    } else {
-      scenePath = arg;
-    }
-  }
+  if (!bench::parseSceneAndNumber(argc, argv, "--max-seconds", "S", scenePath, maxSeconds)) return 2;
 
   try {
-    const double loadBefore = loadAverage();
+    const double loadBefore = bench::loadAverage();
     Scene scene = loadScene(scenePath);
     RayTracer tracer(scene);
 
@@ -282,7 +268,7 @@ int main(int argc, char **argv) {
       std::printf("\n");
     }
 
-    std::printf("\nload average (1 min) %.2f before, %.2f after\n", loadBefore, loadAverage());
+    std::printf("\nload average (1 min) %.2f before, %.2f after\n", loadBefore, bench::loadAverage());
   } catch (const std::exception &error) {
     std::fprintf(stderr, "radiosity_scaling: %s\n", error.what());
     return 1;

@@ -45,6 +45,7 @@
 #include <utility>
 #include <vector>
 
+#include "bench_common.h"
 #include "raytrace/ray_tracer.h"
 #include "render/driver.h"
 #include "render/renderer.h"
@@ -204,30 +205,16 @@ void printRow(const char *query, const char *rawCall, size_t rays, double oursSe
   checksum += ours.distanceSum + raw.distanceSum + double(ours.primitiveSum + raw.primitiveSum);
 }
 
-double loadAverage() {
-  double load[1] = {-1};
-  return getloadavg(load, 1) == 1 ? load[0] : -1;
-}
-
 }  // namespace
 
 int main(int argc, char **argv) {
   std::string scenePath = "scenes/cornell-box/scene.json";
-  int reps = 7;
-  for (int i = 1; i < argc; ++i) {
-    std::string arg = argv[i];
-    if (arg == "--reps" && i + 1 < argc) {
-      reps = std::max(1, std::atoi(argv[++i]));
-    } else if (arg.rfind("--", 0) == 0) {
-      std::fprintf(stderr, "usage: %s [scene.json] [--reps N]\n", argv[0]);
-      return 2;
-    } else {
-      scenePath = arg;
-    }
-  }
+  double repsValue = 7;
+  if (!bench::parseSceneAndNumber(argc, argv, "--reps", "N", scenePath, repsValue)) return 2;
+  const int reps = std::max(1, static_cast<int>(repsValue));
 
   try {
-    const double loadBefore = loadAverage();
+    const double loadBefore = bench::loadAverage();
     Scene scene = loadScene(scenePath);
     RayTracer tracer(scene);
     RTCScene embree = tracer.embreeScene();
@@ -350,7 +337,7 @@ int main(int argc, char **argv) {
       std::printf("%-10d %14.3f %12.2f %9.2fx\n", threads, rate, medianRenderSeconds, rate / singleThreadRate);
     }
 
-    std::printf("\nchecksum %.6g; load average (1 min) %.2f before, %.2f after\n", checksum, loadBefore, loadAverage());
+    std::printf("\nchecksum %.6g; load average (1 min) %.2f before, %.2f after\n", checksum, loadBefore, bench::loadAverage());
   } catch (const std::exception &error) {
     std::fprintf(stderr, "ray_throughput: %s\n", error.what());
     return 1;
