@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
 #include <filesystem>
 #include <optional>
 #include <sstream>
@@ -14,6 +17,7 @@
 #include "render/driver.h"
 #include "render/film_image.h"
 #include "render/renderer.h"
+#include "render/two_pass.h"
 #include "scene/load_scene.h"
 #include "util/error.h"
 
@@ -34,6 +38,8 @@ struct RenderCommandOptions {
   bool quiet = false;
   std::string solutionPath;
   RadiosityCommandOptions radiosity;
+  RendererOptions twoPass;  ///< the two-pass methods' flags
+  std::string selectiveMapPath;
 };
 
 InputLocation flag(const std::string &name) { return InputLocation{name}; }
@@ -53,6 +59,46 @@ std::string defaultStem(const std::string &scenePath) {
   if (p.stem() == "scene" && p.has_parent_path() && !p.parent_path().filename().empty())
     return p.parent_path().filename().string();
   return p.stem().string();
+}
+
+/// Two-pass flags given to a method that would ignore them are errors (STYLE.md §5).
+void rejectUnusedTwoPassOptions(const CLI::App &app, const std::string &method) {
+  const bool twoPass = method == "rushmeier" || method == "reichert" || method == "shirley" || method == "kok";
+  auto reject = [&](const char *name, bool allowed, const std::string &which) {
+    if (app.count(name) > 0 && !allowed)
+      throw InputError(flag(name), fmt::format("only {} use{} it, not --method {}", which,
+                                               which.find(',') == std::string::npos ? "s" : "", method));
+  };
+  reject("--ff", method == "reichert", "reichert");
+  reject("--sources", method == "kok", "kok");
+  reject("--source-fraction", method == "kok", "kok");
+  for (const char *name : {"--selective", "--selective-threshold", "--selective-power", "--selective-map"})
+    reject(name, twoPass, "the two-pass methods (rushmeier, reichert, shirley, kok)");
+  if (app.count("--sources") > 0 && app.count("--source-fraction") > 0)
+    throw InputError(flag("--source-fraction"), "give --sources or --source-fraction, not both");
+}
+
+/// --selective-map: one ray through each pixel centre, grey by the work it triggers.
+void writeSelectiveMap(const Renderer &renderer, const PinholeCamera &camera, int width, int height,
+                       const std::string &path) {
+  const auto *twoPass = dynamic_cast<const TwoPassRenderer *>(&renderer);
+  if (!twoPass) return;
+  std::vector<double> work(size_t(width) * height);
+  tbb::parallel_for(0, height, [&](int y) {
+    for (int x = 0; x < width; ++x) work[size_t(y) * width + x] = twoPass->selectiveWork(camera.generateRay(x + 0.5, y + 0.5));
+  });
+  double most = 0;
+  for (double w : work) most = std::max(most, w);
+  Image map;
+  map.width = width, map.height = height;
+  map.rgb.resize(work.size() * 3);
+  for (size_t i = 0; i < work.size(); ++i)
+    for (int c = 0; c < 3; ++c) map.rgb[i * 3 + c] = float(most > 0 ? work[i] / most : 0.0);
+  writeImage(map, path);
+  size_t flagged = std::count_if(work.begin(), work.end(), [](double w) { return w > 0; });
+  fmt::print(stderr, "radiant: selective map {}: {:.1f}% of pixels re-evaluated{}\n", path,
+             100.0 * flagged / std::max<size_t>(1, work.size()),
+             twoPass->selectsByLinks() ? fmt::format(", at most {} links per pixel", most) : std::string());
 }
 
 }  // namespace
@@ -88,6 +134,31 @@ CommandRunner addRenderCommand(CLI::App &app) {
   app.add_option("--solution", o->solutionPath,
                  "Radiosity solution from `radiant solve -o` to display instead of solving (methods that read one)");
   addRadiosityOptions(app, o->radiosity);
+  app.add_option("--ff", o->twoPass.formFactorSampling,
+                 "reichert: visibility of the per-pixel form factors sampled at element centres (point) or at "
+                 "random points (mc)")
+      ->default_val("mc")
+      ->check(CLI::IsMember({"point", "mc"}));
+  app.add_option("--sources", o->twoPass.secondarySources,
+                 "kok: sample this many patches, the brightest reflectors, per pixel like emitters")
+      ->default_val(4)
+      ->check(CLI::Range(0, 100000));
+  app.add_option("--source-fraction", o->twoPass.secondarySourceFraction,
+                 "kok: instead of --sources, the fewest patches carrying this fraction of the reflected power")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_flag("--selective", o->twoPass.selective,
+               "Two-pass methods: re-evaluate per pixel only where the solution is flagged inaccurate");
+  app.add_option("--selective-threshold", o->twoPass.selectiveThreshold,
+                 "--selective: re-evaluate where the element's error estimate exceeds this")
+      ->default_val(0.1)
+      ->check(CLI::PositiveNumber);
+  app.add_option("--selective-power", o->twoPass.selectiveLinkPower,
+                 "--selective, reichert on a hierarchical solution: re-evaluate partially visible links carrying at "
+                 "least this fraction of the emitted power")
+      ->default_val(1e-4)
+      ->check(CLI::PositiveNumber);
+  app.add_option("--selective-map", o->selectiveMapPath,
+                 "--selective: write a PNG of the pixels re-evaluated (white) or, in link mode, how many links");
 
   return [o, &app]() {
     {
@@ -99,6 +170,11 @@ CommandRunner addRenderCommand(CLI::App &app) {
                                    o->radiosity);
       if (!o->solutionPath.empty() && !method.needsSolution)
         throw InputError(InputLocation{"--solution"}, "--method " + o->method + " does not read a radiosity solution");
+      rejectUnusedTwoPassOptions(app, o->method);
+      if (!o->selectiveMapPath.empty() && !o->twoPass.selective)
+        throw InputError(flag("--selective-map"), "needs --selective");
+      if (!o->selectiveMapPath.empty() && std::filesystem::path(o->selectiveMapPath).extension() != ".png")
+        throw InputError(flag("--selective-map"), "'" + o->selectiveMapPath + "': expected a .png file");
     }
     Scene scene = loadScene(o->scenePath);
     const double unit = scene.metresPerUnit;
@@ -166,7 +242,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
 
     const RendererInfo &method = findRenderer(o->method);
     RayTracer tracer(scene);
-    RendererOptions rendererOptions;
+    RendererOptions rendererOptions = o->twoPass;
     rendererOptions.maxDepth = r.maxDepth;
     Solution solution;
     if (method.needsSolution) {
@@ -180,6 +256,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
     RenderStats stats = renderImage(camera, *renderer, driver, film,
                                     o->quiet ? ProgressCallback{} : makeConsoleProgress(o->method));
 
+    if (!o->selectiveMapPath.empty()) writeSelectiveMap(*renderer, camera, r.width, r.height, o->selectiveMapPath);
     Image image = meanImage(film);
     if (driver.onlyPixelX >= 0 && !o->quiet) {
       const float *v = image.pixel(driver.onlyPixelX, driver.onlyPixelY);

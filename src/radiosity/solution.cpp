@@ -28,15 +28,15 @@ Solution initialSolution(const Scene &scene, RadiosityMesh mesh) {
   return s;
 }
 
-Bands Solution::interpolatedRadiosity(const MeshLocation &location) const {
+Bands Solution::interpolate(const std::vector<Bands> &values, const MeshLocation &location) const {
   const Element &e = mesh.elements[location.element];
   std::array<double, 4> w = mesh.nodeWeights(location);
   Bands b(0.0);
-  for (int k = 0; k < e.vertexCount; ++k) b += nodeRadiosity[e.nodes[k]] * w[k];
+  for (int k = 0; k < e.vertexCount; ++k) b += values[e.nodes[k]] * w[k];
   return b;
 }
 
-void Solution::shareNodesAcrossPatches(std::vector<double> &weight) {
+void Solution::shareNodesAcrossPatches(std::vector<Bands> &sums, std::vector<double> &weight) const {
   // Nodes at the same place on neighbouring patches of one smooth surface
   // (same material, normals within 2°: a quad the input split in two, a
   // floor modelled as tiles) pool their sums, so the interpolated radiosity
@@ -80,28 +80,34 @@ void Solution::shareNodesAcrossPatches(std::vector<double> &weight) {
       if (group.size() < 2) continue;
       Bands sum(0.0);
       double w = 0;
-      for (uint32_t v : group) sum += nodeRadiosity[v], w += weight[v];
-      for (uint32_t v : group) nodeRadiosity[v] = sum, weight[v] = w;
+      for (uint32_t v : group) sum += sums[v], w += weight[v];
+      for (uint32_t v : group) sums[v] = sum, weight[v] = w;
     }
   }
 }
 
-void Solution::updateNodesAndErrors() {
+std::vector<Bands> Solution::nodeValues(const std::vector<Bands> &perElement) const {
   std::vector<double> weight(mesh.nodes.size(), 0.0);
-  nodeRadiosity.assign(mesh.nodes.size(), Bands(0.0));
+  std::vector<Bands> values(mesh.nodes.size(), Bands(0.0));
   for (uint32_t e = 0; e < mesh.elements.size(); ++e) {
     const Element &element = mesh.elements[e];
-    Bands b = displayRadiosity(e);
     for (int k = 0; k < element.vertexCount; ++k) {
-      nodeRadiosity[element.nodes[k]] += b * element.area;
+      values[element.nodes[k]] += perElement[e] * element.area;
       weight[element.nodes[k]] += element.area;
     }
   }
-  shareNodesAcrossPatches(weight);
-  for (size_t v = 0; v < nodeRadiosity.size(); ++v)
-    if (weight[v] > 0) nodeRadiosity[v] = nodeRadiosity[v] / weight[v];
+  shareNodesAcrossPatches(values, weight);
+  for (size_t v = 0; v < values.size(); ++v)
+    if (weight[v] > 0) values[v] = values[v] / weight[v];
   for (const RadiosityMesh::TVertex &t : mesh.tVertices)
-    nodeRadiosity[t.node] = (nodeRadiosity[t.edgeStart] + nodeRadiosity[t.edgeEnd]) * 0.5;
+    values[t.node] = (values[t.edgeStart] + values[t.edgeEnd]) * 0.5;
+  return values;
+}
+
+void Solution::updateNodesAndErrors() {
+  std::vector<Bands> display(mesh.elements.size());
+  for (uint32_t e = 0; e < mesh.elements.size(); ++e) display[e] = displayRadiosity(e);
+  nodeRadiosity = nodeValues(display);
   // Gradient estimate (C&W ch. 6, Cohen et al. 1986): how far the nodes around
   // an element stray from its own value, relative to it. Large where the
   // constant element misrepresents a shadow edge or a steep falloff.

@@ -61,13 +61,20 @@ struct Solution {
     return withAmbient ? radiosity[element] + reflectance[element] * ambient : radiosity[element];
   }
   /// B interpolated from the nodes at a location (continuous within a patch).
-  Bands interpolatedRadiosity(const MeshLocation &location) const;
+  Bands interpolatedRadiosity(const MeshLocation &location) const { return interpolate(nodeRadiosity, location); }
+  /// Node values of any per-element quantity, formed exactly as nodeRadiosity
+  /// is (area-weighted average of the elements around a node, pooled across
+  /// the patches of one smooth surface, T-vertices on their edges), so two
+  /// such fields interpolate consistently and may be subtracted.
+  std::vector<Bands> nodeValues(const std::vector<Bands> &perElement) const;
+  /// A field of node values (nodeRadiosity or from nodeValues) interpolated at a location.
+  Bands interpolate(const std::vector<Bands> &values, const MeshLocation &location) const;
   /// Recomputes nodeRadiosity and errorEstimate from the element radiosities (including ambient).
   void updateNodesAndErrors();
 
  private:
   /// Pools the area-weighted sums of coincident nodes of neighbouring patches of one smooth surface.
-  void shareNodesAcrossPatches(std::vector<double> &weight);
+  void shareNodesAcrossPatches(std::vector<Bands> &sums, std::vector<double> &weight) const;
 
  public:
 };

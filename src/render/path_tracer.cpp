@@ -17,15 +17,11 @@
 
 #include "render/bsdf.h"
 #include "render/light_sampler.h"
+#include "render/sampling.h"
 
 namespace radiant {
 
 namespace {
-
-double powerHeuristic(double pdfA, double pdfB) {
-  double a = pdfA * pdfA, b = pdfB * pdfB;
-  return a + b > 0 ? a / (a + b) : 0.0;
-}
 
 class PathTracer final : public Renderer {
  public:

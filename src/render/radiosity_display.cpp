@@ -13,8 +13,7 @@
 #include "render/radiosity_display.h"
 
 #include "radiosity/solution.h"
-#include "render/bsdf.h"
-#include "util/error.h"
+#include "render/two_pass.h"
 
 namespace radiant {
 
@@ -26,45 +25,18 @@ class RadiosityDisplay final : public Renderer {
       : tracer_(tracer), solution_(solution), interpolate_(interpolate) {}
 
   Bands radiance(const Ray &cameraRay, Pcg32 &rng) const override {
-    const Scene &scene = tracer_.scene();
-    Ray ray = cameraRay;
-    Bands throughput(1.0);
-    for (int bounce = 0; bounce < kMaxSpecularBounces; ++bounce) {
-      Hit hit;
-      if (!tracer_.intersect(ray, hit)) return Bands(0.0);
-      const Material &material = scene.materials[hit.material];
-      Vec3 wo = -ray.direction;
-      if (material.isDelta()) {
-        Bsdf bsdf(material, hit.shadingNormal, hit.geometricNormal, wo);
-        BsdfSample s;
-        double uLobe = rng.next(), u1 = rng.next(), u2 = rng.next();
-        if (!bsdf.sample(uLobe, u1, u2, s)) return Bands(0.0);
-        throughput *= s.weight;
-        ray = tracer_.spawnRay(hit.position, hit.geometricNormal, s.wi);
-        continue;
-      }
-      if (dot(wo, hit.geometricNormal) <= 0) return Bands(0.0);  // back side: not in the solution
-      int32_t patch = solution_.mesh.patchOfFace[hit.face];
-      if (patch < 0) return Bands(0.0);
-      MeshLocation location = solution_.mesh.locate(hit.face, hit.position);
-      Bands radiosity = interpolate_ ? solution_.interpolatedRadiosity(location)
-                                     : solution_.displayRadiosity(location.element);
-      return throughput * radiosity * kInvPi;
-    }
-    return Bands(0.0);
+    VisiblePoint x;
+    if (!findVisiblePoint(tracer_, solution_, cameraRay, rng, x)) return Bands(0.0);
+    Bands radiosity = interpolate_ ? solution_.interpolatedRadiosity(x.location)
+                                   : solution_.displayRadiosity(x.location.element);
+    return x.throughput * radiosity * kInvPi;
   }
 
  private:
-  static constexpr int kMaxSpecularBounces = 64;
   const RayTracer &tracer_;
   const Solution &solution_;
   bool interpolate_;
 };
-
-const Solution &requireSolution(const RendererOptions &options) {
-  if (!options.solution) throw InputError(InputLocation{"--method"}, "this method needs a radiosity solution");
-  return *options.solution;
-}
 
 }  // namespace
 

@@ -4,6 +4,7 @@
 #include "render/path_tracer.h"
 #include "render/radiosity_display.h"
 #include "render/renderer.h"
+#include "render/two_pass.h"
 #include "util/error.h"
 
 namespace radiant {
@@ -14,6 +15,12 @@ const std::vector<RendererInfo> &rendererRegistry() {
       {"flat", "the radiosity solution, constant per element", &createFlatRadiosityDisplay, true},
       {"interpolate", "the radiosity solution interpolated from its nodes (the classic radiosity image)",
        &createInterpolatedRadiosityDisplay, true},
+      {"rushmeier", "per-pixel Monte Carlo: light sample + one secondary ray reading the solution (C&W eq. 9.10)",
+       &createRushmeier, true},
+      {"reichert", "form factors per pixel to every element, ray-traced visibility (--ff point|mc)", &createReichert,
+       true},
+      {"shirley", "direct light per pixel, indirect interpolated from the solution", &createShirley, true},
+      {"kok", "as shirley, plus the brightest reflectors sampled per pixel (--sources K)", &createKok, true},
   };
   return table;
 }

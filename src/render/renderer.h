@@ -30,6 +30,22 @@ struct RendererOptions {
   int maxDepth = 0;  ///< 0: unlimited, Russian roulette ends paths
   /// The radiosity solution, for the methods that read one (it must outlive the renderer).
   const Solution *solution = nullptr;
+
+  // The two-pass methods (render/two_pass.h, docs/two-pass.md).
+  /// reichert: visibility of each per-pixel form factor sampled at the
+  /// element's centre ("point": coherent patterns) or at a random point ("mc": noise).
+  std::string formFactorSampling = "mc";
+  /// kok: how many patches to sample as secondary sources, by reflected power…
+  int secondarySources = 4;
+  /// …or, when > 0, the fewest patches carrying this fraction of the reflected power.
+  double secondarySourceFraction = 0;
+  /// Re-evaluate per pixel only where the solution is flagged inaccurate.
+  bool selective = false;
+  /// Element mode: re-evaluate where the element's error estimate exceeds this.
+  double selectiveThreshold = 0.1;
+  /// Link mode (reichert on a hierarchical solution): re-evaluate the partially
+  /// visible links carrying at least this fraction of the emitted power.
+  double selectiveLinkPower = 1e-4;
 };
 
 struct RendererInfo {

@@ -26,6 +26,13 @@ inline Vec3 sampleCosineHemisphere(double u1, double u2) {
 /// Density per unit solid angle of sampleCosineHemisphere.
 inline double cosineHemispherePdf(double cosTheta) { return cosTheta > 0 ? cosTheta * kInvPi : 0.0; }
 
+/// Veach's power heuristic (β = 2): the weight of a sample drawn with density
+/// pdfA when another strategy would have drawn it with density pdfB.
+inline double powerHeuristic(double pdfA, double pdfB) {
+  double a = pdfA * pdfA, b = pdfB * pdfB;
+  return a + b > 0 ? a / (a + b) : 0.0;
+}
+
 /// Uniform point on a triangle as barycentrics (b1, b2) (Heitz 2019,
 /// "A low-distortion map between triangle and square").
 inline void sampleUniformTriangle(double u1, double u2, double &b1, double &b2) {
@@ -60,6 +67,31 @@ inline double ggxG1(const Vec3 &v, double alpha) {
   if (c >= 1) return 1;
   double tan2 = (1 - c * c) / (c * c);
   return 2 / (1 + std::sqrt(1 + alpha * alpha * tan2));
+}
+
+}  // namespace radiant
+
+namespace radiant {
+
+/// Uniform point on a planar triangle or quad (`count` 3 or 4 vertices): a
+/// quad is split into (v0, v1, v2) and (v0, v2, v3), u1 choosing between them
+/// in proportion to their areas and then rescaled.
+inline Vec3 samplePlanarPolygon(const Vec3 *v, int count, double u1, double u2) {
+  const Vec3 *a = &v[0], *b = &v[1], *c = &v[2];
+  if (count == 4) {
+    double first = length(cross(v[1] - v[0], v[2] - v[0]));
+    double second = length(cross(v[2] - v[0], v[3] - v[0]));
+    double split = first + second > 0 ? first / (first + second) : 1;
+    if (u1 < split) {
+      u1 /= split;
+    } else {
+      u1 = std::min(1.0, (u1 - split) / (1 - split));
+      b = &v[2], c = &v[3];
+    }
+  }
+  double b1, b2;
+  sampleUniformTriangle(u1, u2, b1, b2);
+  return *a * (1 - b1 - b2) + *b * b1 + *c * b2;
 }
 
 }  // namespace radiant

@@ -1,0 +1,147 @@
+// `reichert` — form factors per pixel to every element (Reichert 1992,
+// "A two-pass radiosity method driven by lights and viewer position";
+// C&W §9.3.1; REFERENCE §4.2).
+//
+// At the visible point x the irradiance is gathered from the whole mesh:
+//   L(x) = Le(x) + (ρ/π) Σ_j F(dx → A_j) V(x, A_j) B_j
+// with F the exact unoccluded point-to-polygon factor (Lambert's contour
+// integral, REFERENCE §1.4) and V from one shadow ray per element. Emitters
+// are elements like any other, so direct and indirect light come from the
+// same sum and nothing is counted twice. The visibility ray goes to
+//   --ff point  the element's centre: every pixel tests the same points, so a
+//               shadow boundary shows the mesh's coherent stair-steps;
+//   --ff mc     a uniformly random point of the element: the same boundary
+//               becomes noise, which more samples per pixel average away.
+// Cost: one contour integral and one shadow ray per element per sample —
+// exact, and slow for large meshes.
+//
+// With --selective on a hierarchical solution (link mode), the gather runs
+// over the links of the pixel's leaf and its ancestors instead: the
+// partially visible links that carry much power are re-evaluated at the
+// pixel (F(dx → source) V), the rest keep the solver's value, as a
+// correction to the interpolated radiosity:
+//   B(x) = B_interp(x) + ρ Σ_{re-evaluated links} (F(dx → s) V − F_link) B_s
+#include <fmt/format.h>
+
+#include "radiosity/form_factor.h"
+#include "render/sampling.h"
+#include "render/two_pass.h"
+#include "util/error.h"
+
+namespace radiant {
+
+namespace {
+
+class Reichert final : public TwoPassRenderer {
+ public:
+  Reichert(const RayTracer &tracer, const RendererOptions &options) : TwoPassRenderer(tracer, options) {
+    if (options.formFactorSampling != "point" && options.formFactorSampling != "mc")
+      throw InputError(InputLocation{"--ff"},
+                       fmt::format("expected 'point' or 'mc', got '{}'", options.formFactorSampling));
+    pointSampled_ = options.formFactorSampling == "point";
+    const RadiosityMesh &mesh = solution_.mesh;
+    polygons_.resize(mesh.elements.size());
+    for (uint32_t e = 0; e < mesh.elements.size(); ++e) {
+      std::vector<Vec3> p = mesh.polygon(e);
+      std::copy(p.begin(), p.end(), polygons_[e].begin());
+    }
+    if (options.selective && !solution_.links.empty() && !solution_.treeRadiosity.empty()) prepareLinkMode();
+  }
+
+  double selectiveWork(const Ray &ray) const override {
+    if (!selectsByLinks_) return TwoPassRenderer::selectiveWork(ray);
+    Pcg32 rng;
+    VisiblePoint x;
+    if (!findVisiblePoint(tracer_, solution_, ray, rng, x)) return 0;
+    int count = 0;
+    forEachReevaluatedLink(x, [&](const Link &) { ++count; });
+    return count;
+  }
+
+ protected:
+  Bands reflected(const VisiblePoint &x, Pcg32 &rng) const override {
+    const RadiosityMesh &mesh = solution_.mesh;
+    const Vec3 &n = x.hit.shadingNormal;
+    Bands irradiance(0.0);
+    for (uint32_t j = 0; j < mesh.elements.size(); ++j) {
+      const Element &element = mesh.elements[j];
+      // Draw the sample point first, so the random sequence does not depend on geometry.
+      double u1 = rng.next(), u2 = rng.next();
+      const Vec3 &nj = mesh.normalOf(j);
+      if (dot(x.hit.position - element.centre, nj) <= 0) continue;  // x is behind j: j's front faces away
+      double f = formFactorPointToPolygon(x.hit.position, n, {polygons_[j].data(), size_t(element.vertexCount)});
+      if (f <= 0) continue;
+      Vec3 y = pointSampled_ ? element.centre : samplePlanarPolygon(polygons_[j].data(), element.vertexCount, u1, u2);
+      if (!tracer_.visible(x.hit.position, x.hit.geometricNormal, y, nj)) continue;
+      irradiance += solution_.displayRadiosity(j) * f;
+    }
+    return x.material->diffuse * irradiance * kInvPi;
+  }
+
+  Bands reflectedByLinks(const VisiblePoint &x, Pcg32 &rng) const override {
+    const RadiosityMesh &mesh = solution_.mesh;
+    Bands correction(0.0);
+    forEachReevaluatedLink(x, [&](const Link &link) {
+      const MeshTreeNode &source = mesh.tree[link.source];
+      double u1 = rng.next(), u2 = rng.next();
+      const Vec3 &ns = mesh.patches[source.patch].normal;
+      Vec3 centre{};
+      for (int k = 0; k < source.vertexCount; ++k) centre += source.corners[k] / double(source.vertexCount);
+      double f = 0;
+      if (dot(x.hit.position - centre, ns) > 0) {
+        f = formFactorPointToPolygon(x.hit.position, x.hit.shadingNormal,
+                                     {source.corners.data(), size_t(source.vertexCount)});
+        Vec3 y = pointSampled_ ? centre : samplePlanarPolygon(source.corners.data(), source.vertexCount, u1, u2);
+        if (f > 0 && !tracer_.visible(x.hit.position, x.hit.geometricNormal, y, ns)) f = 0;
+      }
+      correction += solution_.treeRadiosity[link.source] * (f - link.formFactor);
+    });
+    Bands interpolated = solution_.interpolatedRadiosity(x.location) - solution_.emission[x.location.element];
+    return (interpolated + x.material->diffuse * correction) * kInvPi;
+  }
+
+ private:
+  void prepareLinkMode() {
+    const RadiosityMesh &mesh = solution_.mesh;
+    selectsByLinks_ = true;
+    parent_.assign(mesh.tree.size(), -1);
+    leafOfElement_.assign(mesh.elements.size(), -1);
+    for (uint32_t t = 0; t < mesh.tree.size(); ++t) {
+      const MeshTreeNode &node = mesh.tree[t];
+      if (node.isLeaf()) {
+        if (node.element >= 0) leafOfElement_[node.element] = int32_t(t);
+      } else {
+        for (int32_t child : node.children)
+          if (child >= 0) parent_[child] = int32_t(t);
+      }
+    }
+    const double powerFloor = options_.selectiveLinkPower * solution_.stats.emittedPower.average();
+    linksOf_.assign(mesh.tree.size(), {});
+    for (uint32_t l = 0; l < solution_.links.size(); ++l) {
+      const Link &link = solution_.links[l];
+      if (link.visibility == LinkVisibility::Partial && link.carriedPower >= powerFloor)
+        linksOf_[link.receiver].push_back(l);
+    }
+  }
+
+  /// The selected links of x's leaf and of every ancestor (whose links also
+  /// deliver to x, HSA 1991's push–pull).
+  template <typename Visit>
+  void forEachReevaluatedLink(const VisiblePoint &x, Visit &&visit) const {
+    for (int32_t t = leafOfElement_[x.location.element]; t >= 0; t = parent_[t])
+      for (uint32_t l : linksOf_[t]) visit(solution_.links[l]);
+  }
+
+  bool pointSampled_ = false;
+  std::vector<std::array<Vec3, 4>> polygons_;
+  std::vector<int32_t> parent_, leafOfElement_;
+  std::vector<std::vector<uint32_t>> linksOf_;  ///< selected links by receiver tree node
+};
+
+}  // namespace
+
+std::unique_ptr<Renderer> createReichert(const RayTracer &tracer, const RendererOptions &options) {
+  return std::make_unique<Reichert>(tracer, options);
+}
+
+}  // namespace radiant

@@ -1,0 +1,56 @@
+// Kok & Jansen's source selection (EG Rendering Workshop 1991; REFERENCE §4.4):
+// after the radiosity pass, the patches that reflect the most power become
+// "secondary light sources" and are sampled per pixel with shadow rays, like
+// the emitters. Their share of the interpolated indirect light is computed
+// here, element by element, so that the renderer can remove it and nothing
+// is counted twice.
+#pragma once
+
+#include <vector>
+
+#include "radiosity/solution.h"
+#include "raytrace/ray_tracer.h"
+#include "render/renderer.h"
+
+namespace radiant {
+
+struct SecondarySourceSample {
+  Vec3 position;
+  Vec3 normal;     ///< the patch's front side
+  Bands radiance;  ///< reflected radiance (B − E)/π of the element at `position`
+  double pdfArea = 0;
+};
+
+class SecondarySources {
+ public:
+  /// Selects patches by reflected power Σ (B − E)·A: the `options.secondarySources`
+  /// largest, or the fewest carrying `options.secondarySourceFraction` of the total.
+  /// Then computes removedRadiosity() for every element (parallel, deterministic).
+  SecondarySources(const RayTracer &tracer, const Solution &solution, const RendererOptions &options);
+
+  bool empty() const { return patches_.empty(); }
+  const std::vector<uint32_t> &patches() const { return patches_; }
+  /// Fraction of all reflected power the selected patches carry.
+  double powerFraction() const { return powerFraction_; }
+  /// A point uniformly on a selected patch, the patch chosen in proportion to its power.
+  bool sample(double uSelect, double u1, double u2, SecondarySourceSample &out) const;
+  /// Area density of sample() choosing a point on `patch` (0 if not selected).
+  double pdfArea(uint32_t patch) const { return patch < pdfAreaOfPatch_.size() ? pdfAreaOfPatch_[patch] : 0.0; }
+  /// The radiance sample() reports for a point of `element`.
+  Bands radiance(uint32_t element) const;
+  /// Per element i: ρ_i Σ_{k in selected patches} F(centre_i → k) V (B_k − E_k), W·m⁻²:
+  /// what the solution's indirect radiosity holds from the selected sources.
+  const std::vector<Bands> &removedRadiosity() const { return removed_; }
+
+ private:
+  void computeRemovedRadiosity(const RayTracer &tracer);
+
+  const Solution &solution_;
+  std::vector<uint32_t> patches_;
+  std::vector<double> cumulative_, probability_;
+  std::vector<double> pdfAreaOfPatch_;  ///< by patch index
+  double powerFraction_ = 0;
+  std::vector<Bands> removed_;
+};
+
+}  // namespace radiant

@@ -1,0 +1,109 @@
+// `shirley` and `kok` — direct light per pixel, indirect light from the
+// solution (C&W §9.3.1).
+//
+// `shirley` (Shirley, Graphics Interface 1990; REFERENCE §4.3): at the
+// visible point x, direct light is re-evaluated by Monte Carlo sampling of
+// the emitters (one shadow ray per camera sample), and the indirect light is
+// interpolated from the solution's separately stored *indirect* radiosity —
+// what arrived after at least one reflection (plus progressive refinement's
+// ambient term, which stands for indirect light not yet shot). The solution's
+// direct part is never read, so L D E paths come only from the shadow rays
+// and L D D+ E paths only from the solution.
+//
+// `kok` (Kok & Jansen 1991; REFERENCE §4.4): as shirley, and the patches that
+// reflect the most power are sampled per pixel too, like emitters, reading
+// their reflected radiosity (B − E). Their share of the indirect radiosity,
+// computed per element with the same values (render/secondary_sources.h), is
+// subtracted before interpolation, so what the shadow rays add is not also
+// read from the solution.
+//
+// Caustics (L S+ D E) are not represented: the solution holds diffuse
+// transport only and shadow rays stop at glass (issue: multi-pass method).
+#include <optional>
+
+#include "render/sampling.h"
+#include "render/secondary_sources.h"
+#include "render/two_pass.h"
+
+namespace radiant {
+
+namespace {
+
+class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
+ public:
+  DirectPlusInterpolatedIndirect(const RayTracer &tracer, const RendererOptions &options, bool sampleReflectors)
+      : TwoPassRenderer(tracer, options) {
+    const Solution &s = solution_;
+    std::vector<Bands> indirect(s.elementCount());
+    for (uint32_t e = 0; e < s.elementCount(); ++e) indirect[e] = s.indirect[e] + s.reflectance[e] * s.ambient;
+    if (sampleReflectors) {
+      sources_.emplace(tracer, s, options);
+      for (uint32_t e = 0; e < s.elementCount(); ++e) indirect[e] = indirect[e] - sources_->removedRadiosity()[e];
+    }
+    remainingIndirect_ = s.nodeValues(indirect);
+  }
+
+ protected:
+  Bands reflected(const VisiblePoint &x, Pcg32 &rng) const override {
+    Bands L = directLight(x, rng);
+    if (sources_) L += secondaryLight(x, rng);
+    Bands indirect = solution_.interpolate(remainingIndirect_, x.location) * kInvPi;
+    for (int b = 0; b < kBandCount; ++b) indirect[b] = std::max(0.0, indirect[b]);
+    return L + indirect;
+  }
+
+ private:
+  /// Light reflected by the selected secondary sources, by two strategies
+  /// combined with the power heuristic (Veach 1997 ch. 9): a point on a
+  /// source (good far away) and a cosine-distributed ray (good close by,
+  /// where 1/r² of a nearby large reflector would otherwise give fireflies).
+  Bands secondaryLight(const VisiblePoint &x, Pcg32 &rng) const {
+    const Vec3 &n = x.hit.shadingNormal;
+    const Bands f = x.material->diffuse * kInvPi;  // the solution holds only the diffuse part of x's reflection
+    if (f.max() <= 0) return Bands(0.0);
+    Bands L(0.0);
+
+    SecondarySourceSample source;
+    double uSelect = rng.next(), u1 = rng.next(), u2 = rng.next();
+    if (sources_->sample(uSelect, u1, u2, source)) {
+      Vec3 toSource = source.position - x.hit.position;
+      double distance2 = dot(toSource, toSource);
+      Vec3 wi = toSource / std::sqrt(std::max(distance2, 1e-300));
+      double cosSource = -dot(wi, source.normal), cosSurface = dot(wi, n);
+      if (distance2 > 0 && cosSource > 0 && cosSurface > 0 && dot(wi, x.hit.geometricNormal) > 0 &&
+          tracer_.visible(x.hit.position, x.hit.geometricNormal, source.position, source.normal)) {
+        double pdfSource = source.pdfArea * distance2 / cosSource, pdfCosine = cosSurface * kInvPi;
+        L += f * source.radiance * (cosSurface / pdfSource * powerHeuristic(pdfSource, pdfCosine));
+      }
+    }
+
+    double v1 = rng.next(), v2 = rng.next();
+    Vec3 wi = Frame::fromNormal(n).toWorld(sampleCosineHemisphere(v1, v2));
+    if (dot(wi, x.hit.geometricNormal) <= 0) return L;
+    Hit y;
+    if (!tracer_.intersect(tracer_.spawnRay(x.hit.position, x.hit.geometricNormal, wi), y)) return L;
+    if (dot(wi, y.geometricNormal) >= 0) return L;  // the back of a face
+    int32_t patch = solution_.mesh.patchOfFace[y.face];
+    double pdfArea = patch >= 0 ? sources_->pdfArea(uint32_t(patch)) : 0.0;
+    if (pdfArea <= 0) return L;
+    double pdfSource = pdfArea * y.distance * y.distance / -dot(wi, y.geometricNormal);
+    double pdfCosine = dot(wi, n) * kInvPi;
+    Bands radiance = sources_->radiance(solution_.mesh.locate(y.face, y.position).element);
+    return L + x.material->diffuse * radiance * powerHeuristic(pdfCosine, pdfSource);  // f·cos/pdf = ρ
+  }
+
+  std::optional<SecondarySources> sources_;
+  std::vector<Bands> remainingIndirect_;  ///< node values of indirect − removed
+};
+
+}  // namespace
+
+std::unique_ptr<Renderer> createShirley(const RayTracer &tracer, const RendererOptions &options) {
+  return std::make_unique<DirectPlusInterpolatedIndirect>(tracer, options, false);
+}
+
+std::unique_ptr<Renderer> createKok(const RayTracer &tracer, const RendererOptions &options) {
+  return std::make_unique<DirectPlusInterpolatedIndirect>(tracer, options, true);
+}
+
+}  // namespace radiant

@@ -1,0 +1,93 @@
+#include "render/two_pass.h"
+
+#include "render/bsdf.h"
+#include "util/error.h"
+
+namespace radiant {
+
+bool findVisiblePoint(const RayTracer &tracer, const Solution &solution, Ray ray, Pcg32 &rng, VisiblePoint &out) {
+  constexpr int kMaxSpecularBounces = 64;
+  const Scene &scene = tracer.scene();
+  out.throughput = Bands(1.0);
+  for (int bounce = 0; bounce < kMaxSpecularBounces; ++bounce) {
+    out.specularBounces = bounce;
+    if (!tracer.intersect(ray, out.hit)) return false;
+    const Material &material = scene.materials[out.hit.material];
+    out.wo = -ray.direction;
+    if (material.isDelta()) {
+      Bsdf bsdf(material, out.hit.shadingNormal, out.hit.geometricNormal, out.wo);
+      BsdfSample s;
+      double uLobe = rng.next(), u1 = rng.next(), u2 = rng.next();
+      if (!bsdf.sample(uLobe, u1, u2, s)) return false;
+      out.throughput *= s.weight;
+      ray = tracer.spawnRay(out.hit.position, out.hit.geometricNormal, s.wi);
+      continue;
+    }
+    if (dot(out.wo, out.hit.geometricNormal) <= 0) return false;  // back side: not in the solution
+    if (solution.mesh.patchOfFace[out.hit.face] < 0) return false;
+    out.location = solution.mesh.locate(out.hit.face, out.hit.position);
+    out.material = &material;
+    return true;
+  }
+  return false;
+}
+
+const Solution &requireSolution(const RendererOptions &options) {
+  if (!options.solution) throw InputError(InputLocation{"--method"}, "this method needs a radiosity solution");
+  return *options.solution;
+}
+
+TwoPassRenderer::TwoPassRenderer(const RayTracer &tracer, const RendererOptions &options)
+    : tracer_(tracer),
+      scene_(tracer.scene()),
+      solution_(requireSolution(options)),
+      options_(options),
+      lights_(tracer.scene()) {}
+
+Bands TwoPassRenderer::radiance(const Ray &ray, Pcg32 &rng) const {
+  VisiblePoint x;
+  if (!findVisiblePoint(tracer_, solution_, ray, rng, x)) return Bands(0.0);
+  Bands L(0.0);
+  if (options_.selective && !selectsByLinks_ && trustsSolution(x)) {
+    L = solution_.interpolatedRadiosity(x.location) * kInvPi;  // emission included
+  } else {
+    L = x.material->emission + (options_.selective && selectsByLinks_ ? reflectedByLinks(x, rng) : reflected(x, rng));
+  }
+  L = x.throughput * L;
+  for (int b = 0; b < kBandCount; ++b) L[b] = std::max(0.0, L[b]);  // a correction may undershoot a dark pixel
+  return L.isFinite() ? L : Bands(0.0);
+}
+
+Bands TwoPassRenderer::reflectedByLinks(const VisiblePoint &x, Pcg32 &rng) const { return reflected(x, rng); }
+
+double TwoPassRenderer::selectiveWork(const Ray &ray) const {
+  if (!options_.selective) return 0;
+  Pcg32 rng;
+  VisiblePoint x;
+  if (!findVisiblePoint(tracer_, solution_, ray, rng, x)) return 0;
+  return trustsSolution(x) ? 0.0 : 1.0;
+}
+
+bool TwoPassRenderer::trustsSolution(const VisiblePoint &x) const {
+  return solution_.errorEstimate[x.location.element] <= options_.selectiveThreshold;
+}
+
+Bands TwoPassRenderer::directLight(const VisiblePoint &x, Pcg32 &rng) const {
+  LightSample light;
+  double uSelect = rng.next(), u1 = rng.next(), u2 = rng.next();
+  if (!lights_.sample(uSelect, u1, u2, light)) return Bands(0.0);
+  Vec3 toLight = light.position - x.hit.position;
+  double distance2 = dot(toLight, toLight);
+  if (distance2 <= 0) return Bands(0.0);
+  Vec3 wi = toLight / std::sqrt(distance2);
+  double cosLight = -dot(wi, light.normal);
+  if (cosLight <= 0) return Bands(0.0);  // the emitter's back does not emit
+  Bsdf bsdf(*x.material, x.hit.shadingNormal, x.hit.geometricNormal, x.wo);
+  Bands f = bsdf.evaluate(wi);
+  if (f.max() <= 0) return Bands(0.0);
+  if (!tracer_.visible(x.hit.position, x.hit.geometricNormal, light.position, light.normal)) return Bands(0.0);
+  double cosSurface = std::abs(dot(wi, x.hit.shadingNormal));
+  return f * light.radiance * (cosSurface * cosLight / (distance2 * light.pdfArea));
+}
+
+}  // namespace radiant

@@ -1,0 +1,81 @@
+// What the two-pass methods of C&W §9.3 share (rushmeier, reichert, shirley,
+// kok): a first-pass radiosity solution is trusted for light arriving from
+// far away, and part of the transport is recomputed at each pixel's visible
+// point x. The base class finds x through mirrors and glass, adds x's own
+// emission, applies selective re-evaluation, and leaves to each method only
+// the light x reflects towards the eye.
+//
+// Light paths are partitioned (REFERENCE §4, Heckbert's notation) so each is
+// counted once: whatever a method samples per pixel, it removes from what it
+// reads from the solution.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "radiosity/solution.h"
+#include "render/light_sampler.h"
+#include "render/renderer.h"
+
+namespace radiant {
+
+/// The diffuse (non-delta) point a camera ray reaches after ideal specular
+/// bounces, and what it needs to be shaded.
+struct VisiblePoint {
+  Hit hit;
+  Vec3 wo;                ///< towards the viewer
+  Bands throughput{1.0};  ///< product of the specular bounces' weights
+  int specularBounces = 0;
+  MeshLocation location;  ///< in the radiosity mesh
+  const Material *material = nullptr;
+};
+
+/// Follows a ray through ideal mirrors and glass (Fresnel-weighted choice, as
+/// the path tracer does) to the first non-delta surface. False if it escapes,
+/// is absorbed, or reaches the back of a face or a face outside the mesh
+/// (the one-sided solution says nothing about those: they are black).
+bool findVisiblePoint(const RayTracer &tracer, const Solution &solution, Ray ray, Pcg32 &rng, VisiblePoint &out);
+
+class TwoPassRenderer : public Renderer {
+ public:
+  TwoPassRenderer(const RayTracer &tracer, const RendererOptions &options);
+
+  Bands radiance(const Ray &ray, Pcg32 &rng) const final;
+
+  /// For `--selective-map`: how much per-pixel work the camera ray through a
+  /// pixel centre triggers — 1 or 0 (element mode) or the number of links
+  /// re-evaluated (link mode); 0 without --selective.
+  virtual double selectiveWork(const Ray &ray) const;
+  bool selectsByLinks() const { return selectsByLinks_; }
+
+ protected:
+  /// Radiance x reflects towards the eye (its own emission is added by the caller).
+  virtual Bands reflected(const VisiblePoint &x, Pcg32 &rng) const = 0;
+  /// Link mode (--selective with a hierarchical solution): radiance reflected
+  /// at x, re-evaluating only the significant partially visible links. Only
+  /// methods that set selectsByLinks_ implement it.
+  virtual Bands reflectedByLinks(const VisiblePoint &x, Pcg32 &rng) const;
+
+  /// Direct light by next-event estimation: one point on an emitter chosen by
+  /// power, one shadow ray, no MIS (nothing else in these methods finds emitters).
+  Bands directLight(const VisiblePoint &x, Pcg32 &rng) const;
+  /// True where --selective leaves the solution alone (element error below threshold).
+  bool trustsSolution(const VisiblePoint &x) const;
+
+  const RayTracer &tracer_;
+  const Scene &scene_;
+  const Solution &solution_;
+  const RendererOptions options_;
+  LightSampler lights_;
+  bool selectsByLinks_ = false;
+};
+
+/// The options' solution, or an InputError naming the method that needs one.
+const Solution &requireSolution(const RendererOptions &options);
+
+std::unique_ptr<Renderer> createRushmeier(const RayTracer &tracer, const RendererOptions &options);
+std::unique_ptr<Renderer> createReichert(const RayTracer &tracer, const RendererOptions &options);
+std::unique_ptr<Renderer> createShirley(const RayTracer &tracer, const RendererOptions &options);
+std::unique_ptr<Renderer> createKok(const RayTracer &tracer, const RendererOptions &options);
+
+}  // namespace radiant

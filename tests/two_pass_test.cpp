@@ -1,0 +1,373 @@
+// The two-pass methods (C&W §9.3): rushmeier, reichert, shirley, kok and
+// selective re-evaluation, against closed forms (REFERENCE §4.1, §8.5–8.6),
+// the furnace (§8.1) and the path tracer.
+#include <gtest/gtest.h>
+
+#include <iostream>
+
+#include "radiosity/solver.h"
+#include "render/driver.h"
+#include "render/renderer.h"
+#include "render/secondary_sources.h"
+#include "render/two_pass.h"
+#include "scene/load_scene.h"
+#include "test_scenes.h"
+
+namespace radiant {
+namespace {
+
+const char *const kTwoPassMethods[] = {"rushmeier", "reichert", "shirley", "kok"};
+
+/// Mean of many estimates of one camera ray, and the standard error of that mean.
+struct Estimate {
+  double mean = 0, standardError = 0;
+};
+
+Estimate estimateRay(const Renderer &renderer, const Ray &ray, int samples) {
+  double sum = 0, sumSquares = 0;
+  for (int s = 0; s < samples; ++s) {
+    Pcg32 rng = sampleGenerator(7, 0, uint64_t(s));
+    double v = renderer.radiance(ray, rng)[0];
+    sum += v, sumSquares += v * v;
+  }
+  double mean = sum / samples;
+  double variance = std::max(0.0, sumSquares / samples - mean * mean) / (samples - 1);
+  return {mean, std::sqrt(variance)};
+}
+
+/// REFERENCE §8.5: the unit cube, ceiling (y = 1) emitting E = 1 with ρ = 0,
+/// the other faces ρ = 0.5.
+Scene unitCubeWithCeilingLight() {
+  const int walls[6] = {1, 1, 1, 0, 1, 1};
+  Scene s = test::closedBox(1.0, walls);
+  Material light, wall;
+  light.name = "light";
+  light.diffuse = Bands(0.0);
+  light.emission = Bands(kInvPi);  // radiance 1/π: exitance E = 1
+  wall.name = "wall";
+  wall.diffuse = Bands(0.5);
+  s.materials = {light, wall};
+  s.camera.eye = {0.5, 0.9, 0.5};
+  s.camera.target = {0.5, 0.0, 0.5};
+  s.camera.up = {0, 0, 1};
+  s.camera.verticalFovDegrees = 100;
+  return s;
+}
+
+/// The exact patch-level solution of §8.5 on one element per face:
+/// floor 0.1666003, walls 0.1666832, split into direct ρF·E and the rest.
+Solution exactCubeSolution(const Scene &scene) {
+  MeshOptions meshOptions;
+  meshOptions.maxEdgeLength = 1.0;
+  Solution s = initialSolution(scene, buildMesh(scene, meshOptions));
+  EXPECT_EQ(s.elementCount(), 6u);
+  for (uint32_t e = 0; e < s.elementCount(); ++e) {
+    const Vec3 n = s.mesh.normalOf(e);
+    if (n.y < -0.5) continue;  // the ceiling: B = E = 1
+    const bool floor = n.y > 0.5;
+    s.radiosity[e] = Bands(floor ? 0.1666003 : 0.1666832);
+    s.direct[e] = Bands(0.5 * (floor ? 0.1998249 : 0.2000438));
+    s.indirect[e] = s.radiosity[e] - s.direct[e];
+  }
+  s.updateNodesAndErrors();
+  return s;
+}
+
+// REFERENCE §4.1/§8.6: at the floor centre the one-bounce gather is 0.183113
+// (direct 0.119728 + indirect 0.063385), not the element's 0.1666.
+constexpr double kGatherAtFloorCentre = 0.183113, kDirectAtFloorCentre = 0.119728;
+constexpr double kIndirectAtFloorCentre = 0.063385;
+const Ray kRayToFloorCentre{{0.5, 0.5, 0.5}, {0, -1, 0}};
+
+TEST(TwoPass, RushmeierConvergesToTheGatherAtTheFloorCentre) {
+  Scene scene = unitCubeWithCeilingLight();
+  RayTracer tracer(scene);
+  Solution solution = exactCubeSolution(scene);
+  RendererOptions options;
+  options.solution = &solution;
+  auto renderer = createRenderer("rushmeier", tracer, options);
+  Estimate e = estimateRay(*renderer, kRayToFloorCentre, 400000);
+  const double expected = kGatherAtFloorCentre / kPi;  // radiance B/π
+  EXPECT_NEAR(e.mean, expected, 4 * e.standardError);
+  // …and is told apart from the element average (and from counting the
+  // light twice, which would add the direct term again) by many σ.
+  EXPECT_GT(std::abs(0.1666003 / kPi - e.mean), 20 * e.standardError);
+  std::cout << "rushmeier at the floor centre: " << e.mean * kPi << " ± " << e.standardError * kPi << " (exact "
+            << kGatherAtFloorCentre << ")\n";
+}
+
+TEST(TwoPass, ReichertGathersTheExactFormFactorsAtTheFloorCentre) {
+  // No occluders in the cube: every visibility ray succeeds and the contour
+  // integrals make the gather exact, for point and Monte Carlo sampling alike.
+  Scene scene = unitCubeWithCeilingLight();
+  RayTracer tracer(scene);
+  Solution solution = exactCubeSolution(scene);
+  for (const char *ff : {"point", "mc"}) {
+    RendererOptions options;
+    options.solution = &solution;
+    options.formFactorSampling = ff;
+    auto renderer = createRenderer("reichert", tracer, options);
+    Pcg32 rng;
+    EXPECT_NEAR(renderer->radiance(kRayToFloorCentre, rng)[0] * kPi, kGatherAtFloorCentre, 2e-6) << ff;
+  }
+}
+
+TEST(TwoPass, ShirleyAddsTheInterpolatedIndirectToTheExactDirect) {
+  Scene scene = unitCubeWithCeilingLight();
+  RayTracer tracer(scene);
+  Solution solution = exactCubeSolution(scene);
+  RendererOptions options;
+  options.solution = &solution;
+  auto renderer = createRenderer("shirley", tracer, options);
+  Estimate e = estimateRay(*renderer, kRayToFloorCentre, 100000);
+  const double indirectOfTheFloorElement = 0.1666003 - 0.5 * 0.1998249;
+  EXPECT_NEAR(e.mean, (kDirectAtFloorCentre + indirectOfTheFloorElement) / kPi, 4 * e.standardError);
+}
+
+TEST(TwoPass, KokRemovesExactlyWhatItSamplesFromTheSecondarySources) {
+  // All four walls selected (the ceiling reflects nothing): the removal
+  // at the floor element's centre is the exact wall gather there, 0.063385,
+  // so sampling the walls per pixel and removing their share from the
+  // solution leaves shirley's expectation at that point.
+  Scene scene = unitCubeWithCeilingLight();
+  RayTracer tracer(scene);
+  Solution solution = exactCubeSolution(scene);
+  RendererOptions options;
+  options.solution = &solution;
+  options.secondarySources = 10;
+  SecondarySources sources(tracer, solution, options);
+  EXPECT_EQ(sources.patches().size(), 5u);  // 4 walls and the floor; the ceiling reflects nothing
+  EXPECT_NEAR(sources.powerFraction(), 1.0, 1e-12);
+  for (uint32_t e = 0; e < solution.elementCount(); ++e)
+    if (solution.mesh.normalOf(e).y > 0.5)
+      EXPECT_NEAR(sources.removedRadiosity()[e][0], kIndirectAtFloorCentre, 2e-6);
+
+  auto renderer = createRenderer("kok", tracer, options);
+  Estimate e = estimateRay(*renderer, kRayToFloorCentre, 100000);
+  const double indirectOfTheFloorElement = 0.1666003 - 0.5 * 0.1998249;
+  EXPECT_NEAR(e.mean, (kDirectAtFloorCentre + indirectOfTheFloorElement) / kPi, 4 * e.standardError);
+
+  // The fraction rule selects the fewest patches carrying that share of the power.
+  options.secondarySourceFraction = 0.5;
+  SecondarySources half(tracer, solution, options);
+  EXPECT_EQ(half.patches().size(), 3u);  // five nearly equal reflectors: three carry over half
+}
+
+bool sameSums(const Film &a, const Film &b, size_t p) {
+  for (int k = 0; k < kBandCount; ++k)
+    if (a.sum[p][k] != b.sum[p][k]) return false;
+  return true;
+}
+
+/// Whole-image mean with its standard error (pixels are independent).
+Estimate imageMean(const Film &film) {
+  double sum = 0, variance = 0;
+  for (size_t p = 0; p < film.pixelCount(); ++p) {
+    sum += film.mean(p).average();
+    variance += film.varianceOfMean(p).average();  // bands are correlated: the average's variance is ≤ this
+  }
+  const double n = double(film.pixelCount());
+  return {sum / n, std::sqrt(variance) / n};
+}
+
+Film renderFilm(const Scene &scene, const RayTracer &tracer, const std::string &method, const RendererOptions &options,
+                int size, int spp, int threads = 0) {
+  auto renderer = createRenderer(method, tracer, options);
+  PinholeCamera camera(scene.camera, size, size);
+  Film film(size, size);
+  DriverOptions driver;
+  driver.samplesPerPixel = spp;
+  driver.threads = threads;
+  renderImage(camera, *renderer, driver, film);
+  return film;
+}
+
+Solution meshAndSolveFor(const Scene &scene, const RayTracer &tracer, const std::string &solver, double meshSize,
+                         double tolerance = 1e-4) {
+  MeshOptions meshOptions;
+  meshOptions.maxEdgeLength = meshSize;
+  SolverOptions options;
+  options.solver = solver;
+  options.tolerance = tolerance;
+  return meshAndSolve(scene, tracer, meshOptions, options);
+}
+
+TEST(TwoPass, NoMethodCountsTheEmittersTwice) {
+  // The cube seen from under its light: counting emitters on secondary rays
+  // (or reading the solution's direct part on top of the light samples) would
+  // add the whole direct image again. Each method's image mean must agree
+  // with the path tracer within the noise of both plus the solution's own
+  // bias, which `interpolate` shows; the excess is asserted to be far larger.
+  Scene scene = unitCubeWithCeilingLight();
+  RayTracer tracer(scene);
+  Solution solution = meshAndSolveFor(scene, tracer, "gauss-seidel", 0.125, 1e-6);
+  const int size = 24;
+  RendererOptions pathOptions;
+  Estimate path = imageMean(renderFilm(scene, tracer, "path", pathOptions, size, 1024));
+  pathOptions.maxDepth = 1;  // the camera looks down: no emitter in view, so this is the direct image
+  const double excess = imageMean(renderFilm(scene, tracer, "path", pathOptions, size, 256)).mean;
+  RendererOptions options;
+  options.solution = &solution;
+  Estimate interpolated = imageMean(renderFilm(scene, tracer, "interpolate", options, size, 4));
+  const double solutionBias = std::abs(interpolated.mean - path.mean);
+  for (const char *method : kTwoPassMethods) {
+    int spp = std::string(method) == "reichert" ? 4 : 64;
+    Estimate e = imageMean(renderFilm(scene, tracer, method, options, size, spp));
+    const double tolerance = 4 * std::hypot(e.standardError, path.standardError) + solutionBias;
+    EXPECT_NEAR(e.mean, path.mean, tolerance) << method;
+    EXPECT_GT(excess, 5 * tolerance) << method << ": the test could not see a doubled direct term";
+    std::cout << method << ": image mean " << e.mean << " vs path " << path.mean << " (tolerance " << tolerance
+              << ", doubling would add about " << excess << ")\n";
+  }
+}
+
+TEST(TwoPass, FurnaceGivesEmissionOverOneMinusReflectanceForEveryMethod) {
+  // REFERENCE §8.1: radiance Le/(1−ρ) everywhere. The hierarchical solution
+  // is exact here, so only noise separates the methods from the answer.
+  const double rho = 0.5, expected = 1.0 / (1 - rho);
+  Scene scene = test::furnace(1.0, rho);
+  RayTracer tracer(scene);
+  Solution solution = meshAndSolveFor(scene, tracer, "hierarchical", 0.25, 1e-9);
+  RendererOptions options;
+  options.solution = &solution;
+  for (const char *method : kTwoPassMethods) {
+    Film film = renderFilm(scene, tracer, method, options, 16, 64);
+    Estimate e = imageMean(film);
+    EXPECT_NEAR(e.mean, expected, 4 * e.standardError + 1e-9) << method;
+    for (size_t p = 0; p < film.pixelCount(); ++p) ASSERT_TRUE(film.mean(p).isFinite()) << method;
+  }
+}
+
+TEST(TwoPass, SameImageWithOneAndTwoThreads) {
+  Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
+  RayTracer tracer(scene);
+  Solution solution = meshAndSolveFor(scene, tracer, "progressive", 0.15, 1e-2);
+  RendererOptions options;
+  options.solution = &solution;
+  for (const char *method : {"rushmeier", "kok"}) {
+    Film one = renderFilm(scene, tracer, method, options, 24, 4, 1);
+    Film two = renderFilm(scene, tracer, method, options, 24, 4, 2);
+    for (size_t p = 0; p < one.pixelCount(); ++p) ASSERT_TRUE(sameSums(one, two, p)) << method << " pixel " << p;
+  }
+}
+
+TEST(TwoPass, SelectiveReevaluationSpansInterpolationToTheFullMethod) {
+  // Element mode: a threshold no element exceeds gives the interpolated
+  // image exactly; one every element exceeds gives the method exactly.
+  Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
+  RayTracer tracer(scene);
+  Solution solution = meshAndSolveFor(scene, tracer, "progressive", 0.15, 1e-2);
+  RendererOptions options;
+  options.solution = &solution;
+  Film interpolated = renderFilm(scene, tracer, "interpolate", options, 24, 2);
+  Film full = renderFilm(scene, tracer, "shirley", options, 24, 2);
+  options.selective = true;
+  options.selectiveThreshold = 1e300;
+  Film none = renderFilm(scene, tracer, "shirley", options, 24, 2);
+  options.selectiveThreshold = -1;
+  Film all = renderFilm(scene, tracer, "shirley", options, 24, 2);
+  for (size_t p = 0; p < full.pixelCount(); ++p) {
+    ASSERT_TRUE(sameSums(none, interpolated, p)) << p;
+    ASSERT_TRUE(sameSums(all, full, p)) << p;
+  }
+  // In between, the flagged pixels are the ones whose element's error is large.
+  options.selectiveThreshold = 0.1;
+  auto renderer = createRenderer("shirley", tracer, options);
+  const auto &twoPass = dynamic_cast<const TwoPassRenderer &>(*renderer);
+  PinholeCamera camera(scene.camera, 24, 24);
+  int flagged = 0;
+  for (int y = 0; y < 24; ++y)
+    for (int x = 0; x < 24; ++x) flagged += twoPass.selectiveWork(camera.generateRay(x + 0.5, y + 0.5)) > 0;
+  EXPECT_GT(flagged, 0);
+  EXPECT_LT(flagged, 24 * 24);
+}
+
+TEST(TwoPass, SelectiveLinksCorrectTheHierarchicalSolutionTowardsThePathTracer) {
+  // Link mode: reichert on a hierarchical solution re-evaluates the partially
+  // visible links per pixel. With no link selected it is the interpolated
+  // image; with the significant ones it moves towards the path tracer in the
+  // shadows, where the links' visibility fractions blur the solution.
+  Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
+  RayTracer tracer(scene);
+  Solution solution = meshAndSolveFor(scene, tracer, "hierarchical", 0.15, 1e-3);
+  ASSERT_FALSE(solution.links.empty());
+  const int size = 32;
+  RendererOptions options;
+  options.solution = &solution;
+  Film interpolated = renderFilm(scene, tracer, "interpolate", options, size, 4);
+  options.selective = true;
+  options.selectiveLinkPower = 1e300;
+  Film none = renderFilm(scene, tracer, "reichert", options, size, 4);
+  for (size_t p = 0; p < none.pixelCount(); ++p) {
+    const Bands a = none.mean(p), b = interpolated.mean(p);
+    for (int k = 0; k < kBandCount; ++k) ASSERT_NEAR(a[k], b[k], 1e-12 + 1e-12 * b[k]) << p;
+  }
+  options.selectiveLinkPower = 1e-6;
+  auto renderer = createRenderer("reichert", tracer, options);
+  const auto &twoPass = dynamic_cast<const TwoPassRenderer &>(*renderer);
+  ASSERT_TRUE(twoPass.selectsByLinks());
+  Film corrected = renderFilm(scene, tracer, "reichert", options, size, 16);
+  RendererOptions pathOptions;
+  Film path = renderFilm(scene, tracer, "path", pathOptions, size, 512);
+  // Compare over the pixels that re-evaluate links: the correction must reduce the error there.
+  PinholeCamera camera(scene.camera, size, size);
+  double errorBefore = 0, errorAfter = 0;
+  int pixels = 0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      if (twoPass.selectiveWork(camera.generateRay(x + 0.5, y + 0.5)) <= 0) continue;
+      size_t p = size_t(y) * size + x;
+      errorBefore += std::abs(interpolated.mean(p).average() - path.mean(p).average());
+      errorAfter += std::abs(corrected.mean(p).average() - path.mean(p).average());
+      ++pixels;
+    }
+  ASSERT_GT(pixels, 0);
+  EXPECT_LT(errorAfter, errorBefore);
+  std::cout << pixels << " pixels re-evaluate links; mean |error| " << errorBefore / pixels << " → "
+            << errorAfter / pixels << "\n";
+}
+
+TEST(TwoPass, ErrorAgainstThePathTracerFallsAsTheMeshIsRefinedAndSamplesGrow) {
+  // The Cornell box, 8×8-pixel blocks (so the comparison is of light, not of
+  // noise): each method's mean relative block error against `path` falls
+  // from a coarse solution with few samples to a fine one with more.
+  Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
+  RayTracer tracer(scene);
+  const int size = 48;
+  RendererOptions pathOptions;
+  Film reference = renderFilm(scene, tracer, "path", pathOptions, size, 1024);
+  auto blockError = [&](const Film &film) {
+    double sum = 0;
+    int blocks = 0;
+    for (int by = 0; by < size; by += 8)
+      for (int bx = 0; bx < size; bx += 8) {
+        double t = 0, r = 0;
+        for (int y = by; y < by + 8; ++y)
+          for (int x = bx; x < bx + 8; ++x) {
+            t += film.mean(size_t(y) * size + x).average();
+            r += reference.mean(size_t(y) * size + x).average();
+          }
+        if (r <= 0) continue;
+        sum += std::abs(t - r) / r;
+        ++blocks;
+      }
+    return sum / blocks;
+  };
+  Solution coarse = meshAndSolveFor(scene, tracer, "progressive", 0.25, 1e-2);
+  Solution fine = meshAndSolveFor(scene, tracer, "progressive", 0.06, 1e-3);
+  for (const char *method : kTwoPassMethods) {
+    const bool slow = std::string(method) == "reichert";
+    RendererOptions options;
+    options.solution = &coarse;
+    double before = blockError(renderFilm(scene, tracer, method, options, size, slow ? 1 : 4));
+    options.solution = &fine;
+    double after = blockError(renderFilm(scene, tracer, method, options, size, slow ? 4 : 64));
+    EXPECT_LT(after, before) << method;
+    EXPECT_LT(after, 0.05) << method;
+    std::cout << method << ": block error " << before << " (0.25 m, few samples) → " << after
+              << " (0.06 m, more samples)\n";
+  }
+}
+
+}  // namespace
+}  // namespace radiant
