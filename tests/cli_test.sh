@@ -106,5 +106,27 @@ expect_error "adaptive with hierarchical" "refines by itself" "$radiant" solve "
 expect_error "bad tolerance" "must be in" "$radiant" solve "$cornell" --tolerance 0 -q
 expect_error "unknown solver" "solver" "$radiant" solve "$cornell" --solver jacobi -q
 
+# Two-pass methods: each renders the README's scene with one flag, on a stored solution and solving itself.
+for method in rushmeier reichert shirley kok; do
+  "$radiant" render "$cornell" --method "$method" --solution box.rad --spp 1 --width 16 --height 16 \
+    -o "two-pass-$method.exr" -q && [ -s "two-pass-$method.exr" ] && pass || fail "render --method $method"
+done
+"$radiant" render "$cornell" --method shirley --mesh-size 200 --spp 1 --width 16 --height 16 -o s.png -q \
+  && pass || fail "shirley solving the scene itself"
+"$radiant" render "$cornell" --method shirley --solution box.rad --selective --selective-map map.png --spp 1 \
+  --width 16 --height 16 -o s.png 2>err.txt && [ -s map.png ] && grep -q "of pixels re-evaluated" err.txt \
+  && pass || { fail "--selective-map"; cat err.txt; }
+"$radiant" render "$cornell" --method reichert --selective --mesh-size 200 --selective-map links.png --spp 1 \
+  --width 16 --height 16 -o r.png 2>err.txt && grep -q "links per pixel" err.txt \
+  && pass || { fail "--selective link mode"; cat err.txt; }
+expect_error "--ff for another method" "only reichert" "$radiant" render "$cornell" --method shirley --ff point -q
+expect_error "--ff value" "not in" "$radiant" render "$cornell" --method reichert --ff pt -q
+expect_error "--selective with path" "two-pass methods" "$radiant" render "$cornell" --selective -q
+expect_error "--sources and --source-fraction" "not both" \
+  "$radiant" render "$cornell" --method kok --sources 2 --source-fraction 0.5 -q
+expect_error "--selective-map without --selective" "needs --selective" \
+  "$radiant" render "$cornell" --method kok --selective-map m.png -q
+[ ! -e m.png ] && pass || fail "a refused render wrote an image"
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

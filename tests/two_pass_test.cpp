@@ -138,9 +138,9 @@ TEST(TwoPass, KokRemovesExactlyWhatItSamplesFromTheSecondarySources) {
   SecondarySources sources(tracer, solution, options);
   EXPECT_EQ(sources.patches().size(), 5u);  // 4 walls and the floor; the ceiling reflects nothing
   EXPECT_NEAR(sources.powerFraction(), 1.0, 1e-12);
-  for (uint32_t e = 0; e < solution.elementCount(); ++e)
-    if (solution.mesh.normalOf(e).y > 0.5)
-      EXPECT_NEAR(sources.removedRadiosity()[e][0], kIndirectAtFloorCentre, 2e-6);
+  for (uint32_t e = 0; e < solution.elementCount(); ++e) {
+    if (solution.mesh.normalOf(e).y > 0.5) EXPECT_NEAR(sources.removedRadiosity()[e][0], kIndirectAtFloorCentre, 2e-6);
+  }
 
   auto renderer = createRenderer("kok", tracer, options);
   Estimate e = estimateRay(*renderer, kRayToFloorCentre, 100000);
