@@ -114,7 +114,7 @@ TEST(PathTracer, EmittersAreOneSided) {
   scene.materials = {black, light};
   RayTracer tracer(scene);
   auto renderer = createRenderer("path", tracer, RendererOptions{});
-  Pcg32 rng(1, 1);
+  Sampler rng(Pcg32(1, 1));
   Bands inside = renderer->radiance({{0.5, 0.5, 0.5}, {0, 0, 1}}, rng);
   EXPECT_DOUBLE_EQ(inside[0], 3.0);
   Bands behind = renderer->radiance({{0.5, 0.5, 2.0}, {0, 0, -1}}, rng);
@@ -134,7 +134,7 @@ TEST(PathTracer, MirrorShowsTheEmitterScaledByItsReflectance) {
   scene.materials = {black, light, mirror};
   RayTracer tracer(scene);
   auto renderer = createRenderer("path", tracer, RendererOptions{});
-  Pcg32 rng(1, 1);
+  Sampler rng(Pcg32(1, 1));
   Bands L = renderer->radiance({{0.5, 0.5, 0.5}, normalize(Vec3{0.1, 0.05, -1})}, rng);
   EXPECT_NEAR(L[0], 1.4, 1e-12);
   EXPECT_NEAR(L[1], 1.0, 1e-12);
@@ -181,7 +181,7 @@ TEST(PathTracer, DirectLightOnCornellWallMatchesLambertContourFormula) {
     const int n = 100000;
     Bands sum(0.0), sumSquares(0.0);
     for (int i = 0; i < n; ++i) {
-      Pcg32 rng = sampleGenerator(3, 0, i);
+      Sampler rng(sampleGenerator(3, 0, i));
       Bands L = renderer->radiance(ray, rng);
       sum += L;
       sumSquares += L * L;

@@ -26,7 +26,7 @@ struct Estimate {
 Estimate estimateRay(const Renderer &renderer, const Ray &ray, int samples) {
   double sum = 0, sumSquares = 0;
   for (int s = 0; s < samples; ++s) {
-    Pcg32 rng = sampleGenerator(7, 0, uint64_t(s));
+    Sampler rng(sampleGenerator(7, 0, uint64_t(s)));
     double v = renderer.radiance(ray, rng)[0];
     sum += v, sumSquares += v * v;
   }
@@ -107,7 +107,7 @@ TEST(TwoPass, ReichertGathersTheExactFormFactorsAtTheFloorCentre) {
     options.solution = &solution;
     options.formFactorSampling = ff;
     auto renderer = createRenderer("reichert", tracer, options);
-    Pcg32 rng;
+    Sampler rng{Pcg32()};
     EXPECT_NEAR(renderer->radiance(kRayToFloorCentre, rng)[0] * kPi, kGatherAtFloorCentre, 2e-6) << ff;
   }
 }
@@ -139,7 +139,9 @@ TEST(TwoPass, KokRemovesExactlyWhatItSamplesFromTheSecondarySources) {
   EXPECT_EQ(sources.patches().size(), 5u);  // 4 walls and the floor; the ceiling reflects nothing
   EXPECT_NEAR(sources.powerFraction(), 1.0, 1e-12);
   for (uint32_t e = 0; e < solution.elementCount(); ++e) {
-    if (solution.mesh.normalOf(e).y > 0.5) EXPECT_NEAR(sources.removedRadiosity()[e][0], kIndirectAtFloorCentre, 2e-6);
+    if (solution.mesh.normalOf(e).y > 0.5) {
+      EXPECT_NEAR(sources.removedRadiosity()[e][0], kIndirectAtFloorCentre, 2e-6);
+    }
   }
 
   auto renderer = createRenderer("kok", tracer, options);

@@ -5,6 +5,8 @@
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
+#include <png.h>
 #include <stb/stb_image_write.h>
 
 #include <cmath>
@@ -20,6 +22,10 @@
 namespace radiant {
 
 namespace {
+
+/// render's per-pixel emitter coverage, and what the pixels hold (image.h).
+constexpr const char *kEmitterChannel = "emitter";
+constexpr const char *kQuantityAttribute = "radiantQuantity";
 
 std::string extensionOf(const std::string &path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -54,6 +60,10 @@ void writeExr(const Image &image, const std::string &path) {
     header.channels().insert("R", Imf::Channel(Imf::FLOAT));
     header.channels().insert("G", Imf::Channel(Imf::FLOAT));
     header.channels().insert("B", Imf::Channel(Imf::FLOAT));
+    const bool hasEmitter = image.emitterFraction.size() == size_t(image.width) * image.height;
+    // Half is exact for the coverage fractions k/16 render writes, and half the size.
+    if (hasEmitter) header.channels().insert(kEmitterChannel, Imf::Channel(Imf::HALF));
+    if (!image.quantity.empty()) header.insert(kQuantityAttribute, Imf::StringAttribute(image.quantity));
     Imf::OutputFile file(temporary.c_str(), header);
     Imf::FrameBuffer frame;
     const size_t xStride = 3 * sizeof(float), yStride = xStride * image.width;
@@ -61,6 +71,10 @@ void writeExr(const Image &image, const std::string &path) {
     frame.insert("R", Imf::Slice(Imf::FLOAT, base, xStride, yStride));
     frame.insert("G", Imf::Slice(Imf::FLOAT, base + sizeof(float), xStride, yStride));
     frame.insert("B", Imf::Slice(Imf::FLOAT, base + 2 * sizeof(float), xStride, yStride));
+    if (hasEmitter)
+      frame.insert(kEmitterChannel, Imf::Slice(Imf::FLOAT, reinterpret_cast<char *>(const_cast<float *>(
+                                                               image.emitterFraction.data())),
+                                               sizeof(float), sizeof(float) * image.width));
     file.setFrameBuffer(frame);
     file.writePixels(image.height);
   });
@@ -82,6 +96,38 @@ void writePngBytes(const std::vector<unsigned char> &rgb, int width, int height,
   writeAtomically(path, [&](const std::string &temporary) {
     if (!stbi_write_png(temporary.c_str(), width, height, 3, rgb.data(), width * 3))
       throw std::runtime_error("PNG encoder failed");
+  });
+}
+
+void writePng16(const std::vector<uint16_t> &rgb, int width, int height, const std::string &path) {
+  writeAtomically(path, [&](const std::string &temporary) {
+    std::FILE *out = std::fopen(temporary.c_str(), "wb");
+    if (!out) throw std::runtime_error("cannot open for writing");
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    png_infop info = png ? png_create_info_struct(png) : nullptr;
+    // libpng reports errors by longjmp; the rows are built before it, so nothing here needs unwinding.
+    std::vector<unsigned char> row(size_t(width) * 6);
+    bool ok = png && info;
+    if (ok && setjmp(png_jmpbuf(png)) == 0) {
+      png_init_io(png, out);
+      png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), 16, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+                   PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+      png_write_info(png, info);
+      for (int y = 0; y < height; ++y) {
+        for (size_t i = 0; i < size_t(width) * 3; ++i) {  // PNG stores 16-bit samples big-endian
+          uint16_t v = rgb[size_t(y) * width * 3 + i];
+          row[2 * i] = static_cast<unsigned char>(v >> 8);
+          row[2 * i + 1] = static_cast<unsigned char>(v & 0xFF);
+        }
+        png_write_row(png, row.data());
+      }
+      png_write_end(png, nullptr);
+    } else {
+      ok = false;
+    }
+    png_destroy_write_struct(&png, &info);
+    bool closed = std::fclose(out) == 0;
+    if (!ok || !closed) throw std::runtime_error("PNG encoder failed");
   });
 }
 
@@ -146,6 +192,14 @@ static Image readExr(const std::string &path) {
     const char *names[3] = {"R", "G", "B"};
     for (int c = 0; c < (hasRgb ? 3 : 1); ++c)
       frame.insert(hasRgb ? names[c] : "Y", Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
+    if (channels.findChannel(kEmitterChannel)) {
+      image.emitterFraction.assign(size_t(width) * height, 0.0f);
+      char *emitterBase = reinterpret_cast<char *>(image.emitterFraction.data()) -
+                          (size_t(window.min.x) + size_t(window.min.y) * image.width) * sizeof(float);
+      frame.insert(kEmitterChannel, Imf::Slice(Imf::FLOAT, emitterBase, sizeof(float), sizeof(float) * image.width));
+    }
+    if (const auto *quantity = file.header().findTypedAttribute<Imf::StringAttribute>(kQuantityAttribute))
+      image.quantity = quantity->value();
     file.setFrameBuffer(frame);
     file.readPixels(window.min.y, window.max.y);
     if (!hasRgb)  // grey image: luminance into all three channels

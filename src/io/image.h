@@ -5,6 +5,7 @@
 // good one.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,14 @@ namespace radiant {
 struct Image {
   int width = 0, height = 0;
   std::vector<float> rgb;  ///< 3 floats per pixel
+  /// Optional, one float per pixel: the fraction of the pixel's camera rays
+  /// whose first hit is the front of an emitter (display/emitter_coverage.h).
+  /// Empty when unknown. OpenEXR keeps it as the channel "emitter"; PFM drops it.
+  std::vector<float> emitterFraction;
+  /// What the pixels hold, when known: "radiance" (W·sr⁻¹·m⁻², what render
+  /// writes) or "irradiance" (W·m⁻²). OpenEXR keeps it as the string attribute
+  /// "radiantQuantity"; empty when unknown.
+  std::string quantity;
 
   Image() = default;
   Image(int w, int h) : width(w), height(h), rgb(size_t(w) * h * 3, 0.0f) {}
@@ -32,8 +41,12 @@ void writePfm(const Image &image, const std::string &path);
 void writePng(const Image &image, const std::string &path, double exposureStops = 0);
 /// 8-bit PNG from already display-encoded RGB bytes.
 void writePngBytes(const std::vector<unsigned char> &rgb, int width, int height, const std::string &path);
+/// 16-bit PNG (libpng) from display-encoded RGB values 0…65535, like the 8-bit
+/// writer without colour-space chunks (viewers take untagged PNG as sRGB).
+void writePng16(const std::vector<uint16_t> &rgb, int width, int height, const std::string &path);
 
-/// Reads .exr or .pfm (linear). Throws InputError naming the file.
+/// Reads .exr or .pfm (linear), with the EXR's "emitter" channel and
+/// "radiantQuantity" attribute when present. Throws InputError naming the file.
 Image readImage(const std::string &path);
 
 /// The sRGB transfer function (linear [0,1] → encoded [0,1]).

@@ -18,20 +18,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// Where sample s falls inside its pixel: the 2-D additive recurrence of
-/// Roberts' R2 sequence (the golden ratio's 2-D generalisation), shifted per
-/// pixel by a random offset (Cranley–Patterson rotation). Any prefix of it
-/// covers the pixel evenly, so at a sharp edge — the bright light against the
-/// ceiling — the coverage error falls almost as 1/N instead of 1/√N, however
-/// many samples a time budget ends up taking. The offset keeps neighbouring
-/// pixels uncorrelated.
-void pixelPosition(uint64_t seed, size_t pixel, int sample, double &jitterX, double &jitterY) {
-  constexpr double kAlpha1 = 0.7548776662466927, kAlpha2 = 0.5698402909980532;  // 1/φ₂, 1/φ₂²
-  Pcg32 offset = sampleGenerator(seed ^ 0x5bd1e995ULL, pixel, ~uint64_t(0));
-  double x = offset.next() + kAlpha1 * sample, y = offset.next() + kAlpha2 * sample;
-  jitterX = x - std::floor(x), jitterY = y - std::floor(y);
-}
-
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
@@ -101,9 +87,8 @@ RenderStats renderImage(const PinholeCamera &camera, const Renderer &renderer, c
             for (int x = tile.x0; x < tile.x1; ++x) {
               size_t pixel = size_t(y) * film.width + x;
               for (int s = first; s < last; ++s) {
-                Pcg32 rng = sampleGenerator(options.seed, pixel, s);
-                double jitterX, jitterY;
-                pixelPosition(options.seed, pixel, s, jitterX, jitterY);
+                Sampler rng(options.seed, pixel, s);  // the first two numbers place the sample in its pixel
+                double jitterX = rng.next(), jitterY = rng.next();
                 Ray ray = camera.generateRay(x + jitterX, y + jitterY);
                 film.add(pixel, renderer.radiance(ray, rng));
               }

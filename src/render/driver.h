@@ -1,8 +1,8 @@
 // The render driver: owns tiles, threads, seeds, sample counts, time budgets
 // and progress, so a renderer only estimates radiance for one camera ray.
 //
-// Determinism: sample s of pixel p always uses the generator
-// sampleGenerator(seed, p, s) (util/random.h) and pixels accumulate their
+// Determinism: sample s of pixel p always draws its numbers from
+// Sampler(seed, p, s) (render/sampler.h) and pixels accumulate their
 // samples in index order, so the image depends on the seed and the sample
 // count, never on the thread count or the tiling. A time budget only chooses
 // how many samples are taken.

@@ -28,7 +28,7 @@ class PathTracer final : public Renderer {
   PathTracer(const RayTracer &tracer, const RendererOptions &options)
       : tracer_(tracer), scene_(tracer.scene()), lights_(tracer.scene()), maxDepth_(options.maxDepth) {}
 
-  Bands radiance(const Ray &cameraRay, Pcg32 &rng) const override {
+  Bands radiance(const Ray &cameraRay, Sampler &rng) const override {
     Bands L(0.0), throughput(1.0);
     Ray ray = cameraRay;
     bool countEmissionFully = true;  // camera rays and delta bounces: no light sample competed
@@ -80,7 +80,7 @@ class PathTracer final : public Renderer {
 
  private:
   /// Next-event estimate of direct light at a non-delta vertex, MIS-weighted.
-  Bands sampleLight(const Hit &hit, const Bsdf &bsdf, Pcg32 &rng) const {
+  Bands sampleLight(const Hit &hit, const Bsdf &bsdf, Sampler &rng) const {
     LightSample light;
     double uSelect = rng.next(), u1 = rng.next(), u2 = rng.next();
     if (!lights_.sample(uSelect, u1, u2, light)) return Bands(0.0);

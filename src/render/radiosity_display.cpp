@@ -24,7 +24,7 @@ class RadiosityDisplay final : public Renderer {
   RadiosityDisplay(const RayTracer &tracer, const Solution &solution, bool interpolate)
       : tracer_(tracer), solution_(solution), interpolate_(interpolate) {}
 
-  Bands radiance(const Ray &cameraRay, Pcg32 &rng) const override {
+  Bands radiance(const Ray &cameraRay, Sampler &rng) const override {
     VisiblePoint x;
     if (!findVisiblePoint(tracer_, solution_, cameraRay, rng, x)) return Bands(0.0);
     Bands radiosity = interpolate_ ? solution_.interpolatedRadiosity(x.location)

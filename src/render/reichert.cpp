@@ -50,7 +50,7 @@ class Reichert final : public TwoPassRenderer {
 
   double selectiveWork(const Ray &ray) const override {
     if (!selectsByLinks_) return TwoPassRenderer::selectiveWork(ray);
-    Pcg32 rng;
+    Sampler rng{Pcg32()};
     VisiblePoint x;
     if (!findVisiblePoint(tracer_, solution_, ray, rng, x)) return 0;
     int count = 0;
@@ -59,7 +59,7 @@ class Reichert final : public TwoPassRenderer {
   }
 
  protected:
-  Bands reflected(const VisiblePoint &x, Pcg32 &rng) const override {
+  Bands reflected(const VisiblePoint &x, Sampler &rng) const override {
     const RadiosityMesh &mesh = solution_.mesh;
     const Vec3 &n = x.hit.shadingNormal;
     Bands irradiance(0.0);
@@ -78,7 +78,7 @@ class Reichert final : public TwoPassRenderer {
     return x.material->diffuse * irradiance * kInvPi;
   }
 
-  Bands reflectedByLinks(const VisiblePoint &x, Pcg32 &rng) const override {
+  Bands reflectedByLinks(const VisiblePoint &x, Sampler &rng) const override {
     const RadiosityMesh &mesh = solution_.mesh;
     Bands correction(0.0);
     forEachReevaluatedLink(x, [&](const Link &link) {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "raytrace/ray_tracer.h"
-#include "util/random.h"
+#include "render/sampler.h"
 #include "util/spectrum.h"
 
 namespace radiant {
@@ -19,8 +19,8 @@ class Renderer {
  public:
   virtual ~Renderer() = default;
   /// Radiance arriving at the camera along `ray`, W·sr⁻¹·m⁻² per band. Must be
-  /// finite and non-negative; `rng` is this camera sample's own generator.
-  virtual Bands radiance(const Ray &ray, Pcg32 &rng) const = 0;
+  /// finite and non-negative; `rng` is this camera sample's own numbers (render/sampler.h).
+  virtual Bands radiance(const Ray &ray, Sampler &rng) const = 0;
 };
 
 struct Solution;

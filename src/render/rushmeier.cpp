@@ -28,7 +28,7 @@ class Rushmeier final : public TwoPassRenderer {
   using TwoPassRenderer::TwoPassRenderer;
 
  protected:
-  Bands reflected(const VisiblePoint &x, Pcg32 &rng) const override {
+  Bands reflected(const VisiblePoint &x, Sampler &rng) const override {
     Bands L = directLight(x, rng);
     Bsdf bsdf(*x.material, x.hit.shadingNormal, x.hit.geometricNormal, x.wo);
     BsdfSample s;
@@ -41,7 +41,7 @@ class Rushmeier final : public TwoPassRenderer {
   /// Radiance the solution says arrives along a secondary ray: the reflected
   /// radiosity at the diffuse point it reaches, plus that point's emission
   /// only if a specular chain led there.
-  Bands gatheredRadiance(const Ray &ray, Pcg32 &rng) const {
+  Bands gatheredRadiance(const Ray &ray, Sampler &rng) const {
     VisiblePoint y;
     if (!findVisiblePoint(tracer_, solution_, ray, rng, y)) return Bands(0.0);
     Bands L = (solution_.interpolatedRadiosity(y.location) - solution_.emission[y.location.element]) * kInvPi;

@@ -44,7 +44,7 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
   }
 
  protected:
-  Bands reflected(const VisiblePoint &x, Pcg32 &rng) const override {
+  Bands reflected(const VisiblePoint &x, Sampler &rng) const override {
     Bands L = directLight(x, rng);
     if (sources_) L += secondaryLight(x, rng);
     Bands indirect = solution_.interpolate(remainingIndirect_, x.location) * kInvPi;
@@ -57,7 +57,7 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
   /// combined with the power heuristic (Veach 1997 ch. 9): a point on a
   /// source (good far away) and a cosine-distributed ray (good close by,
   /// where 1/r² of a nearby large reflector would otherwise give fireflies).
-  Bands secondaryLight(const VisiblePoint &x, Pcg32 &rng) const {
+  Bands secondaryLight(const VisiblePoint &x, Sampler &rng) const {
     const Vec3 &n = x.hit.shadingNormal;
     const Bands f = x.material->diffuse * kInvPi;  // the solution holds only the diffuse part of x's reflection
     if (f.max() <= 0) return Bands(0.0);

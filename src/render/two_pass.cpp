@@ -5,7 +5,7 @@
 
 namespace radiant {
 
-bool findVisiblePoint(const RayTracer &tracer, const Solution &solution, Ray ray, Pcg32 &rng, VisiblePoint &out) {
+bool findVisiblePoint(const RayTracer &tracer, const Solution &solution, Ray ray, Sampler &rng, VisiblePoint &out) {
   constexpr int kMaxSpecularBounces = 64;
   const Scene &scene = tracer.scene();
   out.throughput = Bands(1.0);
@@ -44,7 +44,7 @@ TwoPassRenderer::TwoPassRenderer(const RayTracer &tracer, const RendererOptions 
       options_(options),
       lights_(tracer.scene()) {}
 
-Bands TwoPassRenderer::radiance(const Ray &ray, Pcg32 &rng) const {
+Bands TwoPassRenderer::radiance(const Ray &ray, Sampler &rng) const {
   VisiblePoint x;
   if (!findVisiblePoint(tracer_, solution_, ray, rng, x)) return Bands(0.0);
   Bands L(0.0);
@@ -58,11 +58,11 @@ Bands TwoPassRenderer::radiance(const Ray &ray, Pcg32 &rng) const {
   return L.isFinite() ? L : Bands(0.0);
 }
 
-Bands TwoPassRenderer::reflectedByLinks(const VisiblePoint &x, Pcg32 &rng) const { return reflected(x, rng); }
+Bands TwoPassRenderer::reflectedByLinks(const VisiblePoint &x, Sampler &rng) const { return reflected(x, rng); }
 
 double TwoPassRenderer::selectiveWork(const Ray &ray) const {
   if (!options_.selective) return 0;
-  Pcg32 rng;
+  Sampler rng{Pcg32()};
   VisiblePoint x;
   if (!findVisiblePoint(tracer_, solution_, ray, rng, x)) return 0;
   return trustsSolution(x) ? 0.0 : 1.0;
@@ -72,7 +72,7 @@ bool TwoPassRenderer::trustsSolution(const VisiblePoint &x) const {
   return solution_.errorEstimate[x.location.element] <= options_.selectiveThreshold;
 }
 
-Bands TwoPassRenderer::directLight(const VisiblePoint &x, Pcg32 &rng) const {
+Bands TwoPassRenderer::directLight(const VisiblePoint &x, Sampler &rng) const {
   LightSample light;
   double uSelect = rng.next(), u1 = rng.next(), u2 = rng.next();
   if (!lights_.sample(uSelect, u1, u2, light)) return Bands(0.0);

@@ -34,13 +34,13 @@ struct VisiblePoint {
 /// the path tracer does) to the first non-delta surface. False if it escapes,
 /// is absorbed, or reaches the back of a face or a face outside the mesh
 /// (the one-sided solution says nothing about those: they are black).
-bool findVisiblePoint(const RayTracer &tracer, const Solution &solution, Ray ray, Pcg32 &rng, VisiblePoint &out);
+bool findVisiblePoint(const RayTracer &tracer, const Solution &solution, Ray ray, Sampler &rng, VisiblePoint &out);
 
 class TwoPassRenderer : public Renderer {
  public:
   TwoPassRenderer(const RayTracer &tracer, const RendererOptions &options);
 
-  Bands radiance(const Ray &ray, Pcg32 &rng) const final;
+  Bands radiance(const Ray &ray, Sampler &rng) const final;
 
   /// For `--selective-map`: how much per-pixel work the camera ray through a
   /// pixel centre triggers — 1 or 0 (element mode) or the number of links
@@ -50,15 +50,15 @@ class TwoPassRenderer : public Renderer {
 
  protected:
   /// Radiance x reflects towards the eye (its own emission is added by the caller).
-  virtual Bands reflected(const VisiblePoint &x, Pcg32 &rng) const = 0;
+  virtual Bands reflected(const VisiblePoint &x, Sampler &rng) const = 0;
   /// Link mode (--selective with a hierarchical solution): radiance reflected
   /// at x, re-evaluating only the significant partially visible links. Only
   /// methods that set selectsByLinks_ implement it.
-  virtual Bands reflectedByLinks(const VisiblePoint &x, Pcg32 &rng) const;
+  virtual Bands reflectedByLinks(const VisiblePoint &x, Sampler &rng) const;
 
   /// Direct light by next-event estimation: one point on an emitter chosen by
   /// power, one shadow ray, no MIS (nothing else in these methods finds emitters).
-  Bands directLight(const VisiblePoint &x, Pcg32 &rng) const;
+  Bands directLight(const VisiblePoint &x, Sampler &rng) const;
   /// True where --selective leaves the solution alone (element error below threshold).
   bool trustsSolution(const VisiblePoint &x) const;
 
