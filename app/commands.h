@@ -12,5 +12,6 @@ using CommandRunner = std::function<int()>;
 CommandRunner addRenderCommand(CLI::App &app);
 CommandRunner addCompareCommand(CLI::App &app);
 CommandRunner addSolveCommand(CLI::App &app);
+CommandRunner addTonemapCommand(CLI::App &app);
 
 }  // namespace radiant

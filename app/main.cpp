@@ -17,9 +17,12 @@ int main(int argc, char **argv) {
   CLI::App *render = app.add_subcommand("render", "Render a scene (JSON or OBJ) to EXR/PFM/PNG images");
   CLI::App *solve = app.add_subcommand("solve", "Compute a scene's radiosity solution, report it, save it for render");
   CLI::App *compare = app.add_subcommand("compare", "Compare an image with a reference: mean ratio, RMSE, relMSE");
+  CLI::App *tonemap =
+      app.add_subcommand("tonemap", "Map a linear image (EXR/PFM) to a display PNG or a false-colour luminance map");
   radiant::CommandRunner runRender = radiant::addRenderCommand(*render);
   radiant::CommandRunner runSolve = radiant::addSolveCommand(*solve);
   radiant::CommandRunner runCompare = radiant::addCompareCommand(*compare);
+  radiant::CommandRunner runTonemap = radiant::addTonemapCommand(*tonemap);
 
   try {
     app.parse(argc, argv);
@@ -31,6 +34,7 @@ int main(int argc, char **argv) {
     if (render->parsed()) return runRender();
     if (solve->parsed()) return runSolve();
     if (compare->parsed()) return runCompare();
+    if (tonemap->parsed()) return runTonemap();
   } catch (const radiant::InputError &e) {
     fmt::print(stderr, "radiant: error: {}\n", e.what());
     return 2;

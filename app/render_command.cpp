@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "display_options.h"
 #include "io/solution_file.h"
 #include "radiosity_options.h"
 #include "raytrace/ray_tracer.h"
@@ -31,7 +32,7 @@ struct RenderCommandOptions {
   std::vector<std::string> outputs;
   std::string variancePath;
   std::optional<int> spp, width, height, maxDepth;
-  std::optional<double> time, fov, exposure;
+  std::optional<double> time, fov;
   std::optional<uint64_t> seed;
   std::string eye, target, up, pixel;
   int threads = 0;
@@ -40,6 +41,7 @@ struct RenderCommandOptions {
   RadiosityCommandOptions radiosity;
   RendererOptions twoPass;  ///< the two-pass methods' flags
   std::string selectiveMapPath;
+  DisplayCommandOptions display;  ///< the PNG outputs' display mapping
 };
 
 InputLocation flag(const std::string &name) { return InputLocation{name}; }
@@ -112,7 +114,8 @@ CommandRunner addRenderCommand(CLI::App &app) {
   app.add_option("-m,--method", o->method, "Rendering method:" + methods)->default_val("path");
   app.add_option("-o,--output", o->outputs,
                  "Output image; repeat for several. Format by extension: .exr (linear float), .pfm (linear), "
-                 ".png (sRGB after --exposure). Default: NAME.exr and NAME.png, NAME from the scene file");
+                 ".png (display mapping: --tonemap, default linear). Default: NAME.exr and NAME.png, NAME from the "
+                 "scene file");
   app.add_option("--variance", o->variancePath, "Also write the variance of each pixel's mean (.exr or .pfm)");
   app.add_option("--spp", o->spp, "Samples per pixel (default: the scene's render.spp, else 64)");
   app.add_option("--time", o->time,
@@ -122,7 +125,6 @@ CommandRunner addRenderCommand(CLI::App &app) {
       ->default_val(0)
       ->check(CLI::Range(0, 4096));
   app.add_option("--max-depth", o->maxDepth, "Maximum bounces (0: unlimited, Russian roulette ends paths)");
-  app.add_option("--exposure", o->exposure, "PNG exposure in stops (radiance × 2^stops before the sRGB curve)");
   app.add_option("--eye", o->eye, "Camera position x,y,z in scene units (overrides the scene)");
   app.add_option("--target", o->target, "Camera target x,y,z in scene units");
   app.add_option("--up", o->up, "Camera up vector x,y,z");
@@ -159,6 +161,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
       ->check(CLI::PositiveNumber);
   app.add_option("--selective-map", o->selectiveMapPath,
                  "--selective: write a PNG of the pixels re-evaluated (white) or, in link mode, how many links");
+  addDisplayOptions(app, o->display);
 
   return [o, &app]() {
     {
@@ -188,7 +191,6 @@ CommandRunner addRenderCommand(CLI::App &app) {
     if (o->time) scene.render.timeBudgetSeconds = *o->time;
     if (o->seed) scene.render.seed = *o->seed;
     if (o->maxDepth) scene.render.maxDepth = *o->maxDepth;
-    if (o->exposure) scene.render.exposure = *o->exposure;
     if (o->time && !o->spp) scene.render.samplesPerPixel = kMaxSamplesPerPixel;  // the budget decides
 
     // Command-line values get the same checks as the scene file's, before any allocation.
@@ -219,6 +221,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
     for (const std::string &path : outputs)
       if (!isSupportedImageExtension(path))
         throw InputError(flag("--output"), "'" + path + "': unknown image extension (expected .exr, .pfm or .png)");
+    const DisplaySettings display = renderDisplaySettings(app, o->display, r.exposure, outputs);
     if (!o->variancePath.empty() && !isSupportedImageExtension(o->variancePath))
       throw InputError(flag("--variance"), "'" + o->variancePath + "': expected a .exr or .pfm file");
 
@@ -263,7 +266,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
       fmt::print(stderr, "pixel {},{}: radiance {:.6g} {:.6g} {:.6g} W/(sr·m²)\n", driver.onlyPixelX,
                  driver.onlyPixelY, v[0], v[1], v[2]);
     }
-    for (const std::string &path : outputs) writeImage(image, path, r.exposure);
+    writeRenderOutputs(image, outputs, display, app.count("--tonemap") > 0, tracer, camera, o->quiet);
     if (!o->variancePath.empty()) writeImage(varianceImage(film), o->variancePath);
     if (!o->quiet)
       fmt::print(stderr, "radiant: {} spp in {:.2f} s ({:.3g} Msamples/s); wrote {}\n", stats.samplesPerPixel,

@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config git
-  libembree-dev libtbb-dev libopenexr-dev libstb-dev libtinyobjloader-dev
+  libembree-dev libtbb-dev libopenexr-dev libstb-dev libpng-dev libtinyobjloader-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )

@@ -128,5 +128,92 @@ expect_error "--selective-map without --selective" "needs --selective" \
   "$radiant" render "$cornell" --method kok --selective-map m.png -q
 [ ! -e m.png ] && pass || fail "a refused render wrote an image"
 
+# tonemap: a saved EXR mapped again without rendering (docs/tone-mapping.md).
+# expect_exit2 NAME PATTERN COMMAND... : bad input exits with status 2 and names the culprit
+expect_exit2() {
+  local name=$1 pattern=$2
+  shift 2
+  "$@" >out.txt 2>err.txt
+  local status=$?
+  if [ "$status" -ne 2 ]; then
+    fail "$name: expected exit status 2, got $status"; cat err.txt
+  elif ! grep -qE -- "$pattern" err.txt; then
+    fail "$name: stderr does not match '$pattern':"; cat err.txt
+  else
+    pass
+  fi
+}
+png_width() { od -An -tu1 -j16 -N4 "$1" | awk '{print $1*16777216 + $2*65536 + $3*256 + $4}'; }
+png_depth() { od -An -tu1 -j24 -N1 "$1" | tr -d ' '; }
+if "$radiant" render "$cornell" --spp 4 --width 32 --height 32 -o t.exr -o t.png -o t.pfm -q \
+  && "$radiant" render "$cornell" --spp 4 --width 32 --height 32 --tonemap max-reflected -o tm.png -q \
+  && "$radiant" render "$cornell" --spp 4 --width 32 --height 32 --exposure 1.5 -o te.png -q; then
+  "$radiant" tonemap t.exr -o same.png -q && cmp -s same.png t.png && pass \
+    || fail "tonemap with the defaults differs from render's PNG"
+  "$radiant" tonemap t.exr --exposure 1.5 -o same-e.png -q && cmp -s same-e.png te.png && pass \
+    || fail "tonemap --exposure differs from render --exposure"
+  "$radiant" tonemap t.exr --tonemap max-reflected -o same-m.png 2>err.txt && cmp -s same-m.png tm.png \
+    && ! grep -q warning err.txt && pass || { fail "max-reflected from the EXR's emitter channel"; cat err.txt; }
+  "$radiant" tonemap t.pfm --tonemap max-reflected -o pfm-m.png 2>err.txt && grep -q "no \"emitter\" channel" err.txt \
+    && pass || { fail "max-reflected without emitter information warns"; cat err.txt; }
+  for op in linear max-reflected tumblin-rushmeier ward reinhard aces; do
+    "$radiant" tonemap t.exr --tonemap "$op" -o "op-$op.png" -q && [ -s "op-$op.png" ] && pass \
+      || fail "tonemap --tonemap $op"
+  done
+  "$radiant" tonemap t.exr --tonemap tumblin-rushmeier --display-max 100 --display-contrast 50 --adaptation 20 \
+    --gamma 2.2 --gamut hue -o tr.png -q && pass || fail "tumblin-rushmeier with every parameter"
+  "$radiant" tonemap t.exr --tonemap reinhard --key 0.3 --white 500 --bits 16 -o r16.png -q \
+    && [ "$(png_depth r16.png)" = 16 ] && pass || fail "--bits 16 writes a 16-bit PNG"
+  [ "$(png_depth t.png)" = 8 ] && pass || fail "render's PNG is 8-bit"
+  # The firefly and the searchlight: normalising mappings show them identically, Ward does not.
+  for op in "max-reflected" "linear --exposure auto"; do
+    "$radiant" tonemap t.exr --scale 1e-4 --tonemap $op -o dim.png -q \
+      && "$radiant" tonemap t.exr --scale 1e4 --tonemap $op -o bright.png -q && cmp -s dim.png bright.png && pass \
+      || fail "firefly and searchlight differ under $op"
+  done
+  "$radiant" tonemap t.exr --scale 1e-4 --tonemap ward -o dim.png -q \
+    && "$radiant" tonemap t.exr --scale 1e4 --tonemap ward -o bright.png -q && ! cmp -s dim.png bright.png && pass \
+    || fail "ward shows the firefly and the searchlight alike"
+  "$radiant" tonemap t.exr --falsecolor --legend --log -o fc.png 2>err.txt && [ "$(png_width fc.png)" -gt 32 ] \
+    && grep -q "false colour luminance" err.txt && pass || { fail "--falsecolor --legend"; cat err.txt; }
+  "$radiant" tonemap t.exr --falsecolor --range 0,500 -o fc2.png -q && [ "$(png_width fc2.png)" = 32 ] && pass \
+    || fail "--falsecolor --range"
+  "$radiant" tonemap t.pfm --falsecolor --quantity illuminance -o lux.png 2>err.txt \
+    && grep -q "as irradiance" err.txt && pass || { fail "--quantity illuminance on an unmarked image"; cat err.txt; }
+  cp t.png keep.png
+  expect_exit2 "tonemap missing file" "no-such.exr: no such file" "$radiant" tonemap no-such.exr -o t.png
+  cmp -s t.png keep.png && pass || fail "a failed tonemap touched the output"
+  expect_exit2 "unknown operator" "unknown tone operator 'wrd'" "$radiant" tonemap t.exr --tonemap wrd -o x.png
+  expect_exit2 "parameter of another operator" "--white: only reinhard uses it, not --tonemap ward" \
+    "$radiant" tonemap t.exr --tonemap ward --white 100 -o x.png
+  expect_exit2 "--key with a fixed exposure" "--key: linear uses it only with --exposure auto" \
+    "$radiant" tonemap t.exr --key 0.2 -o x.png
+  expect_exit2 "bad exposure" "--exposure: expected a number of stops or 'auto'" \
+    "$radiant" tonemap t.exr --exposure bright -o x.png
+  expect_exit2 "--gamma and --srgb" "excludes" "$radiant" tonemap t.exr --gamma 2.2 --srgb -o x.png
+  expect_exit2 "bad --bits" "bits" "$radiant" tonemap t.exr --bits 12 -o x.png
+  expect_exit2 "bad --gamut" "gamut" "$radiant" tonemap t.exr --gamut keep -o x.png
+  expect_exit2 "tonemap to jpg" "--output: 'x.jpg': expected a .png file" "$radiant" tonemap t.exr -o x.jpg
+  expect_exit2 "tonemap without -o" "output" "$radiant" tonemap t.exr
+  expect_exit2 "--legend without --falsecolor" "--legend: needs --falsecolor" "$radiant" tonemap t.exr --legend -o x.png
+  expect_exit2 "--tonemap with --falsecolor" "--tonemap: does not apply to --falsecolor" \
+    "$radiant" tonemap t.exr --falsecolor --tonemap ward -o x.png
+  expect_exit2 "illuminance of radiance" "holds radiance" \
+    "$radiant" tonemap t.exr --falsecolor --quantity illuminance -o x.png
+  expect_exit2 "reversed range" "--range: MIN must be below MAX" "$radiant" tonemap t.exr --falsecolor --range 5,1 -o x.png
+  expect_exit2 "log range from 0" "--range: a --log scale needs MIN > 0" \
+    "$radiant" tonemap t.exr --falsecolor --log --range 0,100 -o x.png
+  expect_exit2 "not an image" "cannot read OpenEXR" bash -c "printf junk > junk.exr; '$radiant' tonemap junk.exr -o x.png"
+  [ ! -e x.png ] && pass || fail "a refused tonemap wrote an image"
+  expect_exit2 "render --tonemap without a PNG" "--tonemap: applies to .png outputs" \
+    "$radiant" render "$cornell" --tonemap ward -o only.exr -q
+  expect_exit2 "render: operator flag of another" "--display-max: only tumblin-rushmeier, ward use it" \
+    "$radiant" render "$cornell" --tonemap reinhard --display-max 80 -o x.png -q
+  "$radiant" render "$cornell" --spp 1 --width 16 --height 16 --exposure auto -o auto.png -q && pass \
+    || fail "render --exposure auto"
+else
+  fail "renders for the tonemap tests failed"
+fi
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -28,13 +28,21 @@ inline double relativeLuminance(const float rgb[3]) {
 }
 
 /// Luminance in cd/m² of linear RGB radiance in W·sr⁻¹·m⁻².
-inline double luminanceCdPerM2(const float rgb[3]) { return kLuminousEfficacy * relativeLuminance(rgb); }
-inline double luminanceCdPerM2(const double rgb[3]) { return kLuminousEfficacy * relativeLuminance(rgb); }
+inline double luminanceCdPerM2(const float rgb[3]) {
+  return kLuminousEfficacy * relativeLuminance(rgb);
+}
+inline double luminanceCdPerM2(const double rgb[3]) {
+  return kLuminousEfficacy * relativeLuminance(rgb);
+}
 
 /// Tumblin & Rushmeier work in lamberts: 1 L = 10⁴/π cd/m² (REFERENCE §6.3).
 constexpr double kLambertsPerCdM2 = 3.14159265358979323846e-4;
-constexpr double lambertsFromCdPerM2(double cdPerM2) { return cdPerM2 * kLambertsPerCdM2; }
-constexpr double cdPerM2FromLamberts(double lamberts) { return lamberts / kLambertsPerCdM2; }
+constexpr double lambertsFromCdPerM2(double cdPerM2) {
+  return cdPerM2 * kLambertsPerCdM2;
+}
+constexpr double cdPerM2FromLamberts(double lamberts) {
+  return lamberts / kLambertsPerCdM2;
+}
 
 /// What the operators read from the whole image, computed once.
 struct LuminanceStatistics {

@@ -23,14 +23,14 @@ namespace radiant {
 /// Every operator's parameters, as the command line gives them (docs/cli.md).
 /// An operator reads only its own; the registry lists which those are.
 struct ToneParameters {
-  double exposureStops = 0;      ///< linear: radiance × 2^stops is the display value
-  bool autoExposure = false;     ///< linear: choose the exposure so the log-average luminance shows as `key`
-  double key = 0.18;             ///< linear (auto), reinhard, aces: display value of the log-average luminance
-  double reflectedLevel = 0.95;  ///< max-reflected: display value of the brightest reflecting pixel
-  std::optional<double> displayMaxCdM2;     ///< tumblin-rushmeier (86), ward (100): L_dmax = k, cd/m²
-  double displayContrast = 35;              ///< tumblin-rushmeier: C_max, the display's contrast ratio
-  std::optional<double> adaptationCdM2;     ///< tumblin-rushmeier, ward: world adaptation luminance, cd/m²
-  std::optional<double> whiteCdM2;          ///< reinhard: world luminance that maps to full white, cd/m²
+  double exposureStops = 0;              ///< linear: radiance × 2^stops is the display value
+  bool autoExposure = false;             ///< linear: choose the exposure so the log-average luminance shows as `key`
+  double key = 0.18;                     ///< linear (auto), reinhard, aces: display value of the log-average luminance
+  double reflectedLevel = 0.95;          ///< max-reflected: display value of the brightest reflecting pixel
+  std::optional<double> displayMaxCdM2;  ///< tumblin-rushmeier (86), ward (100): L_dmax = k, cd/m²
+  double displayContrast = 35;           ///< tumblin-rushmeier: C_max, the display's contrast ratio
+  std::optional<double> adaptationCdM2;  ///< tumblin-rushmeier, ward: world adaptation luminance, cd/m²
+  std::optional<double> whiteCdM2;       ///< reinhard: world luminance that maps to full white, cd/m²
 };
 
 class ToneOperator {
@@ -43,7 +43,7 @@ class ToneOperator {
   virtual std::string describe() const = 0;
 };
 
-/// What the operators need to know besides the pixels: notes for the user.
+/// Warnings an operator raises while it adapts to the image, for the user.
 using ToneWarnings = std::vector<std::string>;
 
 struct ToneOperatorInfo {

@@ -61,8 +61,7 @@ void writeExr(const Image &image, const std::string &path) {
     header.channels().insert("G", Imf::Channel(Imf::FLOAT));
     header.channels().insert("B", Imf::Channel(Imf::FLOAT));
     const bool hasEmitter = image.emitterFraction.size() == size_t(image.width) * image.height;
-    // Half is exact for the coverage fractions k/16 render writes, and half the size.
-    if (hasEmitter) header.channels().insert(kEmitterChannel, Imf::Channel(Imf::HALF));
+    if (hasEmitter) header.channels().insert(kEmitterChannel, Imf::Channel(Imf::FLOAT));
     if (!image.quantity.empty()) header.insert(kQuantityAttribute, Imf::StringAttribute(image.quantity));
     Imf::OutputFile file(temporary.c_str(), header);
     Imf::FrameBuffer frame;
@@ -72,9 +71,9 @@ void writeExr(const Image &image, const std::string &path) {
     frame.insert("G", Imf::Slice(Imf::FLOAT, base + sizeof(float), xStride, yStride));
     frame.insert("B", Imf::Slice(Imf::FLOAT, base + 2 * sizeof(float), xStride, yStride));
     if (hasEmitter)
-      frame.insert(kEmitterChannel, Imf::Slice(Imf::FLOAT, reinterpret_cast<char *>(const_cast<float *>(
-                                                               image.emitterFraction.data())),
-                                               sizeof(float), sizeof(float) * image.width));
+      frame.insert(kEmitterChannel,
+                   Imf::Slice(Imf::FLOAT, reinterpret_cast<char *>(const_cast<float *>(image.emitterFraction.data())),
+                              sizeof(float), sizeof(float) * image.width));
     file.setFrameBuffer(frame);
     file.writePixels(image.height);
   });
