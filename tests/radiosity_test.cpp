@@ -15,6 +15,7 @@
 #include "render/driver.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
+#include "film_metrics.h"
 #include "test_scenes.h"
 #include "util/error.h"
 
@@ -271,22 +272,7 @@ struct ImageAgainstPath {
     return film;
   }
   double blockError(const Solution &solution) const {
-    Film film = render("interpolate", &solution, 4);
-    double sum = 0;
-    int blocks = 0;
-    for (int by = 0; by < size; by += 8)
-      for (int bx = 0; bx < size; bx += 8) {
-        double t = 0, r = 0;
-        for (int y = by; y < by + 8; ++y)
-          for (int x = bx; x < bx + 8; ++x) {
-            t += film.mean(size_t(y) * size + x).average();
-            r += reference.mean(size_t(y) * size + x).average();
-          }
-        if (r <= 0) continue;
-        sum += std::abs(t - r) / r;
-        ++blocks;
-      }
-    return sum / blocks;
+    return test::meanBlockError(render("interpolate", &solution, 4), reference);
   }
 };
 

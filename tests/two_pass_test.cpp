@@ -11,6 +11,7 @@
 #include "render/secondary_sources.h"
 #include "render/two_pass.h"
 #include "scene/load_scene.h"
+#include "film_metrics.h"
 #include "test_scenes.h"
 
 namespace radiant {
@@ -338,23 +339,7 @@ TEST(TwoPass, ErrorAgainstThePathTracerFallsAsTheMeshIsRefinedAndSamplesGrow) {
   const int size = 48;
   RendererOptions pathOptions;
   Film reference = renderFilm(scene, tracer, "path", pathOptions, size, 1024);
-  auto blockError = [&](const Film &film) {
-    double sum = 0;
-    int blocks = 0;
-    for (int by = 0; by < size; by += 8)
-      for (int bx = 0; bx < size; bx += 8) {
-        double t = 0, r = 0;
-        for (int y = by; y < by + 8; ++y)
-          for (int x = bx; x < bx + 8; ++x) {
-            t += film.mean(size_t(y) * size + x).average();
-            r += reference.mean(size_t(y) * size + x).average();
-          }
-        if (r <= 0) continue;
-        sum += std::abs(t - r) / r;
-        ++blocks;
-      }
-    return sum / blocks;
-  };
+  auto blockError = [&](const Film &film) { return test::meanBlockError(film, reference); };
   Solution coarse = meshAndSolveFor(scene, tracer, "progressive", 0.25, 1e-2);
   Solution fine = meshAndSolveFor(scene, tracer, "progressive", 0.06, 1e-3);
   for (const char *method : kTwoPassMethods) {

@@ -34,6 +34,10 @@ class LinearOperator final : public ToneOperator {
 
 }  // namespace
 
+std::unique_ptr<ToneOperator> createScaleOperator(double scale, std::string description) {
+  return std::make_unique<LinearOperator>(scale, std::move(description));
+}
+
 std::unique_ptr<ToneOperator> createLinearOperator(const Image &radiance, const ToneParameters &p,
                                                    ToneWarnings &warnings) {
   if (!p.autoExposure)

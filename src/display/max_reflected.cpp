@@ -29,23 +29,6 @@
 
 namespace radiant {
 
-namespace {
-
-class MaxReflectedOperator final : public ToneOperator {
- public:
-  MaxReflectedOperator(double scale, std::string description) : scale_(scale), description_(std::move(description)) {}
-  void map(const float radiance[3], double display[3]) const override {
-    for (int c = 0; c < 3; ++c) display[c] = radiance[c] * scale_;
-  }
-  std::string describe() const override { return description_; }
-
- private:
-  double scale_;
-  std::string description_;
-};
-
-}  // namespace
-
 std::unique_ptr<ToneOperator> createMaxReflectedOperator(const Image &radiance, const ToneParameters &p,
                                                          ToneWarnings &warnings) {
   const bool known = !radiance.emitterFraction.empty();
@@ -68,9 +51,9 @@ std::unique_ptr<ToneOperator> createMaxReflectedOperator(const Image &radiance, 
   }
   if (!(brightest > 0)) {
     warnings.push_back("max-reflected: no lit reflecting pixel; scale 1");
-    return std::make_unique<MaxReflectedOperator>(1.0, "max-reflected: no lit reflecting pixel, scale 1");
+    return createScaleOperator(1.0, "max-reflected: no lit reflecting pixel, scale 1");
   }
-  return std::make_unique<MaxReflectedOperator>(
+  return createScaleOperator(
       p.reflectedLevel / brightest,
       fmt::format("max-reflected: brightest reflecting pixel {:.4g} W/(sr·m²) shown at {:.3g}; {} pixels near "
                   "emitters left out",

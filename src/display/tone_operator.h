@@ -57,6 +57,8 @@ const std::vector<ToneOperatorInfo> &toneOperatorRegistry();
 /// The entry for `name`; throws InputError at --tonemap listing the known names.
 const ToneOperatorInfo &findToneOperator(const std::string &name);
 
+/// Display = radiance × scale, the same for every channel (linear.cpp; max-reflected uses it too).
+std::unique_ptr<ToneOperator> createScaleOperator(double scale, std::string description);
 std::unique_ptr<ToneOperator> createLinearOperator(const Image &, const ToneParameters &, ToneWarnings &);
 std::unique_ptr<ToneOperator> createMaxReflectedOperator(const Image &, const ToneParameters &, ToneWarnings &);
 std::unique_ptr<ToneOperator> createTumblinRushmeierOperator(const Image &, const ToneParameters &, ToneWarnings &);
