@@ -34,4 +34,11 @@ convert "$work"/reichert-{point,mc}.png +append "$out/two-pass-reichert-ff.png"
 "$radiant" render "$scene" --method reichert --selective --selective-map "$work/links.png" \
   --spp 1 --width 256 --height 256 -o "$work/links-image.png"
 convert "$work"/{elements,links}.png +append "$out/two-pass-selective.png"
-echo "wrote $out/two-pass-methods.png, two-pass-reichert-ff.png, two-pass-selective.png"
+specular="$here/scenes/cornell-specular/scene.json"
+small=(--width 128 --height 128 -q)
+"$radiant" render "$specular" --method path --spp 256 "${small[@]}" -o "$work/specular-path.png"
+for method in rushmeier shirley kok; do
+  "$radiant" render "$specular" --method "$method" --spp 32 "${small[@]}" -o "$work/specular-$method.png"
+done
+convert "$work"/specular-{path,rushmeier,shirley,kok}.png +append -scale 150% "$out/two-pass-specular.png"
+echo "wrote $out/two-pass-methods.png, two-pass-reichert-ff.png, two-pass-selective.png, two-pass-specular.png"
