@@ -5,6 +5,7 @@
 
 #include <iostream>
 
+#include "radiosity/form_factor.h"
 #include "radiosity/solver.h"
 #include "render/driver.h"
 #include "render/renderer.h"
@@ -110,6 +111,51 @@ TEST(TwoPass, ReichertGathersTheExactFormFactorsAtTheFloorCentre) {
     auto renderer = createRenderer("reichert", tracer, options);
     Sampler rng{Pcg32()};
     EXPECT_NEAR(renderer->radiance(kRayToFloorCentre, rng)[0] * kPi, kGatherAtFloorCentre, 2e-6) << ff;
+  }
+}
+
+TEST(TwoPass, ReichertCountsTheFrontPartOfACutElement) {
+  // A small wall at x = 0 facing +x stands on a large emitting floor
+  // (x, z in [−1, 1], one element) whose centre lies in the wall's own plane.
+  // Only the floor's half with x > 0 lights the wall. Its exact share is
+  // F(dx → that half), the clipped contour integral; a visibility point on
+  // the other half would be hidden by the wall itself.
+  Scene scene;
+  scene.objects.push_back({"test", "test"});
+  scene.positions = {{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1},          // floor, facing +y
+                     {0, 0.1, 0.1}, {0, 0.1, -0.1}, {0, 0.3, -0.1}, {0, 0.3, 0.1}};  // wall, facing +x
+  Material floor, wall;
+  floor.name = "floor";
+  floor.diffuse = Bands(0.0);
+  floor.emission = Bands(kInvPi);  // exitance E = 1
+  wall.name = "wall";
+  wall.diffuse = Bands(0.5);
+  scene.materials = {floor, wall};
+  for (uint32_t k = 0; k < 2; ++k) {
+    Face f;
+    f.vertexCount = 4;
+    for (uint32_t i = 0; i < 4; ++i) f.vertices[i] = 4 * k + i;
+    f.material = k;
+    scene.addFace(f);
+  }
+  RayTracer tracer(scene);
+  MeshOptions meshOptions;
+  meshOptions.maxEdgeLength = 10;  // one element per face
+  Solution solution = initialSolution(scene, buildMesh(scene, meshOptions));  // B = E: nothing to solve
+  ASSERT_EQ(solution.elementCount(), 2u);
+  const Vec3 x{0, 0.2, 0}, n{1, 0, 0};
+  const std::vector<Vec3> frontHalf = {{0, 0, -1}, {0, 0, 1}, {1, 0, 1}, {1, 0, -1}};
+  const double expected = 0.5 * kInvPi * formFactorPointToPolygon(x, n, frontHalf);
+  ASSERT_GT(expected, 0.01);
+  for (const char *ff : {"point", "mc"}) {
+    RendererOptions options;
+    options.solution = &solution;
+    options.formFactorSampling = ff;
+    auto renderer = createRenderer("reichert", tracer, options);
+    for (int s = 0; s < 16; ++s) {
+      Sampler rng(sampleGenerator(5, 0, uint64_t(s)));
+      EXPECT_NEAR(renderer->radiance({{1, 0.2, 0}, {-1, 0, 0}}, rng)[0], expected, 1e-9 * expected) << ff;
+    }
   }
 }
 
@@ -353,6 +399,32 @@ TEST(TwoPass, ErrorAgainstThePathTracerFallsAsTheMeshIsRefinedAndSamplesGrow) {
     EXPECT_LT(after, 0.05) << method;
     std::cout << method << ": block error " << before << " (0.25 m, few samples) → " << after
               << " (0.06 m, more samples)\n";
+  }
+}
+
+TEST(TwoPass, ShirleyAndKokDoNotCountUnshotEmissionTwice) {
+  // Progressive refinement stopped after one shot: most emission is still
+  // unshot and lives in the ambient term. The emitter samples count its first
+  // arrival, so only the rest of the ambient may be added (REFERENCE §8.1:
+  // in the furnace the ambient term makes every iteration exact, so the
+  // image must still be Le/(1−ρ)).
+  const double rho = 0.5, expected = 1.0 / (1 - rho);
+  Scene scene = test::furnace(1.0, rho);
+  RayTracer tracer(scene);
+  MeshOptions meshOptions;
+  meshOptions.maxEdgeLength = 0.25;
+  SolverOptions solverOptions;
+  solverOptions.solver = "progressive";
+  solverOptions.maxIterations = 1;
+  Solution solution = meshAndSolve(scene, tracer, meshOptions, solverOptions);
+  ASSERT_EQ(solution.stats.iterations, 1);
+  RendererOptions options;
+  options.solution = &solution;
+  for (const char *method : {"shirley", "kok"}) {
+    Estimate e = imageMean(renderFilm(scene, tracer, method, options, 16, 64));
+    EXPECT_NEAR(e.mean, expected, 4 * e.standardError + 1e-9) << method;
+    // Adding the whole ambient would show ρ·Le·(1 − share already shot) too much: far outside.
+    EXPECT_GT(rho * 0.9, 10 * (4 * e.standardError)) << method;
   }
 }
 

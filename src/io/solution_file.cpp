@@ -137,6 +137,7 @@ void writeSolution(const Solution &s, const Scene &scene, const std::string &pat
   w.put(s.stats.absorbedPower);
   w.put(s.stats.escapedPower);
   w.put(s.ambient);
+  w.put(s.indirectAmbient);
   for (const Patch &p : m.patches) {
     w.put(p.face), w.put(p.material), w.put(p.object), w.put(int32_t(p.vertexCount));
     for (const Vec3 &c : p.corners) w.put(c);
@@ -208,6 +209,7 @@ Solution readSolution(const std::string &path, const Scene &scene) {
   s.stats.absorbedPower = r.bands();
   s.stats.escapedPower = r.bands();
   s.ambient = r.bands();
+  s.indirectAmbient = r.bands();
   m.patches.resize(r.count(patches, 4 * 4 + 15 * 8 + 8 + 4 * 4 + 8 + 4, "patches"));
   for (Patch &p : m.patches) {
     p.face = r.get<uint32_t>(), p.material = r.get<uint32_t>(), p.object = r.get<uint32_t>();

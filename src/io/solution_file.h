@@ -9,7 +9,7 @@
 
 namespace radiant {
 
-constexpr uint32_t kSolutionFormatVersion = 2;
+constexpr uint32_t kSolutionFormatVersion = 3;
 
 /// A hash of what the solution depends on: geometry, faces and the
 /// radiometric material values. A solution is refused for a scene whose

@@ -24,41 +24,6 @@ namespace radiant {
 
 namespace {
 
-/// Sutherland–Hodgman clip of `polygon` to the open half-space dot(x − p, n) > 0.
-/// The part behind the receiver's tangent plane is invisible to it, and the
-/// contour formula is only valid for a polygon entirely in front (§1.4).
-///
-/// The part *in* the plane is dropped too: a polygon coplanar with the receiver
-/// (its own face, a neighbouring element of the same wall) exchanges nothing,
-/// yet the contour sum of a polygon lying in the plane around p is ±2π, F = 1.
-/// Signed distances within a round-off tolerance of the polygon's size count
-/// as in the plane, so a receiver point a few ulps off its floor still sees 0.
-/// A vertex exactly in the plane next to one in front is kept (as the
-/// crossing with t = 0 or 1), so a wall sharing an edge with the receiver's
-/// face is not shortened.
-void clipToFrontHalfSpace(const Vec3 &p, const Vec3 &n, std::span<const Vec3> polygon, std::vector<Vec3> &out) {
-  out.clear();
-  const size_t count = polygon.size();
-  double size = 0;
-  for (const Vec3 &v : polygon) size = std::max(size, length(v - p));
-  const double tolerance = 1e-12 * size;
-  auto signedDistance = [&](const Vec3 &v) {
-    const double d = dot(v - p, n);
-    return std::abs(d) <= tolerance ? 0.0 : d;
-  };
-  for (size_t k = 0; k < count; ++k) {
-    const Vec3 &a = polygon[k];
-    const Vec3 &b = polygon[(k + 1) % count];
-    const double da = signedDistance(a), db = signedDistance(b);
-    if (da > 0) out.push_back(a);
-    // The edge enters or leaves the half-space: add the crossing point.
-    if ((da > 0) != (db > 0)) {
-      const double t = da / (da - db);  // da ≠ db here; t ∈ [0, 1]
-      out.push_back(a + (b - a) * t);
-    }
-  }
-}
-
 /// Splits a source polygon into pieces of exactly equal area for stratified
 /// sampling. The unit square maps onto the polygon with constant Jacobian
 /// (area-preserving up to the factor A), so a grid of equal cells in the
@@ -126,6 +91,41 @@ void gridDimensions(int samples, int &small, int &large) {
 }
 
 }  // namespace
+
+/// Sutherland–Hodgman clip of `polygon` to the open half-space dot(x − p, n) > 0.
+/// The part behind the receiver's tangent plane is invisible to it, and the
+/// contour formula is only valid for a polygon entirely in front (§1.4).
+///
+/// The part *in* the plane is dropped too: a polygon coplanar with the receiver
+/// (its own face, a neighbouring element of the same wall) exchanges nothing,
+/// yet the contour sum of a polygon lying in the plane around p is ±2π, F = 1.
+/// Signed distances within a round-off tolerance of the polygon's size count
+/// as in the plane, so a receiver point a few ulps off its floor still sees 0.
+/// A vertex exactly in the plane next to one in front is kept (as the
+/// crossing with t = 0 or 1), so a wall sharing an edge with the receiver's
+/// face is not shortened.
+void clipToFrontHalfSpace(const Vec3 &p, const Vec3 &n, std::span<const Vec3> polygon, std::vector<Vec3> &out) {
+  out.clear();
+  const size_t count = polygon.size();
+  double size = 0;
+  for (const Vec3 &v : polygon) size = std::max(size, length(v - p));
+  const double tolerance = 1e-12 * size;
+  auto signedDistance = [&](const Vec3 &v) {
+    const double d = dot(v - p, n);
+    return std::abs(d) <= tolerance ? 0.0 : d;
+  };
+  for (size_t k = 0; k < count; ++k) {
+    const Vec3 &a = polygon[k];
+    const Vec3 &b = polygon[(k + 1) % count];
+    const double da = signedDistance(a), db = signedDistance(b);
+    if (da > 0) out.push_back(a);
+    // The edge enters or leaves the half-space: add the crossing point.
+    if ((da > 0) != (db > 0)) {
+      const double t = da / (da - db);  // da ≠ db here; t ∈ [0, 1]
+      out.push_back(a + (b - a) * t);
+    }
+  }
+}
 
 double formFactorPointToPolygon(const Vec3 &p, const Vec3 &n, std::span<const Vec3> polygon) {
   if (polygon.size() < 3) return 0;

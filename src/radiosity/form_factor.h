@@ -8,12 +8,19 @@
 
 #include <functional>
 #include <span>
+#include <vector>
 
 #include "raytrace/ray_tracer.h"
 #include "util/math.h"
 #include "util/random.h"
 
 namespace radiant {
+
+/// Sutherland–Hodgman clip of `polygon` to the open half-space in front of
+/// p's tangent plane, dot(x − p, n) > 0: the part of a source a receiver at p
+/// can see at all. A polygon in that plane (within round-off of its size)
+/// clips to nothing; `out` may then hold fewer than 3 vertices.
+void clipToFrontHalfSpace(const Vec3 &p, const Vec3 &n, std::span<const Vec3> polygon, std::vector<Vec3> &out);
 
 /// Unoccluded F(dA → polygon) by Lambert's contour integral (REFERENCE §1.4),
 /// with the polygon first clipped to the half-space in front of p's tangent

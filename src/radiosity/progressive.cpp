@@ -32,19 +32,28 @@ namespace radiant {
 
 namespace {
 
-/// Σ ΔB_j A_j / (Σ A − Σ ρ A), per band (rad.c's GetAmbient).
-Bands ambientTerm(const Solution &s) {
-  Bands unshotPower(0.0), area(0.0), reflectedArea(0.0);
+/// Σ ΔB_j A_j / (Σ A − Σ ρ A), per band (rad.c's GetAmbient), and its
+/// indirect part. Unshot power U spreads as (U/A)(1 + ρ̄ + ρ̄² + …); for the
+/// still-unshot emission U_E the first term is direct light, which per-pixel
+/// emitter sampling already counts, so the indirect part is
+/// (U_R + ρ̄ U_E) / (Σ A − Σ ρ A), with U_R the unshot reflected power.
+void ambientTerms(Solution &s, const std::vector<Bands> &unshotEmission) {
+  Bands unshotPower(0.0), unshotEmitted(0.0), area(0.0), reflectedArea(0.0);
   for (size_t j = 0; j < s.elementCount(); ++j) {
     double a = s.mesh.elements[j].area;
     unshotPower += s.unshot[j] * a;
+    unshotEmitted += unshotEmission[j] * a;
     area += Bands(a);
     reflectedArea += s.reflectance[j] * a;
   }
-  Bands ambient(0.0);
-  for (int b = 0; b < kBandCount; ++b)
-    ambient[b] = area[b] - reflectedArea[b] > 0 ? unshotPower[b] / (area[b] - reflectedArea[b]) : 0.0;
-  return ambient;
+  s.ambient = s.indirectAmbient = Bands(0.0);
+  for (int b = 0; b < kBandCount; ++b) {
+    const double absorbing = area[b] - reflectedArea[b];
+    if (!(absorbing > 0)) continue;
+    const double meanReflectance = reflectedArea[b] / area[b];
+    s.ambient[b] = unshotPower[b] / absorbing;
+    s.indirectAmbient[b] = (unshotPower[b] - unshotEmitted[b] * (1 - meanReflectance)) / absorbing;
+  }
 }
 
 }  // namespace
@@ -165,7 +174,7 @@ void solveProgressive(const RayTracer &tracer, Solution &s, const SolverOptions 
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
   }
 
-  s.ambient = ambientTerm(s);
+  ambientTerms(s, unshotEmission);
   Bands unshotPower(0.0);
   s.stats.absorbedPower = Bands(0.0);
   for (size_t j = 0; j < n; ++j) {

@@ -49,6 +49,10 @@ struct Solution {
   std::vector<Bands> unshot;        ///< progressive refinement's unshot radiosity, W·m⁻²
   std::vector<Bands> irradiance;    ///< H, arriving at the front, W·m⁻² (B = E + ρH)
   Bands ambient;                    ///< progressive refinement's ambient term (display only)
+  /// The part of `ambient` that is not the first arrival of still-unshot
+  /// emission: what a method that samples the emitters per pixel (shirley,
+  /// kok) may add as indirect light without counting direct light twice.
+  Bands indirectAmbient;
   std::vector<double> errorEstimate;///< per element: max relative difference between its nodes and itself
   std::vector<Bands> nodeRadiosity; ///< display B (ambient included) at mesh nodes: area-weighted average of the elements around
   std::vector<Link> links;          ///< hierarchical solver only

@@ -61,7 +61,6 @@ class Reichert final : public TwoPassRenderer {
  protected:
   Bands reflected(const VisiblePoint &x, Sampler &rng) const override {
     const RadiosityMesh &mesh = solution_.mesh;
-    const Vec3 &n = x.hit.shadingNormal;
     Bands irradiance(0.0);
     for (uint32_t j = 0; j < mesh.elements.size(); ++j) {
       const Element &element = mesh.elements[j];
@@ -69,11 +68,8 @@ class Reichert final : public TwoPassRenderer {
       double u1 = rng.next(), u2 = rng.next();
       const Vec3 &nj = mesh.normalOf(j);
       if (dot(x.hit.position - element.centre, nj) <= 0) continue;  // x is behind j: j's front faces away
-      double f = formFactorPointToPolygon(x.hit.position, n, {polygons_[j].data(), size_t(element.vertexCount)});
-      if (f <= 0) continue;
-      Vec3 y = pointSampled_ ? element.centre : samplePlanarPolygon(polygons_[j].data(), element.vertexCount, u1, u2);
-      if (!tracer_.visible(x.hit.position, x.hit.geometricNormal, y, nj)) continue;
-      irradiance += solution_.displayRadiosity(j) * f;
+      double f = visibleFormFactor(x, {polygons_[j].data(), size_t(element.vertexCount)}, nj, u1, u2);
+      if (f > 0) irradiance += solution_.displayRadiosity(j) * f;
     }
     return x.material->diffuse * irradiance * kInvPi;
   }
@@ -87,13 +83,9 @@ class Reichert final : public TwoPassRenderer {
       const Vec3 &ns = mesh.patches[source.patch].normal;
       Vec3 centre{};
       for (int k = 0; k < source.vertexCount; ++k) centre += source.corners[k] / double(source.vertexCount);
-      double f = 0;
-      if (dot(x.hit.position - centre, ns) > 0) {
-        f = formFactorPointToPolygon(x.hit.position, x.hit.shadingNormal,
-                                     {source.corners.data(), size_t(source.vertexCount)});
-        Vec3 y = pointSampled_ ? centre : samplePlanarPolygon(source.corners.data(), source.vertexCount, u1, u2);
-        if (f > 0 && !tracer_.visible(x.hit.position, x.hit.geometricNormal, y, ns)) f = 0;
-      }
+      double f = dot(x.hit.position - centre, ns) > 0
+                     ? visibleFormFactor(x, {source.corners.data(), size_t(source.vertexCount)}, ns, u1, u2)
+                     : 0.0;
       correction += solution_.treeRadiosity[link.source] * (f - link.formFactor);
     });
     Bands interpolated = solution_.interpolatedRadiosity(x.location) - solution_.emission[x.location.element];
@@ -101,6 +93,21 @@ class Reichert final : public TwoPassRenderer {
   }
 
  private:
+  /// F(dx → polygon) × V: the exact factor of the part of the polygon in
+  /// front of x's tangent plane, with visibility tested at a point of that
+  /// part (its centroid, or uniform for mc). A point on the part behind the
+  /// plane would always read as occluded, by x's own surface.
+  double visibleFormFactor(const VisiblePoint &x, std::span<const Vec3> polygon, const Vec3 &polygonNormal, double u1,
+                           double u2) const {
+    thread_local std::vector<Vec3> front;
+    clipToFrontHalfSpace(x.hit.position, x.hit.shadingNormal, polygon, front);
+    if (front.size() < 3) return 0;
+    double f = formFactorPointToPolygon(x.hit.position, x.hit.shadingNormal, front);
+    if (f <= 0) return 0;
+    Vec3 y = pointSampled_ ? polygonCentroid(front) : sampleConvexPolygon(front, u1, u2);
+    return tracer_.visible(x.hit.position, x.hit.geometricNormal, y, polygonNormal) ? f : 0.0;
+  }
+
   void prepareLinkMode() {
     const RadiosityMesh &mesh = solution_.mesh;
     selectsByLinks_ = true;

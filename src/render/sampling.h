@@ -2,6 +2,9 @@
 // goodness-of-fit test in tests/sampling_test.cpp.
 #pragma once
 
+#include <algorithm>
+#include <span>
+
 #include "util/math.h"
 
 namespace radiant {
@@ -92,6 +95,40 @@ inline Vec3 samplePlanarPolygon(const Vec3 *v, int count, double u1, double u2) 
   double b1, b2;
   sampleUniformTriangle(u1, u2, b1, b2);
   return *a * (1 - b1 - b2) + *b * b1 + *c * b2;
+}
+
+/// Uniform point on a convex planar polygon of any vertex count (a clipped
+/// element): a fan of triangles from vertex 0, u1 choosing one in proportion
+/// to its area and then rescaled.
+inline Vec3 sampleConvexPolygon(std::span<const Vec3> v, double u1, double u2) {
+  double total = 0;
+  for (size_t k = 1; k + 1 < v.size(); ++k) total += length(cross(v[k] - v[0], v[k + 1] - v[0]));
+  size_t chosen = 1;
+  double target = u1 * total, running = 0;
+  for (size_t k = 1; k + 1 < v.size(); ++k) {
+    double a = length(cross(v[k] - v[0], v[k + 1] - v[0]));
+    chosen = k;
+    if (running + a > target || k + 2 == v.size()) {
+      u1 = a > 0 ? std::clamp((target - running) / a, 0.0, 1.0) : 0.0;
+      break;
+    }
+    running += a;
+  }
+  double b1, b2;
+  sampleUniformTriangle(u1, u2, b1, b2);
+  return v[0] * (1 - b1 - b2) + v[chosen] * b1 + v[chosen + 1] * b2;
+}
+
+/// Area centroid of a convex planar polygon.
+inline Vec3 polygonCentroid(std::span<const Vec3> v) {
+  Vec3 sum{};
+  double total = 0;
+  for (size_t k = 1; k + 1 < v.size(); ++k) {
+    double a = length(cross(v[k] - v[0], v[k + 1] - v[0]));
+    sum += (v[0] + v[k] + v[k + 1]) * (a / 3);
+    total += a;
+  }
+  return total > 0 ? sum / total : v[0];
 }
 
 }  // namespace radiant

@@ -85,15 +85,24 @@ void SecondarySources::computeRemovedRadiosity(const RayTracer &tracer) {
   tbb::parallel_for(size_t(0), mesh.elements.size(), [&](size_t i) {
     const Element &receiver = mesh.elements[i];
     const Vec3 &n = mesh.normalOf(uint32_t(i));
+    std::vector<Vec3> front;
     Bands gathered(0.0);
     for (const Source &source : sources) {
       const Element &k = mesh.elements[source.element];
       if (k.patch == receiver.patch) continue;
       const Vec3 &nk = mesh.normalOf(source.element);
       if (dot(receiver.centre - k.centre, nk) <= 0) continue;  // behind the source: its front faces away
-      double f = formFactorPointToPolygon(receiver.centre, n, source.polygon);
-      if (f <= 0 || !tracer.visible(receiver.centre, n, k.centre, nk)) continue;
-      gathered += source.reflected * f;
+      // The part of the source in front of the receiver, its exact factor,
+      // and its visible fraction from 2×2 stratified points on that part.
+      clipToFrontHalfSpace(receiver.centre, n, source.polygon, front);
+      if (front.size() < 3) continue;
+      double f = formFactorPointToPolygon(receiver.centre, n, front);
+      if (f <= 0) continue;
+      int visible = 0;
+      for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b)
+          visible += tracer.visible(receiver.centre, n, sampleConvexPolygon(front, (a + 0.5) / 2, (b + 0.5) / 2), nk);
+      gathered += source.reflected * (f * visible / 4.0);
     }
     removed_[i] = s.reflectance[i] * gathered;
   });

@@ -38,7 +38,8 @@ class SecondarySources {
   double pdfArea(uint32_t patch) const { return patch < pdfAreaOfPatch_.size() ? pdfAreaOfPatch_[patch] : 0.0; }
   /// The radiance sample() reports for a point of `element`.
   Bands radiance(uint32_t element) const;
-  /// Per element i: ρ_i Σ_{k in selected patches} F(centre_i → k) V (B_k − E_k), W·m⁻²:
+  /// Per element i: ρ_i Σ_{k in selected patches} F(centre_i → k') V(k') (B_k − E_k), W·m⁻²,
+  /// k' the part of element k in front of centre_i's tangent plane, V its visible fraction:
   /// what the solution's indirect radiosity holds from the selected sources.
   const std::vector<Bands> &removedRadiosity() const { return removed_; }
 

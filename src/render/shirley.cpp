@@ -6,7 +6,8 @@
 // the emitters (one shadow ray per camera sample), and the indirect light is
 // interpolated from the solution's separately stored *indirect* radiosity —
 // what arrived after at least one reflection (plus progressive refinement's
-// ambient term, which stands for indirect light not yet shot). The solution's
+// ambient term, less the first arrival of any emission not yet shot, which
+// the emitter samples already count). The solution's
 // direct part is never read, so L D E paths come only from the shadow rays
 // and L D D+ E paths only from the solution.
 //
@@ -35,7 +36,7 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
       : TwoPassRenderer(tracer, options) {
     const Solution &s = solution_;
     std::vector<Bands> indirect(s.elementCount());
-    for (uint32_t e = 0; e < s.elementCount(); ++e) indirect[e] = s.indirect[e] + s.reflectance[e] * s.ambient;
+    for (uint32_t e = 0; e < s.elementCount(); ++e) indirect[e] = s.indirect[e] + s.reflectance[e] * s.indirectAmbient;
     if (sampleReflectors) {
       sources_.emplace(tracer, s, options);
       for (uint32_t e = 0; e < s.elementCount(); ++e) indirect[e] = indirect[e] - sources_->removedRadiosity()[e];
