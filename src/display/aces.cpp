@@ -66,7 +66,7 @@ std::unique_ptr<ToneOperator> createAcesOperator(const Image &radiance, const To
     return std::make_unique<AcesOperator>(1.0, "aces: black image");
   }
   // The log-average is in cd/m²; the curve takes radiance-like values where 0.18 is middle grey.
-  const double exposure = p.key * kLuminousEfficacy / stats.logAverage;
+  const double exposure = keyExposureScale(stats, p.key);
   return std::make_unique<AcesOperator>(
       exposure,
       fmt::format("aces (Hill's RRT+ODT fit): log-average {:.4g} cd/m² exposed to {:.3g}", stats.logAverage, p.key));

@@ -48,8 +48,7 @@ std::unique_ptr<ToneOperator> createLinearOperator(const Image &radiance, const 
     warnings.push_back("linear --exposure auto: the image is black; exposure 0 stops");
     return std::make_unique<LinearOperator>(1.0, "linear: exposure auto (black image), 0 stops");
   }
-  // The log-average is in cd/m²; the display value is in radiance units.
-  const double scale = p.key * kLuminousEfficacy / stats.logAverage;
+  const double scale = keyExposureScale(stats, p.key);
   return std::make_unique<LinearOperator>(
       scale, fmt::format("linear: exposure auto {:+.3g} stops (log-average {:.4g} cd/m² shown at {:.3g})",
                          std::log2(scale), stats.logAverage, p.key));

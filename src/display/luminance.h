@@ -58,4 +58,11 @@ struct LuminanceStatistics {
 
 LuminanceStatistics luminanceStatistics(const Image &image);
 
+/// The radiance scale that shows the image's log-average luminance at display
+/// value `key` (0.18: middle grey). The log-average is in cd/m², the display
+/// value in radiance units, hence the efficacy. Needs a lit image.
+inline double keyExposureScale(const LuminanceStatistics &stats, double key) {
+  return key * kLuminousEfficacy / stats.logAverage;
+}
+
 }  // namespace radiant
