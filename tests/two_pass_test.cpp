@@ -80,15 +80,27 @@ Solution exactCubeSolution(const Scene &scene) {
 constexpr double kGatherAtFloorCentre = 0.183113, kDirectAtFloorCentre = 0.119728;
 constexpr double kIndirectAtFloorCentre = 0.063385;
 const Ray kRayToFloorCentre{{0.5, 0.5, 0.5}, {0, -1, 0}};
+/// The floor element's own indirect radiosity, B − ρF·E (§8.5), which shirley interpolates.
+constexpr double kIndirectOfTheFloorElement = 0.1666003 - 0.5 * 0.1998249;
+
+/// The unit cube with its exact patch-level solution, and a renderer on it.
+struct ExactCube {
+  Scene scene = unitCubeWithCeilingLight();
+  RayTracer tracer{scene};
+  Solution solution = exactCubeSolution(scene);
+  RendererOptions options = [this] {
+    RendererOptions o;
+    o.solution = &solution;
+    return o;
+  }();
+  std::unique_ptr<Renderer> renderer(const std::string &method) const {
+    return createRenderer(method, tracer, options);
+  }
+};
 
 TEST(TwoPass, RushmeierConvergesToTheGatherAtTheFloorCentre) {
-  Scene scene = unitCubeWithCeilingLight();
-  RayTracer tracer(scene);
-  Solution solution = exactCubeSolution(scene);
-  RendererOptions options;
-  options.solution = &solution;
-  auto renderer = createRenderer("rushmeier", tracer, options);
-  Estimate e = estimateRay(*renderer, kRayToFloorCentre, 400000);
+  ExactCube cube;
+  Estimate e = estimateRay(*cube.renderer("rushmeier"), kRayToFloorCentre, 400000);
   const double expected = kGatherAtFloorCentre / kPi;  // radiance B/π
   EXPECT_NEAR(e.mean, expected, 4 * e.standardError);
   // …and is told apart from the element average (and from counting the
@@ -101,14 +113,10 @@ TEST(TwoPass, RushmeierConvergesToTheGatherAtTheFloorCentre) {
 TEST(TwoPass, ReichertGathersTheExactFormFactorsAtTheFloorCentre) {
   // No occluders in the cube: every visibility ray succeeds and the contour
   // integrals make the gather exact, for point and Monte Carlo sampling alike.
-  Scene scene = unitCubeWithCeilingLight();
-  RayTracer tracer(scene);
-  Solution solution = exactCubeSolution(scene);
+  ExactCube cube;
   for (const char *ff : {"point", "mc"}) {
-    RendererOptions options;
-    options.solution = &solution;
-    options.formFactorSampling = ff;
-    auto renderer = createRenderer("reichert", tracer, options);
+    cube.options.formFactorSampling = ff;
+    auto renderer = cube.renderer("reichert");
     Sampler rng{Pcg32()};
     EXPECT_NEAR(renderer->radiance(kRayToFloorCentre, rng)[0] * kPi, kGatherAtFloorCentre, 2e-6) << ff;
   }
@@ -160,15 +168,9 @@ TEST(TwoPass, ReichertCountsTheFrontPartOfACutElement) {
 }
 
 TEST(TwoPass, ShirleyAddsTheInterpolatedIndirectToTheExactDirect) {
-  Scene scene = unitCubeWithCeilingLight();
-  RayTracer tracer(scene);
-  Solution solution = exactCubeSolution(scene);
-  RendererOptions options;
-  options.solution = &solution;
-  auto renderer = createRenderer("shirley", tracer, options);
-  Estimate e = estimateRay(*renderer, kRayToFloorCentre, 100000);
-  const double indirectOfTheFloorElement = 0.1666003 - 0.5 * 0.1998249;
-  EXPECT_NEAR(e.mean, (kDirectAtFloorCentre + indirectOfTheFloorElement) / kPi, 4 * e.standardError);
+  ExactCube cube;
+  Estimate e = estimateRay(*cube.renderer("shirley"), kRayToFloorCentre, 100000);
+  EXPECT_NEAR(e.mean, (kDirectAtFloorCentre + kIndirectOfTheFloorElement) / kPi, 4 * e.standardError);
 }
 
 TEST(TwoPass, KokRemovesExactlyWhatItSamplesFromTheSecondarySources) {
@@ -176,13 +178,10 @@ TEST(TwoPass, KokRemovesExactlyWhatItSamplesFromTheSecondarySources) {
   // at the floor element's centre is the exact wall gather there, 0.063385,
   // so sampling the walls per pixel and removing their share from the
   // solution leaves shirley's expectation at that point.
-  Scene scene = unitCubeWithCeilingLight();
-  RayTracer tracer(scene);
-  Solution solution = exactCubeSolution(scene);
-  RendererOptions options;
-  options.solution = &solution;
-  options.secondarySources = 10;
-  SecondarySources sources(tracer, solution, options);
+  ExactCube cube;
+  const Solution &solution = cube.solution;
+  cube.options.secondarySources = 10;
+  SecondarySources sources(cube.tracer, solution, cube.options);
   EXPECT_EQ(sources.patches().size(), 5u);  // 4 walls and the floor; the ceiling reflects nothing
   EXPECT_NEAR(sources.powerFraction(), 1.0, 1e-12);
   for (uint32_t e = 0; e < solution.elementCount(); ++e) {
@@ -191,14 +190,12 @@ TEST(TwoPass, KokRemovesExactlyWhatItSamplesFromTheSecondarySources) {
     }
   }
 
-  auto renderer = createRenderer("kok", tracer, options);
-  Estimate e = estimateRay(*renderer, kRayToFloorCentre, 100000);
-  const double indirectOfTheFloorElement = 0.1666003 - 0.5 * 0.1998249;
-  EXPECT_NEAR(e.mean, (kDirectAtFloorCentre + indirectOfTheFloorElement) / kPi, 4 * e.standardError);
+  Estimate e = estimateRay(*cube.renderer("kok"), kRayToFloorCentre, 100000);
+  EXPECT_NEAR(e.mean, (kDirectAtFloorCentre + kIndirectOfTheFloorElement) / kPi, 4 * e.standardError);
 
   // The fraction rule selects the fewest patches carrying that share of the power.
-  options.secondarySourceFraction = 0.5;
-  SecondarySources half(tracer, solution, options);
+  cube.options.secondarySourceFraction = 0.5;
+  SecondarySources half(cube.tracer, solution, cube.options);
   EXPECT_EQ(half.patches().size(), 3u);  // five nearly equal reflectors: three carry over half
 }
 
