@@ -7,8 +7,10 @@
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
 #include <png.h>
+#include <fmt/format.h>
 #include <stb/stb_image_write.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -54,6 +56,16 @@ void writeImage(const Image &image, const std::string &path, double exposureStop
   throw std::runtime_error("cannot write '" + path + "': unknown image extension (expected .exr, .pfm or .png)");
 }
 
+namespace {
+/// Fichet et al. 2021: emissive Stokes component 0 at a wavelength, the
+/// decimal point written as a comma ('.' separates layers): "S0.412,5nm".
+std::string spectralChannelName(double nm) {
+  std::string number = fmt::format("{:g}", nm);
+  std::replace(number.begin(), number.end(), '.', ',');
+  return "S0." + number + "nm";
+}
+}  // namespace
+
 void writeExr(const Image &image, const std::string &path) {
   writeAtomically(path, [&](const std::string &temporary) {
     Imf::Header header(image.width, image.height);
@@ -63,6 +75,16 @@ void writeExr(const Image &image, const std::string &path) {
     const bool hasEmitter = image.emitterFraction.size() == size_t(image.width) * image.height;
     if (hasEmitter) header.channels().insert(kEmitterChannel, Imf::Channel(Imf::FLOAT));
     if (!image.quantity.empty()) header.insert(kQuantityAttribute, Imf::StringAttribute(image.quantity));
+    const size_t bands = image.wavelengths.size();
+    const bool hasSpectra = bands > 0 && image.spectral.size() == bands * image.width * image.height;
+    std::vector<std::string> spectralNames;
+    if (hasSpectra) {
+      for (double nm : image.wavelengths) {
+        spectralNames.push_back(spectralChannelName(nm));
+        header.channels().insert(spectralNames.back(), Imf::Channel(Imf::FLOAT));
+      }
+      header.insert("emissiveUnits", Imf::StringAttribute("W.m^-2.sr^-1.nm^-1"));
+    }
     Imf::OutputFile file(temporary.c_str(), header);
     Imf::FrameBuffer frame;
     const size_t xStride = 3 * sizeof(float), yStride = xStride * image.width;
@@ -74,6 +96,10 @@ void writeExr(const Image &image, const std::string &path) {
       frame.insert(kEmitterChannel,
                    Imf::Slice(Imf::FLOAT, reinterpret_cast<char *>(const_cast<float *>(image.emitterFraction.data())),
                               sizeof(float), sizeof(float) * image.width));
+    for (size_t i = 0; hasSpectra && i < bands; ++i)
+      frame.insert(spectralNames[i],
+                   Imf::Slice(Imf::FLOAT, reinterpret_cast<char *>(const_cast<float *>(image.spectral.data() + i)),
+                              bands * sizeof(float), bands * sizeof(float) * image.width));
     file.setFrameBuffer(frame);
     file.writePixels(image.height);
   });

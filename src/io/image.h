@@ -25,6 +25,12 @@ struct Image {
   /// writes) or "irradiance" (W·m⁻²). OpenEXR keeps it as the string attribute
   /// "radiantQuantity"; empty when unknown.
   std::string quantity;
+  /// Spectral renders only: the sample wavelengths (nm) and, per pixel, one
+  /// float per wavelength of spectral radiance in W·m⁻²·sr⁻¹·nm⁻¹. OpenEXR
+  /// keeps them as channels "S0.<λ>nm" (Fichet, Pacanowski & Wilkie 2021,
+  /// "An OpenEXR layout for spectral images", JCGT 10(3)); PFM and PNG drop them.
+  std::vector<double> wavelengths;
+  std::vector<float> spectral;
 
   Image() = default;
   Image(int w, int h) : width(w), height(h), rgb(size_t(w) * h * 3, 0.0f) {}

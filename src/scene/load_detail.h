@@ -2,9 +2,11 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "scene/json_reader.h"
 #include "scene/scene.h"
 #include "util/error.h"
 
@@ -55,6 +57,26 @@ void addUvSphere(Scene &scene, const Vec3 &center, double radius, int segments, 
 void appendObjFromScene(Scene &scene, const std::string &objPath, const Transform &toWorld,
                         const std::string &objectName, int defaultMaterial, const std::string &defaultMaterialName,
                         const InputLocation &fileFrom, const InputLocation &materialFrom);
+
+// Spectral scenes (load_spectral.cpp).
+/// A material value {"spectrum": [[nm, value], …], "scale": s}.
+SampledSpectrum parseSpectrum(const JsonNode &node);
+/// The top-level "spectral" block: "wavelengths", or "range" and "samples".
+SpectralSettings parseSpectralSettings(const JsonNode &node);
+/// 16 samples, 400–700 nm every 20 nm: for a scene that gives spectra but no "spectral" block.
+SpectralSettings defaultSpectralSettings();
+/// True when a value in the JSON "materials" object is a spectrum.
+bool materialsGiveSpectra(const JsonNode &materials);
+/// The per-band value at `key`: a number (grey), three numbers (RGB scenes
+/// only) or a spectrum (stored in `spectrum`); `fallback` when absent.
+Bands parseBandValue(const JsonNode &material, const std::string &key, const Bands &fallback, bool spectralScene,
+                     std::optional<SampledSpectrum> &spectrum);
+/// Range checks of a material's spectra at their samples.
+void checkSpectra(const Material &material, const InputLocation &where, const MaterialFieldNames &names = {});
+/// After loading a spectral scene: every material is grey or spectral, glossy
+/// sums ≤ 1 at every wavelength; then the bands get the spectra's sRGB colour.
+/// `materialLocations` locates the JSON materials (by index) for messages.
+void checkSpectralScene(Scene &scene, const std::vector<InputLocation> &materialLocations);
 
 /// Camera and image/render settings checks shared by the JSON loader and validateScene.
 void checkCamera(const CameraSettings &camera, const InputLocation &where);

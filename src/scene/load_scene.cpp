@@ -97,7 +97,8 @@ std::string resolveExistingFile(const JsonNode &node, const fs::path &sceneDirec
   return path.lexically_normal().string();
 }
 
-Material parseMaterial(const JsonNode &node, const std::string &name, const fs::path &sceneDirectory) {
+Material parseMaterial(const JsonNode &node, const std::string &name, const fs::path &sceneDirectory,
+                       bool spectralScene) {
   node.expectObject();
   static const std::vector<std::string> kTypes = {"lambertian", "mirror", "dielectric", "glossy"};
   std::string type = parseType(node, kTypes, "lambertian", "material");
@@ -110,32 +111,36 @@ Material parseMaterial(const JsonNode &node, const std::string &name, const fs::
   Material m;
   m.name = name;
   detail::MaterialFieldNames names;
+  auto value = [&](const char *key, const Bands &fallback, std::optional<SampledSpectrum> &spectrum) {
+    return detail::parseBandValue(node, key, fallback, spectralScene, spectrum);
+  };
   if (type == "lambertian") {
     m.kind = MaterialKind::Lambertian;
-    m.diffuse = node.bands("reflectance", Bands(0.5));
+    m.diffuse = value("reflectance", Bands(0.5), m.spectra.diffuse);
   } else if (type == "mirror") {
     m.kind = MaterialKind::Mirror;
     m.diffuse = Bands(0.0);
-    m.specular = node.bands("reflectance", Bands(1.0));
+    m.specular = value("reflectance", Bands(1.0), m.spectra.specular);
     names.specular = "reflectance";
   } else if (type == "dielectric") {
     m.kind = MaterialKind::Dielectric;
     m.diffuse = Bands(0.0);
     m.ior = node.number("ior", 1.5);
-    m.specular = node.bands("transmittance", Bands(1.0));
+    m.specular = value("transmittance", Bands(1.0), m.spectra.specular);
     names.specular = "transmittance";
   } else {
     m.kind = MaterialKind::Glossy;
-    m.diffuse = node.bands("reflectance", Bands(0.5));
-    m.specular = node.bands("specular", Bands(0.2));
+    m.diffuse = value("reflectance", Bands(0.5), m.spectra.diffuse);
+    m.specular = value("specular", Bands(0.2), m.spectra.specular);
     m.roughness = node.number("roughness", 0.2);
   }
-  m.emission = node.bands("emission", Bands(0.0));
+  m.emission = value("emission", Bands(0.0), m.spectra.emission);
   if (node.has("texture"))
     m.diffuseTexture = resolveExistingFile(node.child("texture"), sceneDirectory, "texture file");
   if (node.has("bump")) m.bumpTexture = resolveExistingFile(node.child("bump"), sceneDirectory, "bump map file");
   m.bumpScale = node.number("bump_scale", 1.0);
   detail::checkMaterial(m, node.location(), names);
+  detail::checkSpectra(m, node.location(), names);
   return m;
 }
 
@@ -240,7 +245,7 @@ struct SceneParser {
 
   void parse(const Json &document) {
     JsonNode root(document, file, "");
-    root.checkKeys({"version", "units", "camera", "image", "render", "materials", "objects"});
+    root.checkKeys({"version", "units", "camera", "image", "render", "spectral", "materials", "objects"});
     if (root.has("version")) {
       JsonNode version = root.child("version");
       if (version.asInteger(INT64_MIN, INT64_MAX) != 1)
@@ -280,6 +285,12 @@ struct SceneParser {
       detail::checkCamera(camera, node.location());
     }
 
+    // Spectral when the scene says so or gives any spectrum (docs/spectral.md).
+    if (root.has("spectral"))
+      scene.spectral = detail::parseSpectralSettings(root.child("spectral"));
+    else if (root.has("materials") && detail::materialsGiveSpectra(root.child("materials")))
+      scene.spectral = detail::defaultSpectralSettings();
+    std::vector<InputLocation> materialLocations;
     if (root.has("materials")) {
       JsonNode materials = root.child("materials");
       materials.expectObject();
@@ -287,7 +298,8 @@ struct SceneParser {
         if (it.key() == "comment") continue;
         JsonNode node = materials.child(it.key());
         if (it.key().empty()) node.fail("a material name cannot be empty");
-        scene.materials.push_back(parseMaterial(node, it.key(), directory));
+        scene.materials.push_back(parseMaterial(node, it.key(), directory, scene.spectral.enabled()));
+        materialLocations.push_back(node.location());
       }
     }
     JsonNode objects = root.child("objects");
@@ -295,6 +307,7 @@ struct SceneParser {
     for (size_t i = 0; i < entries.size(); ++i) parseObject(entries[i], i);
 
     if (!hasCamera) scene.camera = detail::frameBounds(scene);
+    if (scene.spectral.enabled()) detail::checkSpectralScene(scene, materialLocations);
   }
 };
 

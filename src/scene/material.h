@@ -5,8 +5,10 @@
 // per-pixel renderers and the path tracer see the whole model.
 #pragma once
 
+#include <optional>
 #include <string>
 
+#include "colour/spectrum.h"
 #include "util/spectrum.h"
 
 namespace radiant {
@@ -20,6 +22,13 @@ enum class MaterialKind {
 
 const char *materialKindName(MaterialKind kind);
 
+/// The values of a spectral scene's material given as spectra (docs/spectral.md).
+/// A value without a spectrum is grey: the same at every wavelength.
+struct MaterialSpectra {
+  std::optional<SampledSpectrum> diffuse, specular, emission;
+  bool any() const { return diffuse || specular || emission; }
+};
+
 struct Material {
   std::string name;
   MaterialKind kind = MaterialKind::Lambertian;
@@ -29,6 +38,11 @@ struct Material {
   double roughness = 0.2;///< GGX α (Glossy), in (0, 1]
   /// Emitted radiance, W·sr⁻¹·m⁻², uniform over the front hemisphere only.
   Bands emission{0.0};
+
+  /// Spectral scenes only. The Bands above then hold the values at the three
+  /// wavelengths of the current pass (applySpectralPass), or, outside a pass,
+  /// the spectra's linear sRGB colour.
+  MaterialSpectra spectra;
 
   // Surface detail, parsed now and used by the texture/bump stage later.
   std::string diffuseTexture;  ///< map_Kd, path resolved against the file that named it

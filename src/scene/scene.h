@@ -6,6 +6,7 @@
 // faces as triangles, listed in `triangles`.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -56,6 +57,19 @@ struct RenderSettings {
   double exposure = 0;           ///< PNG exposure in stops
 };
 
+/// The sample wavelengths of a spectral scene (docs/spectral.md). The solution
+/// and every renderer run at these wavelengths, three at a time (one pass per
+/// three, in the RGB machinery's three bands); colour is formed at display.
+struct SpectralSettings {
+  std::vector<double> wavelengths;  ///< nm, strictly increasing; empty: an RGB scene
+  bool enabled() const { return !wavelengths.empty(); }
+  int passCount() const { return (int(wavelengths.size()) + kBandCount - 1) / kBandCount; }
+  /// Wavelength of band `band` in pass `pass`; the last pass repeats the last wavelength in its unused bands.
+  double wavelength(int pass, int band) const {
+    return wavelengths[std::min(size_t(pass) * kBandCount + band, wavelengths.size() - 1)];
+  }
+};
+
 struct Scene {
   std::string sourceFile;  ///< the scene file, for messages and for solution files later
   /// Metres per scene unit (the JSON "units"); command-line camera positions are in scene units.
@@ -71,6 +85,7 @@ struct Scene {
 
   CameraSettings camera;
   RenderSettings render;
+  SpectralSettings spectral;
 
   /// Degenerate faces dropped while loading (counted for the warning).
   size_t droppedDegenerateFaces = 0;
