@@ -10,16 +10,18 @@
 #include <optional>
 #include <sstream>
 
+#include "colour_options.h"
 #include "commands.h"
 #include "display_options.h"
 #include "io/solution_file.h"
 #include "radiosity_options.h"
 #include "raytrace/ray_tracer.h"
 #include "render/driver.h"
-#include "render/film_image.h"
 #include "render/renderer.h"
+#include "render/spectral_film.h"
 #include "render/two_pass.h"
 #include "scene/load_scene.h"
+#include "scene/spectral_scene.h"
 #include "util/error.h"
 
 namespace radiant {
@@ -42,6 +44,7 @@ struct RenderCommandOptions {
   RendererOptions twoPass;  ///< the two-pass methods' flags
   std::string selectiveMapPath;
   DisplayCommandOptions display;  ///< the PNG outputs' display mapping
+  ColourCommandOptions colour;     ///< spectral scenes
 };
 
 InputLocation flag(const std::string &name) { return InputLocation{name}; }
@@ -162,6 +165,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
   app.add_option("--selective-map", o->selectiveMapPath,
                  "--selective: write a PNG of the pixels re-evaluated (white) or, in link mode, how many links");
   addDisplayOptions(app, o->display);
+  addColourOptions(app, o->colour);
 
   return [o, &app]() {
     {
@@ -180,6 +184,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
         throw InputError(flag("--selective-map"), "'" + o->selectiveMapPath + "': expected a .png file");
     }
     Scene scene = loadScene(o->scenePath);
+    const WhiteBalance balance = applyColourOptions(app, o->colour, scene);
     const double unit = scene.metresPerUnit;
     if (!o->eye.empty()) scene.camera.eye = parseVector(o->eye, "--eye") * unit;
     if (!o->target.empty()) scene.camera.target = parseVector(o->target, "--target") * unit;
@@ -244,34 +249,53 @@ CommandRunner addRenderCommand(CLI::App &app) {
       for (const std::string &warning : scene.warnings) fmt::print(stderr, "radiant: warning: {}\n", warning);
 
     const RendererInfo &method = findRenderer(o->method);
-    RayTracer tracer(scene);
-    RendererOptions rendererOptions = o->twoPass;
-    rendererOptions.maxDepth = r.maxDepth;
-    Solution solution;
-    if (method.needsSolution) {
-      solution = o->solutionPath.empty() ? solveScene(scene, tracer, o->radiosity, r.seed, o->threads, o->quiet)
-                                         : readSolution(o->solutionPath, scene);
-      rendererOptions.solution = &solution;
-    }
-    std::unique_ptr<Renderer> renderer = createRenderer(o->method, tracer, rendererOptions);
+    RayTracer tracer(scene);  // geometry only: a spectral pass changes the materials, not the rays
     PinholeCamera camera(scene.camera, r.width, r.height);
-    Film film(r.width, r.height);
-    RenderStats stats = renderImage(camera, *renderer, driver, film,
-                                    o->quiet ? ProgressCallback{} : makeConsoleProgress(o->method));
+    std::vector<Solution> solutions;
+    if (method.needsSolution && !o->solutionPath.empty()) solutions = readSolutionPasses(o->solutionPath, scene);
 
-    if (!o->selectiveMapPath.empty()) writeSelectiveMap(*renderer, camera, r.width, r.height, o->selectiveMapPath);
-    Image image = meanImage(film);
+    // One pass for an RGB scene; ⌈N/3⌉ for a spectral one, each at three of its wavelengths.
+    const bool spectral = scene.spectral.enabled();
+    const int passes = spectral ? scene.spectral.passCount() : 1;
+    RenderStats stats;
+    auto renderPass = [&](int pass, Film &film) {
+      const std::string label =
+          spectral ? fmt::format("{} {} ({}/{})", o->method, passWavelengthLabel(scene, pass), pass + 1, passes)
+                   : o->method;
+      RendererOptions rendererOptions = o->twoPass;
+      rendererOptions.maxDepth = r.maxDepth;
+      Solution solved;
+      if (method.needsSolution) {
+        if (solutions.empty()) {
+          if (!o->quiet && spectral) fmt::print(stderr, "radiant: solving at {}\n", passWavelengthLabel(scene, pass));
+          solved = solveScene(scene, tracer, o->radiosity, r.seed, o->threads, o->quiet);
+        }
+        rendererOptions.solution = solutions.empty() ? &solved : &solutions[pass];
+      }
+      std::unique_ptr<Renderer> renderer = createRenderer(o->method, tracer, rendererOptions);
+      DriverOptions passDriver = driver;
+      passDriver.timeBudgetSeconds = driver.timeBudgetSeconds / passes;  // --time covers all passes
+      RenderStats passStats = renderImage(camera, *renderer, passDriver, film,
+                                          o->quiet ? ProgressCallback{} : makeConsoleProgress(label));
+      stats.samplesPerPixel = std::max(stats.samplesPerPixel, passStats.samplesPerPixel);
+      stats.seconds += passStats.seconds;
+      stats.cameraSamples += passStats.cameraSamples;
+      if (!o->selectiveMapPath.empty() && pass == 0)
+        writeSelectiveMap(*renderer, camera, r.width, r.height, o->selectiveMapPath);
+    };
+    SpectralImages rendered = renderPasses(scene, r.width, r.height, balance, renderPass);
+    Image &image = rendered.colour;
     if (driver.onlyPixelX >= 0 && !o->quiet) {
       const float *v = image.pixel(driver.onlyPixelX, driver.onlyPixelY);
-      fmt::print(stderr, "pixel {},{}: radiance {:.6g} {:.6g} {:.6g} W/(sr·m²)\n", driver.onlyPixelX,
-                 driver.onlyPixelY, v[0], v[1], v[2]);
+      fmt::print(stderr, "pixel {},{}: radiance {:.6g} {:.6g} {:.6g} W/(sr·m²){}\n", driver.onlyPixelX,
+                 driver.onlyPixelY, v[0], v[1], v[2], spectral ? " (linear sRGB from the spectrum)" : "");
     }
     writeRenderOutputs(image, outputs, display, app.count("--tonemap") > 0, tracer, camera, o->quiet);
-    if (!o->variancePath.empty()) writeImage(varianceImage(film), o->variancePath);
+    if (!o->variancePath.empty()) writeImage(rendered.variance, o->variancePath);
     if (!o->quiet)
-      fmt::print(stderr, "radiant: {} spp in {:.2f} s ({:.3g} Msamples/s); wrote {}\n", stats.samplesPerPixel,
-                 stats.seconds, stats.cameraSamples / std::max(stats.seconds, 1e-9) * 1e-6,
-                 fmt::join(outputs, ", "));
+      fmt::print(stderr, "radiant: {} spp{} in {:.2f} s ({:.3g} Msamples/s); wrote {}\n", stats.samplesPerPixel,
+                 spectral ? fmt::format(" × {} passes", passes) : std::string(), stats.seconds,
+                 stats.cameraSamples / std::max(stats.seconds, 1e-9) * 1e-6, fmt::join(outputs, ", "));
     return 0;
   };
 }

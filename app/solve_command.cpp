@@ -2,11 +2,13 @@
 // reports it, and optionally saves it for `radiant render --solution`.
 #include <fmt/format.h>
 
+#include "colour_options.h"
 #include "commands.h"
 #include "io/solution_file.h"
 #include "radiosity/report.h"
 #include "radiosity_options.h"
 #include "scene/load_scene.h"
+#include "scene/spectral_scene.h"
 
 namespace radiant {
 
@@ -14,6 +16,7 @@ namespace {
 struct SolveCommandOptions {
   std::string scenePath, outputPath, reportPath;
   RadiosityCommandOptions radiosity;
+  ColourCommandOptions colour;
   uint64_t seed = 1;
   int threads = 0;
   bool quiet = false;
@@ -28,6 +31,7 @@ CommandRunner addSolveCommand(CLI::App &app) {
                  "Write a CSV with one row per object: area, mean radiosity and irradiance (W/m²), "
                  "luminance (cd/m²) and illuminance (lux)");
   addRadiosityOptions(app, o->radiosity);
+  addColourOptions(app, o->colour);
   app.add_option("--seed", o->seed, "Random seed of the form-factor shadow rays")->default_val(1);
   app.add_option("--threads", o->threads, "Worker threads (0: all cores); does not change the solution")
       ->default_val(0)
@@ -37,16 +41,28 @@ CommandRunner addSolveCommand(CLI::App &app) {
   return [o, &app]() {
     rejectUnusedRadiosityOptions(app, true, "", o->radiosity);
     Scene scene = loadScene(o->scenePath);
+    const WhiteBalance balance = applyColourOptions(app, o->colour, scene);
     if (!o->quiet)
       for (const std::string &warning : scene.warnings) fmt::print(stderr, "radiant: warning: {}\n", warning);
     RayTracer tracer(scene);
-    Solution solution = solveScene(scene, tracer, o->radiosity, o->seed, o->threads, o->quiet);
+    // One solution for an RGB scene, one per pass of three wavelengths for a spectral one.
+    const int passes = scene.spectral.enabled() ? scene.spectral.passCount() : 1;
+    std::vector<Solution> solutions;
+    for (int pass = 0; pass < passes; ++pass) {
+      if (scene.spectral.enabled()) {
+        applySpectralPass(scene, pass);
+        if (!o->quiet)
+          fmt::print(stderr, "radiant: solving at {} ({}/{})\n", passWavelengthLabel(scene, pass), pass + 1, passes);
+      }
+      solutions.push_back(solveScene(scene, tracer, o->radiosity, o->seed, o->threads, o->quiet));
+    }
+    if (scene.spectral.enabled()) applySpectralColour(scene, balance);
     if (!o->outputPath.empty()) {
-      writeSolution(solution, scene, o->outputPath);
+      writeSolutionPasses(solutions, scene, o->outputPath);
       if (!o->quiet) fmt::print(stderr, "radiant: wrote {}\n", o->outputPath);
     }
     if (!o->reportPath.empty()) {
-      writeSurfaceReport(solution, scene, o->reportPath);
+      writeSurfaceReport(solutions, scene, o->reportPath, balance);
       if (!o->quiet) fmt::print(stderr, "radiant: wrote {}\n", o->reportPath);
     }
     return 0;

@@ -128,6 +128,32 @@ expect_error "--selective-map without --selective" "needs --selective" \
   "$radiant" render "$cornell" --method kok --selective-map m.png -q
 [ ! -e m.png ] && pass || fail "a refused render wrote an image"
 
+# Spectral scenes (docs/spectral.md): passes of three wavelengths, colour at display.
+spectral="$source_dir/scenes/cornell-box-spectral/scene.json"
+if "$radiant" render "$spectral" --spp 2 --width 24 --height 24 -o sp.exr -o sp.png --variance spv.exr 2>sp.txt; then
+  for f in sp.exr sp.png spv.exr; do [ -s "$f" ] && pass || fail "spectral render did not write $f"; done
+  grep -q "700 nm (6/6)" sp.txt && pass || { fail "spectral progress does not name the passes"; cat sp.txt; }
+  grep -q "× 6 passes" sp.txt && pass || { fail "spectral summary does not count the passes"; cat sp.txt; }
+else
+  fail "spectral render failed"; cat sp.txt
+fi
+"$radiant" render "$spectral" --colour rgb --white-balance equal-energy --spp 1 --width 16 --height 16 -o sprgb.png \
+  -q && [ -s sprgb.png ] && pass || fail "render --colour rgb of a spectral scene"
+if "$radiant" solve "$spectral" --mesh-size 200 -o sp.rad --report sp.csv -q; then
+  head -1 sp.csv | grep -q "radiosity_700nm_W_m2_nm" && pass || fail "spectral report lacks the wavelength columns"
+  "$radiant" render "$spectral" --solution sp.rad --method interpolate --width 16 --height 16 -o spi.exr -q \
+    && pass || fail "render --solution of a spectral solution"
+  expect_error "spectral solution for the RGB run" "another scene" \
+    "$radiant" render "$spectral" --colour rgb --solution sp.rad --method interpolate -o x.exr -q
+else
+  fail "spectral solve failed"
+fi
+expect_error "--white-balance on an RGB scene" "applies to spectral scenes only" \
+  "$radiant" render "$cornell" --white-balance equal-energy -o x.exr -q
+sed 's/"reflectance": 0.78,/"reflectance": [0.78, 0.7, 0.6],/' "$spectral" > rgb-in-spectral.json
+expect_error "an RGB colour in a spectral scene" "/materials/light/reflectance: .*spectral" \
+  "$radiant" render rgb-in-spectral.json -o x.exr -q
+
 # tonemap: a saved EXR mapped again without rendering (docs/tone-mapping.md).
 # expect_exit2 NAME PATTERN COMMAND... : bad input exits with status 2 and names the culprit
 expect_exit2() {

@@ -107,19 +107,28 @@ uint64_t sceneFingerprint(const Scene &scene) {
     f.value(face.material);
   }
   f.value(uint64_t(scene.materials.size()));
+  // A spectral scene's bands change from pass to pass: its spectra identify it.
+  const bool spectral = scene.spectral.enabled();
+  for (double nm : scene.spectral.wavelengths) f.value(nm);
+  auto spectrum = [&](const std::optional<SampledSpectrum> &s, const Bands &grey) {
+    if (!s) return f.value(grey[0]);
+    for (size_t i = 0; i < s->values.size(); ++i) f.value(s->wavelengths[i]), f.value(s->values[i]);
+  };
   for (const Material &m : scene.materials) {
     f.value(int(m.kind));
+    if (spectral) {
+      spectrum(m.spectra.diffuse, m.diffuse), spectrum(m.spectra.emission, m.emission);
+      spectrum(m.spectra.specular, m.specular);
+      continue;
+    }
     for (int b = 0; b < kBandCount; ++b) f.value(m.diffuse[b]), f.value(m.emission[b]), f.value(m.specular[b]);
   }
   return f.h;
 }
 
-void writeSolution(const Solution &s, const Scene &scene, const std::string &path) {
-  Writer w;
-  w.put(kMagic);
-  w.put(kSolutionFormatVersion);
-  w.put(uint32_t(kBandCount));
-  w.put(sceneFingerprint(scene));
+namespace {
+
+void putSolution(Writer &w, const Solution &s) {
   const RadiosityMesh &m = s.mesh;
   w.put(uint64_t(m.patches.size()));
   w.put(uint64_t(m.elements.size()));
@@ -169,6 +178,20 @@ void writeSolution(const Solution &s, const Scene &scene, const std::string &pat
     w.put(l.receiver), w.put(l.source), w.put(l.formFactor), w.put(l.visibleFraction);
     w.put(uint8_t(l.visibility)), w.put(l.carriedPower);
   }
+}
+
+}  // namespace
+
+void writeSolutionPasses(std::span<const Solution> passes, const Scene &scene, const std::string &path) {
+  if (int(passes.size()) != (scene.spectral.enabled() ? scene.spectral.passCount() : 1))
+    throw std::logic_error("writeSolutionPasses: one solution per spectral pass expected");
+  Writer w;
+  w.put(kMagic);
+  w.put(kSolutionFormatVersion);
+  w.put(uint32_t(kBandCount));
+  w.put(sceneFingerprint(scene));
+  w.put(uint32_t(passes.size()));
+  for (const Solution &s : passes) putSolution(w, s);
 
   writeAtomically(path, [&](const std::string &temporary) {
     std::ofstream out(temporary, std::ios::binary);
@@ -178,7 +201,15 @@ void writeSolution(const Solution &s, const Scene &scene, const std::string &pat
   });
 }
 
-Solution readSolution(const std::string &path, const Scene &scene) {
+void writeSolution(const Solution &solution, const Scene &scene, const std::string &path) {
+  writeSolutionPasses(std::span<const Solution>(&solution, 1), scene, path);
+}
+
+namespace {
+Solution getSolution(Reader &r, const Scene &scene);
+}  // namespace
+
+std::vector<Solution> readSolutionPasses(const std::string &path, const Scene &scene) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(InputLocation{path}, "cannot open the solution file");
   Reader r(std::string(std::istreambuf_iterator<char>(in), {}), path);
@@ -194,7 +225,27 @@ Solution readSolution(const std::string &path, const Scene &scene) {
   if (r.get<uint64_t>() != sceneFingerprint(scene))
     r.fail("the solution was made for another scene (its geometry or materials differ from '" + scene.sourceFile +
            "'); solve this scene again with `radiant solve`");
+  const uint32_t expected = scene.spectral.enabled() ? uint32_t(scene.spectral.passCount()) : 1;
+  const uint32_t passes = r.get<uint32_t>();
+  if (passes != expected)
+    r.fail(fmt::format("the solution has {} spectral passes; the scene needs {} (solve it again, with the same --colour)",
+                       passes, expected));
+  std::vector<Solution> solutions;
+  for (uint32_t p = 0; p < passes; ++p) solutions.push_back(getSolution(r, scene));
+  if (!r.atEnd()) r.fail("unexpected data after the solution");
+  return solutions;
+}
 
+Solution readSolution(const std::string &path, const Scene &scene) {
+  std::vector<Solution> passes = readSolutionPasses(path, scene);
+  if (passes.size() != 1) throw InputError(InputLocation{path}, "a spectral solution: read it with its passes");
+  return std::move(passes[0]);
+}
+
+namespace {
+
+/// One pass's solution, checked so that a corrupt file cannot crash a renderer.
+Solution getSolution(Reader &r, const Scene &scene) {
   Solution s;
   RadiosityMesh &m = s.mesh;
   uint64_t patches = r.get<uint64_t>(), elements = r.get<uint64_t>(), nodes = r.get<uint64_t>(),
@@ -262,7 +313,6 @@ Solution readSolution(const std::string &path, const Scene &scene) {
     l.visibility = static_cast<LinkVisibility>(visibility);
     l.carriedPower = r.get<float>();
   }
-  if (!r.atEnd()) r.fail("unexpected data after the solution");
 
   // Cross-references must stay inside their arrays: a corrupt file must not crash a renderer.
   if (m.patchOfFace.size() != scene.faces.size()) r.fail("the solution's face count differs from the scene's");
@@ -309,5 +359,7 @@ Solution readSolution(const std::string &path, const Scene &scene) {
   }
   return s;
 }
+
+}  // namespace
 
 }  // namespace radiant

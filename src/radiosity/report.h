@@ -1,6 +1,7 @@
 // Per-surface report of a solution, in the units lighting designers read.
 #pragma once
 
+#include <span>
 #include <string>
 
 #include "radiosity/solution.h"
@@ -14,5 +15,11 @@ namespace radiant {
 /// B/π) and illuminance (lux, the same weighting of H). Area-weighted means
 /// over the object's elements. Written atomically.
 void writeSurfaceReport(const Solution &solution, const Scene &scene, const std::string &path);
+/// The same for a spectral scene's passes (one solution per pass): the R, G, B
+/// columns hold linear sRGB formed from the spectrum (CIE 1931, then
+/// `balance`), luminance and illuminance its Y; one more column per
+/// wavelength holds the spectral radiosity in W·m⁻²·nm⁻¹.
+void writeSurfaceReport(std::span<const Solution> passes, const Scene &scene, const std::string &path,
+                        WhiteBalance balance);
 
 }  // namespace radiant
