@@ -142,7 +142,7 @@ void writeRenderOutputs(Image &image, const std::vector<std::string> &outputs, c
     png = png || isPng(path);
     exr = exr || lowerExtension(path) == ".exr";
   }
-  image.quantity = "radiance";
+  if (image.quantity.empty()) image.quantity = "radiance";
   if (exr || (png && display.toneOperator == "max-reflected"))
     image.emitterFraction = emitterCoverage(tracer, camera, image.width, image.height);
   std::optional<DisplayMapping> mapping;

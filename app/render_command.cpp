@@ -45,6 +45,7 @@ struct RenderCommandOptions {
   std::string selectiveMapPath;
   DisplayCommandOptions display;  ///< the PNG outputs' display mapping
   ColourCommandOptions colour;     ///< spectral scenes
+  std::string quantity = "radiance";
 };
 
 InputLocation flag(const std::string &name) { return InputLocation{name}; }
@@ -119,6 +120,12 @@ CommandRunner addRenderCommand(CLI::App &app) {
                  "Output image; repeat for several. Format by extension: .exr (linear float), .pfm (linear), "
                  ".png (display mapping: --tonemap, default linear). Default: NAME.exr and NAME.png, NAME from the "
                  "scene file");
+  app.add_option("--quantity", o->quantity,
+                 "What the pixels hold: radiance (W·sr⁻¹·m⁻²) or irradiance (W·m⁻² arriving at the surface seen, for "
+                 "illuminance maps: radiant tonemap --falsecolor --quantity illuminance); irradiance with path, flat "
+                 "and interpolate")
+      ->default_val("radiance")
+      ->check(CLI::IsMember({"radiance", "irradiance"}));
   app.add_option("--variance", o->variancePath, "Also write the variance of each pixel's mean (.exr or .pfm)");
   app.add_option("--spp", o->spp, "Samples per pixel (default: the scene's render.spp, else 64)");
   app.add_option("--time", o->time,
@@ -178,6 +185,9 @@ CommandRunner addRenderCommand(CLI::App &app) {
       if (!o->solutionPath.empty() && !method.needsSolution)
         throw InputError(InputLocation{"--solution"}, "--method " + o->method + " does not read a radiosity solution");
       rejectUnusedTwoPassOptions(app, o->method);
+      if (o->quantity == "irradiance" && !method.supportsIrradiance)
+        throw InputError(flag("--quantity"), "irradiance images come from --method path, flat or interpolate, not " +
+                                                 o->method);
       if (!o->selectiveMapPath.empty() && !o->twoPass.selective)
         throw InputError(flag("--selective-map"), "needs --selective");
       if (!o->selectiveMapPath.empty() && std::filesystem::path(o->selectiveMapPath).extension() != ".png")
@@ -264,6 +274,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
                    : o->method;
       RendererOptions rendererOptions = o->twoPass;
       rendererOptions.maxDepth = r.maxDepth;
+      rendererOptions.irradiance = o->quantity == "irradiance";
       Solution solved;
       if (method.needsSolution) {
         if (solutions.empty()) {
@@ -285,10 +296,12 @@ CommandRunner addRenderCommand(CLI::App &app) {
     };
     SpectralImages rendered = renderPasses(scene, r.width, r.height, balance, renderPass);
     Image &image = rendered.colour;
+    image.quantity = o->quantity;
     if (driver.onlyPixelX >= 0 && !o->quiet) {
       const float *v = image.pixel(driver.onlyPixelX, driver.onlyPixelY);
-      fmt::print(stderr, "pixel {},{}: radiance {:.6g} {:.6g} {:.6g} W/(sr·m²){}\n", driver.onlyPixelX,
-                 driver.onlyPixelY, v[0], v[1], v[2], spectral ? " (linear sRGB from the spectrum)" : "");
+      fmt::print(stderr, "pixel {},{}: {} {:.6g} {:.6g} {:.6g} {}{}\n", driver.onlyPixelX, driver.onlyPixelY,
+                 o->quantity, v[0], v[1], v[2], o->quantity == "radiance" ? "W/(sr·m²)" : "W/m²",
+                 spectral ? " (linear sRGB from the spectrum)" : "");
     }
     writeRenderOutputs(image, outputs, display, app.count("--tonemap") > 0, tracer, camera, o->quiet);
     if (!o->variancePath.empty()) writeImage(rendered.variance, o->variancePath);

@@ -154,6 +154,17 @@ sed 's/"reflectance": 0.78,/"reflectance": [0.78, 0.7, 0.6],/' "$spectral" > rgb
 expect_error "an RGB colour in a spectral scene" "/materials/light/reflectance: .*spectral" \
   "$radiant" render rgb-in-spectral.json -o x.exr -q
 
+# Irradiance images for illuminance maps (docs/tone-mapping.md#false-colour).
+if "$radiant" render "$cornell" --method interpolate --quantity irradiance --mesh-size 100 --width 24 --height 24 \
+    -o irr.exr -q; then
+  "$radiant" tonemap irr.exr --falsecolor --legend --quantity illuminance -o lux.png 2>lux.txt && [ -s lux.png ] \
+    && grep -q "illuminance .* lux" lux.txt && pass || { fail "tonemap of an irradiance render"; cat lux.txt; }
+else
+  fail "render --quantity irradiance"
+fi
+expect_error "irradiance from a two-pass method" "quantity: irradiance images come from" \
+  "$radiant" render "$cornell" --method shirley --quantity irradiance -o x.exr -q
+
 # tonemap: a saved EXR mapped again without rendering (docs/tone-mapping.md).
 # expect_exit2 NAME PATTERN COMMAND... : bad input exits with status 2 and names the culprit
 expect_exit2() {

@@ -26,7 +26,11 @@ namespace {
 class PathTracer final : public Renderer {
  public:
   PathTracer(const RayTracer &tracer, const RendererOptions &options)
-      : tracer_(tracer), scene_(tracer.scene()), lights_(tracer.scene()), maxDepth_(options.maxDepth) {}
+      : tracer_(tracer), scene_(tracer.scene()), lights_(tracer.scene()), maxDepth_(options.maxDepth),
+        irradiance_(options.irradiance) {
+    meter_.name = "irradiance meter";
+    meter_.diffuse = Bands(1.0);
+  }
 
   Bands radiance(const Ray &cameraRay, Sampler &rng) const override {
     Bands L(0.0), throughput(1.0);
@@ -34,15 +38,20 @@ class PathTracer final : public Renderer {
     bool countEmissionFully = true;  // camera rays and delta bounces: no light sample competed
     double previousBsdfPdf = 0;
     Vec3 previousPosition = ray.origin;
+    bool metered = false;  // irradiance: the meter is placed at the first non-delta vertex
 
     for (int depth = 0;; ++depth) {
       Hit hit;
       if (!tracer_.intersect(ray, hit)) break;  // no environment light: the world outside is black
       const Material &material = scene_.materials[hit.material];
       Vec3 wo = -ray.direction;
+      // Irradiance: at the first surface that is not a mirror or glass, a white
+      // Lambertian meter replaces the material, and π·(reflected radiance of
+      // ρ = 1) = ∫L cos dω is the irradiance; the surface's own emission is not light arriving.
+      const bool meterHere = irradiance_ && !metered && !material.isDelta();
 
       // Emission seen by this ray (front side only).
-      if (material.isEmitter() && dot(wo, hit.geometricNormal) > 0) {
+      if (material.isEmitter() && dot(wo, hit.geometricNormal) > 0 && !meterHere) {
         double weight = 1.0;
         if (!countEmissionFully) {
           double cosLight = dot(wo, hit.geometricNormal);
@@ -54,7 +63,8 @@ class PathTracer final : public Renderer {
       }
       if (maxDepth_ > 0 && depth >= maxDepth_) break;  // max depth counts bounces
 
-      Bsdf bsdf(material, hit.shadingNormal, hit.geometricNormal, wo);
+      Bsdf bsdf(meterHere ? meter_ : material, hit.shadingNormal, hit.geometricNormal, wo);
+      if (meterHere) throughput *= kPi, metered = true;
 
       if (!bsdf.isDelta() && !lights_.empty()) L += throughput * sampleLight(hit, bsdf, rng);
 
@@ -103,6 +113,8 @@ class PathTracer final : public Renderer {
   const Scene &scene_;
   LightSampler lights_;
   int maxDepth_;
+  bool irradiance_;
+  Material meter_;  ///< Lambertian, ρ = 1: the irradiance meter
 };
 
 }  // namespace

@@ -4,7 +4,8 @@
 // `flat` the element's constant value (the mesh made visible), `interpolate`
 // the value interpolated from the element's nodes (bilinear on quads,
 // barycentric on triangles; Gouraud shading of the mesh), continuous inside a
-// patch. Both include the progressive solver's ambient term.
+// patch. Both include the progressive solver's ambient term. With
+// RendererOptions::irradiance they show the irradiance H the same way.
 //
 // Mirrors and glass seen from the eye are followed (ideal reflection and
 // refraction, Fresnel-weighted choice) until a diffuse surface is reached,
@@ -21,12 +22,20 @@ namespace {
 
 class RadiosityDisplay final : public Renderer {
  public:
-  RadiosityDisplay(const RayTracer &tracer, const Solution &solution, bool interpolate)
-      : tracer_(tracer), solution_(solution), interpolate_(interpolate) {}
+  RadiosityDisplay(const RayTracer &tracer, const Solution &solution, bool interpolate, bool irradiance)
+      : tracer_(tracer), solution_(solution), interpolate_(interpolate), irradiance_(irradiance) {
+    if (!irradiance_) return;
+    // H per element (the ambient term arrives as irradiance too, as in the report), and at the nodes.
+    for (uint32_t e = 0; e < solution.elementCount(); ++e) elementIrradiance_.push_back(solution.irradiance[e] + solution.ambient);
+    nodeIrradiance_ = solution.nodeValues(elementIrradiance_);
+  }
 
   Bands radiance(const Ray &cameraRay, Sampler &rng) const override {
     VisiblePoint x;
     if (!findVisiblePoint(tracer_, solution_, cameraRay, rng, x)) return Bands(0.0);
+    if (irradiance_)
+      return x.throughput * (interpolate_ ? solution_.interpolate(nodeIrradiance_, x.location)
+                                          : elementIrradiance_[x.location.element]);
     Bands radiosity = interpolate_ ? solution_.interpolatedRadiosity(x.location)
                                    : solution_.displayRadiosity(x.location.element);
     return x.throughput * radiosity * kInvPi;
@@ -36,16 +45,18 @@ class RadiosityDisplay final : public Renderer {
   const RayTracer &tracer_;
   const Solution &solution_;
   bool interpolate_;
+  bool irradiance_;
+  std::vector<Bands> elementIrradiance_, nodeIrradiance_;  ///< H + ambient (irradiance only)
 };
 
 }  // namespace
 
 std::unique_ptr<Renderer> createFlatRadiosityDisplay(const RayTracer &tracer, const RendererOptions &options) {
-  return std::make_unique<RadiosityDisplay>(tracer, requireSolution(options), false);
+  return std::make_unique<RadiosityDisplay>(tracer, requireSolution(options), false, options.irradiance);
 }
 
 std::unique_ptr<Renderer> createInterpolatedRadiosityDisplay(const RayTracer &tracer, const RendererOptions &options) {
-  return std::make_unique<RadiosityDisplay>(tracer, requireSolution(options), true);
+  return std::make_unique<RadiosityDisplay>(tracer, requireSolution(options), true, options.irradiance);
 }
 
 }  // namespace radiant

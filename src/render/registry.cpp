@@ -11,10 +11,10 @@ namespace radiant {
 
 const std::vector<RendererInfo> &rendererRegistry() {
   static const std::vector<RendererInfo> table = {
-      {"path", "unbiased reference path tracer (NEE + MIS, Russian roulette)", &createPathTracer},
-      {"flat", "the radiosity solution, constant per element", &createFlatRadiosityDisplay, true},
+      {"path", "unbiased reference path tracer (NEE + MIS, Russian roulette)", &createPathTracer, false, true},
+      {"flat", "the radiosity solution, constant per element", &createFlatRadiosityDisplay, true, true},
       {"interpolate", "the radiosity solution interpolated from its nodes (the classic radiosity image)",
-       &createInterpolatedRadiosityDisplay, true},
+       &createInterpolatedRadiosityDisplay, true, true},
       {"rushmeier", "per-pixel Monte Carlo: light sample + one secondary ray reading the solution (C&W eq. 9.10)",
        &createRushmeier, true},
       {"reichert", "form factors per pixel to every element, ray-traced visibility (--ff point|mc)", &createReichert,

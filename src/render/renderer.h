@@ -28,6 +28,12 @@ struct Solution;
 /// Options shared by the renderers, from the command line and scene file.
 struct RendererOptions {
   int maxDepth = 0;  ///< 0: unlimited, Russian roulette ends paths
+  /// Estimate irradiance instead of radiance (render --quantity irradiance):
+  /// W·m⁻² arriving at the front of the first non-specular surface seen
+  /// (through mirrors and glass), its own emission left out — what a lux
+  /// meter lying on it reads, for false-colour illuminance maps. `path`,
+  /// `flat` and `interpolate` only (supportsIrradiance).
+  bool irradiance = false;
   /// The radiosity solution, for the methods that read one (it must outlive the renderer).
   const Solution *solution = nullptr;
 
@@ -53,6 +59,7 @@ struct RendererInfo {
   const char *summary;
   std::unique_ptr<Renderer> (*create)(const RayTracer &, const RendererOptions &);
   bool needsSolution = false;  ///< the driver must solve (or load) radiosity first
+  bool supportsIrradiance = false;  ///< honours RendererOptions::irradiance
 };
 
 /// Every rendering method, by name (render/registry.cpp).
