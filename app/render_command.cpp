@@ -268,6 +268,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
     const bool spectral = scene.spectral.enabled();
     const int passes = spectral ? scene.spectral.passCount() : 1;
     RenderStats stats;
+    bool selectiveMapWritten = false;
     auto renderPass = [&](int pass, Film &film) {
       const std::string label =
           spectral ? fmt::format("{} {} ({}/{})", o->method, passWavelengthLabel(scene, pass), pass + 1, passes)
@@ -291,8 +292,10 @@ CommandRunner addRenderCommand(CLI::App &app) {
       stats.samplesPerPixel = std::max(stats.samplesPerPixel, passStats.samplesPerPixel);
       stats.seconds += passStats.seconds;
       stats.cameraSamples += passStats.cameraSamples;
-      if (!o->selectiveMapPath.empty() && pass == 0)
+      if (!o->selectiveMapPath.empty() && !selectiveMapWritten) {  // spectral: the first pass with light
         writeSelectiveMap(*renderer, camera, r.width, r.height, o->selectiveMapPath);
+        selectiveMapWritten = true;
+      }
     };
     SpectralImages rendered = renderPasses(scene, r.width, r.height, balance, renderPass);
     Image &image = rendered.colour;

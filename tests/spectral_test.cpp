@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 
@@ -140,6 +141,39 @@ TEST(Spectral, BadSpectraAreClearErrors) {
   EXPECT_NE(error.find("did you mean 'wavelengths'"), std::string::npos) << error;
 }
 
+// Review fixes: a glossy spectrum pair valid at every scene wavelength loads
+// (the sum is checked where it is used, not at the first samples); wavelengths
+// without a whole nm between them are an input error; emission that lies only
+// between the samples is a warning; a grey value and the constant spectrum
+// of the same value get the same colour outside a pass.
+TEST(Spectral, LoaderEdgeCases) {
+  const std::string base = spectralFurnaceJson(R"({"range": [400, 700], "samples": 8})");
+  auto replaced = [&](std::string text, const std::string &from, const std::string &to) {
+    size_t at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return text.replace(at, from.size(), to);
+  };
+  const std::string glossy = replaced(base, R"("reflectance": {"spectrum": [[380, 0.5], [507.5, 0.5], [612, 0.5], [780, 0.5]]},)",
+                                      R"("type": "glossy", "reflectance": {"spectrum": [[380, 0.9], [420, 0.1], [700, 0.1]]},
+      "specular": {"spectrum": [[400, 0.5], [700, 0.5]]},)");
+  EXPECT_EQ(loadError(glossy), "");
+  EXPECT_NE(loadError(replaced(glossy, "[700, 0.5]", "[700, 0.95]")).find("exceeds 1"), std::string::npos);
+  std::string error = loadError(replaced(base, R"("range": [400, 700], "samples": 8)",
+                                         R"("wavelengths": [500.1, 500.2, 500.3])"));
+  EXPECT_NE(error.find("/spectral/wavelengths: the wavelengths must span"), std::string::npos) << error;
+  Scene narrow = parseSceneJson(replaced(base, R"([[300, 2], [900, 2]], "scale": 0.5)", R"([[545, 0], [550, 50], [555, 0]])"),
+                                "narrow.json");
+  ASSERT_FALSE(narrow.warnings.empty());
+  EXPECT_NE(narrow.warnings.back().find("between the scene's sample wavelengths"), std::string::npos);
+  Scene grey = parseSceneJson(replaced(base, R"({"spectrum": [[300, 2], [900, 2]], "scale": 0.5})", "1.0"), "grey.json");
+  Scene flat = parseSceneJson(base, "flat.json");
+  for (int b = 0; b < 3; ++b) {
+    EXPECT_NEAR(grey.materials[0].emission[b], flat.materials[0].emission[b], 1e-12);
+    EXPECT_NEAR(grey.materials[0].diffuse[b], flat.materials[0].diffuse[b], 1e-12);
+  }
+  EXPECT_GT(flat.materials[0].emission[0], flat.materials[0].emission[2]);  // the equal-energy white is pink in sRGB
+}
+
 // The issue's grey test: an equal-energy white reflector under an
 // equal-energy emitter. Every wavelength sees the furnace, radiance 2; colour
 // is then the equal-energy white: chromaticity (1/3, 1/3) to 1e-3 (REFERENCE
@@ -218,17 +252,29 @@ TEST(Spectral, TheCornellBoxMatchesItsRgbColoursInMeanColour) {
   std::cout << "spectral / rgb mean colour: " << a.x / b.x << " " << a.y / b.y << " " << a.z / b.z << "\n";
 }
 
+/// The spectral furnace with an emission that rises with wavelength, so that
+/// every pass (and every band of a pass) differs from every other.
+std::string risingFurnaceJson(const std::string &spectral) {
+  std::string text = spectralFurnaceJson(spectral);
+  const std::string flat = R"([[300, 2], [900, 2]], "scale": 0.5)";
+  return text.replace(text.find(flat), flat.size(), R"([[400, 1], [700, 3]])");
+}
+
 TEST(Spectral, SolutionFilesHoldOneSolutionPerPass) {
-  Scene scene = parseSceneJson(spectralFurnaceJson(R"({"range": [400, 700], "samples": 7})"), "furnace.json");
+  Scene scene = parseSceneJson(risingFurnaceJson(R"({"range": [400, 700], "samples": 7})"), "furnace.json");
   RayTracer tracer(scene);
   std::vector<Solution> passes;
   for (int pass = 0; pass < scene.spectral.passCount(); ++pass) {
     applySpectralPass(scene, pass);
     MeshOptions mesh;
     mesh.maxEdgeLength = 0.5;
-    passes.push_back(meshAndSolve(scene, tracer, mesh, SolverOptions{}));
+    SolverOptions solver;
+    solver.solver = "gauss-seidel";
+    solver.tolerance = 1e-10;  // converged, so the report is checked against the closed form
+    passes.push_back(meshAndSolve(scene, tracer, mesh, solver));
   }
   ASSERT_EQ(passes.size(), 3u);
+  ASSERT_NE(passes[0].radiosity[0][1], passes[1].radiosity[0][1]);  // the passes differ: pass order is tested
   const auto dir = std::filesystem::temp_directory_path() / "radiant-spectral-test";
   std::filesystem::create_directories(dir);
   const std::string path = (dir / "furnace.rad").string();
@@ -247,7 +293,8 @@ TEST(Spectral, SolutionFilesHoldOneSolutionPerPass) {
   convertToRgbScene(rgb);
   EXPECT_THROW(readSolutionPasses(path, rgb), InputError);
 
-  // The report: luminance of the furnace's walls, B/π = 2 → 683 · 2 cd/m².
+  // The report: luminance of the furnace's walls, B/π = E/(1 − ρ) per
+  // wavelength, so Y = 2·Y(E) = 2·Σ_i w_i^Y E(λ_i) with E rising from 1 to 3.
   const std::string report = (dir / "furnace.csv").string();
   writeSurfaceReport(passes, scene, report, WhiteBalance::None);
   std::ifstream in(report);
@@ -258,23 +305,38 @@ TEST(Spectral, SolutionFilesHoldOneSolutionPerPass) {
   for (size_t start = 0, end; start != std::string::npos; start = end == std::string::npos ? end : end + 1)
     fields.push_back(row.substr(start, (end = row.find(',', start)) - start));
   ASSERT_GE(fields.size(), 10u);
-  EXPECT_NEAR(std::stod(fields[8]), kLuminousEfficacy * 2.0, 1e-3 * kLuminousEfficacy * 2.0) << row;
+  const BandColourMatching matching(scene.spectral.wavelengths);
+  double y = 0;
+  for (int i = 0; i < matching.bandCount(); ++i)
+    y += matching.xyzWeight(i).y * 2 * (1 + 2 * (scene.spectral.wavelengths[i] - 400) / 300);
+  EXPECT_NEAR(std::stod(fields[8]), kLuminousEfficacy * y, 1e-6 * kLuminousEfficacy * y) << row;
+  // …and the per-wavelength column at 700 nm: B = π·6 W·m⁻² per band, per nm.
+  EXPECT_NEAR(std::stod(fields.back()), kPi * 6 / cieYIntegral(400, 700), 1e-6) << row;
   std::filesystem::remove_all(dir);
 }
 
 // The EXR keeps the spectrum (Fichet et al. 2021 layout): one channel per
 // wavelength, spectral radiance per nm, so 683·Σ L ȳ is the luminance again.
 TEST(Spectral, TheExrHoldsTheSpectralChannels) {
-  Scene scene = parseSceneJson(spectralFurnaceJson(R"({"wavelengths": [400, 412.5, 550, 700]})"), "furnace.json");
+  Scene scene = parseSceneJson(risingFurnaceJson(R"({"wavelengths": [400, 412.5, 550, 700]})"), "furnace.json");
   Image image = render(scene, "interpolate", 1, WhiteBalance::None, 8).colour;
   const std::string path = (std::filesystem::temp_directory_path() / "radiant-spectral.exr").string();
   writeImage(image, path);
   Imf::InputFile file(path.c_str());
   for (const char *name : {"R", "G", "B", "S0.400nm", "S0.412,5nm", "S0.550nm", "S0.700nm"})
     EXPECT_NE(file.header().channels().findChannel(name), nullptr) << name;
+  // The pixels as stored: radiance E/(1 − ρ) = 2·E(λ) at each wavelength, per nm (÷ Σȳ over 400…700).
+  const std::map<std::string, double> expected = {
+      {"S0.400nm", 2.0}, {"S0.412,5nm", 2 * (1 + 25.0 / 300)}, {"S0.550nm", 4.0}, {"S0.700nm", 6.0}};
+  std::vector<float> pixels(64);
+  for (const auto &[name, radiance] : expected) {
+    Imf::FrameBuffer frame;
+    frame.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char *>(pixels.data()), sizeof(float), 8 * sizeof(float)));
+    file.setFrameBuffer(frame);
+    file.readPixels(0, 7);
+    for (float v : pixels) EXPECT_NEAR(v, radiance / cieYIntegral(400, 700), 2e-7) << name;
+  }
   std::filesystem::remove(path);
-  // Radiance 2 at every wavelength, per nm: 2 / Σȳ(400…700).
-  EXPECT_NEAR(image.spectral[0], 2.0 / cieYIntegral(400, 700), 1e-6);
 }
 
 }  // namespace

@@ -83,7 +83,9 @@ void writeExr(const Image &image, const std::string &path) {
         spectralNames.push_back(spectralChannelName(nm));
         header.channels().insert(spectralNames.back(), Imf::Channel(Imf::FLOAT));
       }
-      header.insert("emissiveUnits", Imf::StringAttribute("W.m^-2.sr^-1.nm^-1"));
+      header.insert("spectralLayoutVersion", Imf::StringAttribute("1.0"));
+      header.insert("emissiveUnits", Imf::StringAttribute(image.quantity == "irradiance" ? "W.m^-2.nm^-1"
+                                                                                          : "W.m^-2.sr^-1.nm^-1"));
     }
     Imf::OutputFile file(temporary.c_str(), header);
     Imf::FrameBuffer frame;

@@ -109,9 +109,13 @@ uint64_t sceneFingerprint(const Scene &scene) {
   f.value(uint64_t(scene.materials.size()));
   // A spectral scene's bands change from pass to pass: its spectra identify it.
   const bool spectral = scene.spectral.enabled();
+  f.value(uint64_t(scene.spectral.wavelengths.size()));
   for (double nm : scene.spectral.wavelengths) f.value(nm);
+  // Tagged and counted, so that no two different material lists hash the same sequence.
   auto spectrum = [&](const std::optional<SampledSpectrum> &s, const Bands &grey) {
+    f.value(uint8_t(s ? 1 : 0));
     if (!s) return f.value(grey[0]);
+    f.value(uint64_t(s->values.size()));
     for (size_t i = 0; i < s->values.size(); ++i) f.value(s->wavelengths[i]), f.value(s->values[i]);
   };
   for (const Material &m : scene.materials) {
@@ -260,6 +264,7 @@ Solution getSolution(Reader &r, const Scene &scene) {
   s.stats.absorbedPower = r.bands();
   s.stats.escapedPower = r.bands();
   s.ambient = r.bands();
+  if (!s.ambient.isFinite()) r.fail("the ambient term is not finite");
   s.indirectAmbient = r.bands();
   m.patches.resize(r.count(patches, 4 * 4 + 15 * 8 + 8 + 4 * 4 + 8 + 4, "patches"));
   for (Patch &p : m.patches) {
@@ -348,7 +353,7 @@ Solution getSolution(Reader &r, const Scene &scene) {
     if (p >= m.patches.size()) r.fail("a node refers to a patch that does not exist");
   // Values a renderer divides by or displays must be finite and physical.
   for (size_t e = 0; e < n; ++e)
-    for (const Bands *b : {&s.reflectance[e], &s.emission[e], &s.radiosity[e]})
+    for (const Bands *b : {&s.reflectance[e], &s.emission[e], &s.radiosity[e], &s.irradiance[e]})
       if (!b->isFinite() || b->min() < 0) r.fail(fmt::format("element {} has a negative or non-finite value", e));
   for (const Bands &b : s.nodeRadiosity)
     if (!b.isFinite()) r.fail("a node radiosity is not finite");

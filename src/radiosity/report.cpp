@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <stdexcept>
 
 #include "util/atomic_file.h"
 
@@ -51,6 +52,8 @@ void writeSurfaceReport(const Solution &solution, const Scene &scene, const std:
 
 void writeSurfaceReport(std::span<const Solution> passes, const Scene &scene, const std::string &path,
                         WhiteBalance balance) {
+  if (passes.size() != size_t(scene.spectral.enabled() ? scene.spectral.passCount() : 1))
+    throw std::logic_error("writeSurfaceReport: one solution per spectral pass expected");
   std::vector<std::vector<ObjectTotals>> totals;
   for (const Solution &s : passes) totals.push_back(objectTotals(s, scene.objects.size()));
   const bool spectral = scene.spectral.enabled();
@@ -73,12 +76,13 @@ void writeSurfaceReport(std::span<const Solution> passes, const Scene &scene, co
   for (size_t o = 0; o < scene.objects.size(); ++o) {
     const double area = totals[0][o].area;
     if (area <= 0) continue;
-    // The object's mean B and H per band: R, G, B, or one value per wavelength.
+    // The object's mean B and H per band: R, G, B, or one value per wavelength
+    // (each pass over its own mesh; the areas agree to rounding).
     std::vector<double> b(bands), h(bands);
     for (int i = 0; i < bands; ++i) {
       const ObjectTotals &t = totals[i / kBandCount][o];
-      b[i] = t.radiosity[i % kBandCount] / area;
-      h[i] = t.irradiance[i % kBandCount] / area;
+      b[i] = t.radiosity[i % kBandCount] / t.area;
+      h[i] = t.irradiance[i % kBandCount] / t.area;
     }
     Vec3 rgbB{b[0], b[1], b[2]}, rgbH{h[0], h[1], h[2]};
     double yB = Bands(b[0], b[1], b[2]).luminance(), yH = Bands(h[0], h[1], h[2]).luminance();
@@ -90,7 +94,9 @@ void writeSurfaceReport(std::span<const Solution> passes, const Scene &scene, co
         yB += toXyz[i].y * b[i], yH += toXyz[i].y * h[i];
       }
     }
-    // Lambertian: radiance = B/π; photometric = 683 lm/W × luminance-weighted radiometric value.
+    // Lambertian: radiance = B/π; photometric = 683 lm/W × luminance-weighted
+    // radiometric value. For spectral scenes Y is always the unbalanced ȳ
+    // integral: a white balance changes colours for display, not photometry.
     csv += fmt::format("{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", csvField(scene.objects[o].name),
                        area, rgbB.x, rgbB.y, rgbB.z, rgbH.x, rgbH.y, rgbH.z, kLuminousEfficacy * yB / kPi,
                        kLuminousEfficacy * yH);

@@ -52,7 +52,8 @@ SpectralSettings parseSpectralSettings(const JsonNode &node) {
   if (node.has("wavelengths")) {
     if (node.has("range") || node.has("samples"))
       node.fail("give either \"wavelengths\" or \"range\" with \"samples\", not both");
-    for (const JsonNode &w : node.child("wavelengths").asArray(3, kMaximumSceneWavelengths)) {
+    JsonNode list = node.child("wavelengths");
+    for (const JsonNode &w : list.asArray(3, kMaximumSceneWavelengths)) {
       double nm = w.asNumber();
       if (nm < kCieFirstWavelength || nm > kCieLastWavelength)
         w.fail(fmt::format("wavelength {} nm must lie {}", nm, where));
@@ -60,6 +61,9 @@ SpectralSettings parseSpectralSettings(const JsonNode &node) {
         w.fail(fmt::format("wavelengths must increase: {} nm follows {} nm", nm, settings.wavelengths.back()));
       settings.wavelengths.push_back(nm);
     }
+    // Colour is integrated over the whole nm in [first, last] (the 1-nm CIE table).
+    if (std::ceil(settings.wavelengths.front()) > std::floor(settings.wavelengths.back()))
+      list.fail("the wavelengths must span at least one whole nm, over which colour is integrated");
     return settings;
   }
   JsonNode rangeNode = node.child("range");
@@ -67,6 +71,8 @@ SpectralSettings parseSpectralSettings(const JsonNode &node) {
   double first = range[0].asNumber(), last = range[1].asNumber();
   if (first < kCieFirstWavelength || last > kCieLastWavelength || !(first < last))
     rangeNode.fail(fmt::format("expected [first, last] with first < last, both {}", where));
+  if (std::ceil(first) > std::floor(last))
+    rangeNode.fail("the range must hold at least one whole nm, over which colour is integrated");
   auto samples = node.integer("samples", 16, 3, kMaximumSceneWavelengths);
   for (int64_t i = 0; i < samples; ++i) settings.wavelengths.push_back(first + (last - first) * i / (samples - 1));
   return settings;
@@ -87,12 +93,14 @@ Bands parseBandValue(const JsonNode &material, const std::string &key, const Ban
   JsonNode node = material.child(key);
   if (node.isObject()) {
     spectrum = parseSpectrum(node);
-    // Until a pass sets them, the bands hold something finite; applySpectralColour replaces it.
-    return Bands(spectrum->values.front());
+    // A placeholder until applySpectralColour: 0 passes checkMaterial's band
+    // checks, which a spectrum gets from checkSpectra (per sample) and
+    // checkSpectralScene (glossy sums at the scene's wavelengths) instead.
+    return Bands(0.0);
   }
   Bands b = node.asBands();
   if (spectralScene && (b[0] != b[1] || b[1] != b[2]))
-    node.fail("this scene is spectral (it gives spectra), so an RGB colour has no meaning here: give a spectrum "
+    node.fail("this scene is spectral, so an RGB colour has no meaning here: give a spectrum "
               "{\"spectrum\": [[nm, value], …]} or one number for a grey");
   return b;
 }
@@ -120,13 +128,30 @@ void checkSpectra(const Material &m, const InputLocation &where, const MaterialF
 
 void checkSpectralScene(Scene &scene, const std::vector<InputLocation> &materialLocations) {
   for (size_t i = 0; i < scene.materials.size(); ++i) {
-    const Material &m = scene.materials[i];
+    Material &m = scene.materials[i];
     InputLocation where = i < materialLocations.size() ? materialLocations[i] : InputLocation{scene.sourceFile};
     for (const Bands *b : {&m.diffuse, &m.specular, &m.emission})
       if (!m.spectra.any() && ((*b)[0] != (*b)[1] || (*b)[1] != (*b)[2]))
         throw InputError(where, "material '" + m.name +
                                     "' has an RGB colour, but this scene is spectral: give its values as spectra in "
                                     "the scene's \"materials\" (a material of that name there overrides the MTL's)");
+    // A grey value is the constant spectrum: held as one, it gets the same
+    // colour as any other spectrum outside a pass (the equal-energy white's).
+    auto constant = [&](std::optional<SampledSpectrum> &spectrum, const Bands &grey) {
+      if (!spectrum && grey[0] > 0) spectrum = SampledSpectrum{{scene.spectral.wavelengths.front()}, {grey[0]}};
+    };
+    constant(m.spectra.diffuse, m.diffuse), constant(m.spectra.specular, m.specular);
+    constant(m.spectra.emission, m.emission);
+    // Emission that falls between the scene's wavelengths is never sampled.
+    if (m.spectra.emission) {
+      double sampled = 0, given = 0;
+      for (double nm : scene.spectral.wavelengths) sampled = std::max(sampled, m.spectra.emission->at(nm));
+      for (double v : m.spectra.emission->values) given = std::max(given, v);
+      if (given > 0 && sampled == 0)
+        scene.warnings.push_back(fmt::format("material '{}' emits only between the scene's sample wavelengths: it is "
+                                             "dark in a spectral render (sample more densely, \"spectral\")",
+                                             m.name));
+    }
   }
   // Each value lies in its range at its samples, so everywhere between; a
   // glossy sum of two spectra is checked where it is used, at the scene's wavelengths.
