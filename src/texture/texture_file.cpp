@@ -1,0 +1,193 @@
+// Texture::load: image files to linear texels (REFERENCE §5, §6.5).
+//
+// PNG and JPEG go through stb_image (8 or 16 bits per channel), OpenEXR
+// through OpenEXR. The format is recognised by the file's signature, not its
+// name, so a text file called .png is reported as what it is. The size is
+// read from the header and checked against Texture::kMaxTexels before any
+// pixel is decoded, so a hostile or mistaken 50 000 × 50 000 file costs
+// nothing. Colour textures in 8/16-bit files are sRGB-encoded by convention
+// (what paint programs and cameras write) and are decoded with the IEC
+// 61966-2-1 curve; EXR holds linear values already; Data textures (heights)
+// are never decoded.
+// clang-format off (the definition must stay right above its header)
+#define STB_IMAGE_IMPLEMENTATION  // the one definition in the project
+#include <stb/stb_image.h>
+// clang-format on
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+#include "texture/texture.h"
+#include "util/error.h"
+
+namespace radiant {
+
+namespace {
+
+enum class FileFormat { Png, Jpeg, Exr, Unknown };
+
+/// stb_image's reason for its last failure on this thread.
+std::string stbReason() {
+  const char *reason = stbi_failure_reason();
+  return std::string("stb_image: ") + (reason ? reason : "unknown error");
+}
+
+FileFormat sniffFormat(const InputLocation &where) {
+  std::array<unsigned char, 8> head{};
+  std::ifstream in(where.file, std::ios::binary);
+  if (!in.is_open()) throw InputError(where, "cannot open the file (permissions?)");
+  in.read(reinterpret_cast<char *>(head.data()), head.size());
+  const auto got = in.gcount();
+  constexpr std::array<unsigned char, 8> png{0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  if (got >= 8 && head == png) return FileFormat::Png;
+  if (got >= 3 && head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF) return FileFormat::Jpeg;
+  if (got >= 4 && head[0] == 0x76 && head[1] == 0x2F && head[2] == 0x31 && head[3] == 0x01) return FileFormat::Exr;
+  return FileFormat::Unknown;
+}
+
+/// Refuses a texture above the limit before its pixels are allocated.
+void checkSize(const InputLocation &where, long long width, long long height) {
+  if (width < 1 || height < 1)
+    throw InputError(where, "image is empty (" + std::to_string(width) + "x" + std::to_string(height) + ")");
+  if (width * height > Texture::kMaxTexels)
+    throw InputError(where, "image is " + std::to_string(width) + "x" + std::to_string(height) + " = " +
+                                std::to_string(width * height) + " texels, more than the limit of " +
+                                std::to_string(Texture::kMaxTexels) + " (4096x4096); scale it down");
+}
+
+/// IEC 61966-2-1 decode (REFERENCE §6.5), V ∈ [0, 1] → linear.
+double srgbDecode(double v) {
+  return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+}
+
+/// Texture value of every stored code 0 … maxCode: one table per file, so a
+/// 16-bit texture costs 65 536 pow() calls instead of one per sample.
+std::vector<float> codeTable(int maxCode, TextureEncoding encoding) {
+  std::vector<float> table(size_t(maxCode) + 1);
+  for (int code = 0; code <= maxCode; ++code) {
+    const double v = double(code) / maxCode;
+    table[size_t(code)] = float(encoding == TextureEncoding::Colour ? srgbDecode(v) : v);
+  }
+  return table;
+}
+
+struct StbFree {
+  void operator()(void *pixels) const { stbi_image_free(pixels); }
+};
+
+/// Decodes with stb_image, asking for three channels: stb copies grey to all
+/// three and drops alpha, which is what the texture wants.
+template <typename Sample>
+std::vector<float> decodeStb(const InputLocation &where, int width, int height, TextureEncoding encoding) {
+  int w = 0, h = 0, channels = 0;
+  std::unique_ptr<Sample, StbFree> pixels;
+  if constexpr (sizeof(Sample) == 2)
+    pixels.reset(stbi_load_16(where.file.c_str(), &w, &h, &channels, 3));
+  else
+    pixels.reset(stbi_load(where.file.c_str(), &w, &h, &channels, 3));
+  if (!pixels) throw InputError(where, "cannot decode the image (corrupt or truncated?): " + stbReason());
+  if (w != width || h != height) throw InputError(where, "image size changed between header and pixels");
+  const std::vector<float> table = codeTable(sizeof(Sample) == 2 ? 65535 : 255, encoding);
+  std::vector<float> texels(size_t(width) * height * 3);
+  for (size_t k = 0; k < texels.size(); ++k) texels[k] = table[pixels.get()[k]];
+  return texels;
+}
+
+struct Decoded {
+  int width = 0, height = 0;
+  std::vector<float> texels;  ///< 3 per texel, row 0 at the top
+};
+
+Decoded readStb(const InputLocation &where, TextureEncoding encoding) {
+  int width = 0, height = 0, channels = 0;
+  if (!stbi_info(where.file.c_str(), &width, &height, &channels))
+    throw InputError(where, "cannot read the image header: " + stbReason());
+  checkSize(where, width, height);
+  if (stbi_is_16_bit(where.file.c_str())) return {width, height, decodeStb<stbi_us>(where, width, height, encoding)};
+  return {width, height, decodeStb<stbi_uc>(where, width, height, encoding)};
+}
+
+/// OpenEXR, linear already: R, G, B, or Y copied to all three. Like
+/// io/image.cpp's reader, but with the texture limit checked on the header's
+/// data window before the pixels are allocated, and one open of the file.
+Decoded readExr(const InputLocation &where) {
+  try {
+    Imf::InputFile file(where.file.c_str());
+    const Imath::Box2i window = file.header().dataWindow();
+    const long long width = static_cast<long long>(window.max.x) - window.min.x + 1;
+    const long long height = static_cast<long long>(window.max.y) - window.min.y + 1;
+    checkSize(where, width, height);
+    const Imf::ChannelList &channels = file.header().channels();
+    const bool rgb = channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
+    if (!rgb && !channels.findChannel("Y"))
+      throw InputError(where, "OpenEXR image has neither R, G, B nor a Y channel");
+    Decoded image{int(width), int(height), std::vector<float>(size_t(width) * height * 3)};
+    const size_t xStride = 3 * sizeof(float), yStride = xStride * size_t(width);
+    // OpenEXR addresses the buffer by absolute pixel position in the data window.
+    char *base = reinterpret_cast<char *>(image.texels.data()) -
+                 (ptrdiff_t(window.min.x) * ptrdiff_t(xStride) + ptrdiff_t(window.min.y) * ptrdiff_t(yStride));
+    Imf::FrameBuffer frame;
+    const char *names[3] = {"R", "G", "B"};
+    for (int c = 0; c < (rgb ? 3 : 1); ++c)
+      frame.insert(rgb ? names[c] : "Y", Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
+    file.setFrameBuffer(frame);
+    file.readPixels(window.min.y, window.max.y);
+    if (!rgb)
+      for (size_t k = 0; k < image.texels.size(); k += 3) image.texels[k + 1] = image.texels[k + 2] = image.texels[k];
+    return image;
+  } catch (const InputError &) {
+    throw;
+  } catch (const std::exception &e) {
+    throw InputError(where, std::string("cannot read the OpenEXR image: ") + e.what());
+  }
+}
+
+/// A NaN or infinite reflectance would spread through the whole radiosity
+/// solution; refuse it where the user can still see which file is at fault.
+void checkFinite(const InputLocation &where, const Decoded &image) {
+  for (size_t k = 0; k < image.texels.size(); ++k)
+    if (!std::isfinite(image.texels[k])) {
+      const size_t texel = k / 3;
+      throw InputError(where, "texel (" + std::to_string(texel % size_t(image.width)) + ", " +
+                                  std::to_string(texel / size_t(image.width)) + ") is not a finite number");
+    }
+}
+
+}  // namespace
+
+Texture Texture::load(const std::string &path, TextureEncoding encoding, TextureWrap wrap) {
+  const InputLocation where{path};
+  std::error_code error;
+  const auto status = std::filesystem::status(path, error);
+  if (!std::filesystem::exists(status)) throw InputError(where, "no such file");
+  if (!std::filesystem::is_regular_file(status)) throw InputError(where, "not a regular file");
+  if (std::filesystem::file_size(path, error) == 0 && !error)
+    throw InputError(where, "the file is empty (expected a PNG, JPEG or OpenEXR image)");
+  Decoded image;
+  switch (sniffFormat(where)) {
+    case FileFormat::Png:
+    case FileFormat::Jpeg:
+      image = readStb(where, encoding);
+      break;
+    case FileFormat::Exr:
+      image = readExr(where);
+      break;
+    case FileFormat::Unknown:
+      throw InputError(where,
+                       "not an image this program reads: expected PNG, JPEG or OpenEXR (the file starts with "
+                       "none of their signatures)");
+  }
+  checkFinite(where, image);
+  return Texture(Level{image.width, image.height, std::move(image.texels)}, wrap);
+}
+
+}  // namespace radiant
