@@ -203,6 +203,9 @@ TEST_F(SceneLoaderCornell, LightIsJustBelowTheCeiling) {
 // ---------------------------------------------------------------------------
 // Other bundled scenes
 
+/// A valid 1 × 1 8-bit grey PNG (value 128): textures are loaded with the scene.
+const std::string kTinyPng("\x89\x50\x4e\x47\x0d\x0a\x1a\x0a\x00\x00\x00\x0d\x49\x48\x44\x52\x00\x00\x00\x01\x00\x00\x00\x01\x08\x00\x00\x00\x00\x3a\x7e\x9b\x55\x00\x00\x00\x0a\x49\x44\x41\x54\x78\x9c\x63\x68\x00\x00\x00\x82\x00\x81\x77\xcd\x72\xb6\x00\x00\x00\x00\x49\x45\x4e\x44\xae\x42\x60\x82", 67);
+
 TEST(SceneLoaderScenes, FurnaceWallsAllFaceInward) {
   Scene s = loadScene(sourcePath("scenes/furnace/scene.json"));
   EXPECT_TRUE(s.warnings.empty());
@@ -612,7 +615,7 @@ TEST(SceneLoaderObj, MissingTextureNamesTheMtlLine) {
   }
   // With the file present the path is resolved against the MTL's folder.
   fs::create_directories(dir.file("textures"));
-  dir.write("textures/missing.png", "not really a png");
+  dir.write("textures/missing.png", kTinyPng);
   dir.write("t.mtl", "newmtl a\nKd 0.5 0.5 0.5\nmap_Kd textures/missing.png\nbump -bm 0.25 textures/missing.png\n");
   Scene s = loadScene(obj);
   const Material &m = s.materials[s.faces[0].material];
@@ -755,8 +758,8 @@ TEST(SceneLoaderDocs, TheDocumentedExampleLoads) {
   TempDir dir;
   fs::create_directories(dir.file("textures"));
   fs::create_directories(dir.file("models"));
-  dir.write("textures/oak.png", "stand-in");
-  dir.write("textures/oak-bump.png", "stand-in");
+  dir.write("textures/oak.png", kTinyPng);
+  dir.write("textures/oak-bump.png", kTinyPng);
   dir.write("models/teapot.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
   Scene s = loadScene(dir.write("scene.json", doc.substr(begin, end - begin)));
   EXPECT_TRUE(s.warnings.empty());

@@ -78,6 +78,11 @@ void checkSpectra(const Material &material, const InputLocation &where, const Ma
 /// `materialLocations` locates the JSON materials (by index) for messages.
 void checkSpectralScene(Scene &scene, const std::vector<InputLocation> &materialLocations);
 
+/// Loads every image the materials name into Scene::textures (each file once
+/// per encoding and wrap) and sets the materials' texture indices. A file that
+/// cannot be read is an InputError at the MTL line or JSON path that named it.
+void loadTextures(Scene &scene);
+
 /// Camera and image/render settings checks shared by the JSON loader and validateScene.
 void checkCamera(const CameraSettings &camera, const InputLocation &where);
 void checkRenderSettings(const RenderSettings &render, const InputLocation &where);

@@ -274,10 +274,17 @@ Material convertMtlMaterial(const tinyobj::material_t &m, const MtlSource &sourc
   } else {
     out.kind = MaterialKind::Lambertian;
   }
-  if (!m.diffuse_texname.empty())
+  auto lineOf = [&](int line) { return InputLocation{source.file, line > 0 ? line : source.newmtlLine, 0, ""}; };
+  if (!m.diffuse_texname.empty()) {
     out.diffuseTexture = resolveTexture(m.diffuse_texname, source, source.mapKdLine, "map_Kd");
+    out.diffuseTextureFrom = lineOf(source.mapKdLine);
+    // -clamp on and -s u v of map_Kd apply to the material's maps.
+    out.textureWrap = m.diffuse_texopt.clamp ? TextureWrap::Clamp : TextureWrap::Repeat;
+    out.uvScale[0] = widen(m.diffuse_texopt.scale[0]), out.uvScale[1] = widen(m.diffuse_texopt.scale[1]);
+  }
   if (!m.bump_texname.empty()) {
     out.bumpTexture = resolveTexture(m.bump_texname, source, source.bumpLine, "bump");
+    out.bumpTextureFrom = lineOf(source.bumpLine);
     out.bumpScale = widen(m.bump_texopt.bump_multiplier);
   }
   detail::checkMaterial(out, InputLocation{source.file, source.newmtlLine, 0, ""}, names);

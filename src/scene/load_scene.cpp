@@ -102,7 +102,7 @@ Material parseMaterial(const JsonNode &node, const std::string &name, const fs::
   node.expectObject();
   static const std::vector<std::string> kTypes = {"lambertian", "mirror", "dielectric", "glossy"};
   std::string type = parseType(node, kTypes, "lambertian", "material");
-  checkTypedKeys(node, {"type", "emission", "bump", "bump_scale"},
+  checkTypedKeys(node, {"type", "emission", "bump", "bump_scale", "normal_map", "texture_wrap", "texture_scale"},
                  {{"lambertian", {"reflectance", "texture"}},
                   {"mirror", {"reflectance"}},
                   {"dielectric", {"ior", "transmittance"}},
@@ -114,9 +114,11 @@ Material parseMaterial(const JsonNode &node, const std::string &name, const fs::
   auto value = [&](const char *key, const Bands &fallback, std::optional<SampledSpectrum> &spectrum) {
     return detail::parseBandValue(node, key, fallback, spectralScene, spectrum);
   };
+  // With a texture the reflectance multiplies it, and defaults to 1: the texture is the reflectance.
+  const Bands defaultReflectance(node.has("texture") ? 1.0 : 0.5);
   if (type == "lambertian") {
     m.kind = MaterialKind::Lambertian;
-    m.diffuse = value("reflectance", Bands(0.5), m.spectra.diffuse);
+    m.diffuse = value("reflectance", defaultReflectance, m.spectra.diffuse);
   } else if (type == "mirror") {
     m.kind = MaterialKind::Mirror;
     m.diffuse = Bands(0.0);
@@ -130,15 +132,40 @@ Material parseMaterial(const JsonNode &node, const std::string &name, const fs::
     names.specular = "transmittance";
   } else {
     m.kind = MaterialKind::Glossy;
-    m.diffuse = value("reflectance", Bands(0.5), m.spectra.diffuse);
+    m.diffuse = value("reflectance", defaultReflectance, m.spectra.diffuse);
     m.specular = value("specular", Bands(0.2), m.spectra.specular);
     m.roughness = node.number("roughness", 0.2);
   }
   m.emission = value("emission", Bands(0.0), m.spectra.emission);
-  if (node.has("texture"))
+  if (node.has("texture")) {
     m.diffuseTexture = resolveExistingFile(node.child("texture"), sceneDirectory, "texture file");
-  if (node.has("bump")) m.bumpTexture = resolveExistingFile(node.child("bump"), sceneDirectory, "bump map file");
+    m.diffuseTextureFrom = node.child("texture").location();
+  }
+  if (node.has("bump")) {
+    m.bumpTexture = resolveExistingFile(node.child("bump"), sceneDirectory, "bump map file");
+    m.bumpTextureFrom = node.child("bump").location();
+  }
+  if (node.has("normal_map")) {
+    m.normalTexture = resolveExistingFile(node.child("normal_map"), sceneDirectory, "normal map file");
+    m.normalTextureFrom = node.child("normal_map").location();
+  }
+  if (node.has("bump") && node.has("normal_map"))
+    node.child("normal_map").fail("give a bump (height) map or a normal map, not both");
   m.bumpScale = node.number("bump_scale", 1.0);
+  if (node.has("texture_wrap")) {
+    JsonNode wrap = node.child("texture_wrap");
+    std::string value = wrap.asString();
+    if (value != "repeat" && value != "clamp") wrap.fail("expected \"repeat\" or \"clamp\", got '" + value + "'");
+    m.textureWrap = value == "clamp" ? TextureWrap::Clamp : TextureWrap::Repeat;
+  }
+  if (node.has("texture_scale")) {
+    JsonNode scale = node.child("texture_scale");
+    std::vector<JsonNode> pair = scale.value().is_number() ? std::vector<JsonNode>{scale, scale} : scale.asArray(2, 2);
+    for (int i = 0; i < 2; ++i) {
+      m.uvScale[i] = pair[i].asNumber();
+      if (m.uvScale[i] == 0) pair[i].fail("a texture scale of 0 maps the whole surface to one texel");
+    }
+  }
   detail::checkMaterial(m, node.location(), names);
   detail::checkSpectra(m, node.location(), names);
   return m;
@@ -191,8 +218,8 @@ struct SceneParser {
     static const std::vector<std::string> kTypes = {"quad", "triangle", "obj", "sphere"};
     std::string type = parseType(node, kTypes, "", "object");
     checkTypedKeys(node, {"name", "type", "material", "transform"},
-                   {{"quad", {"vertices"}},
-                    {"triangle", {"vertices"}},
+                   {{"quad", {"vertices", "uv"}},
+                    {"triangle", {"vertices", "uv"}},
                     {"obj", {"file"}},
                     {"sphere", {"center", "radius", "segments"}}},
                    type, "object");
@@ -240,7 +267,19 @@ struct SceneParser {
       vertices.push_back(static_cast<uint32_t>(scene.positions.size()));
       scene.positions.push_back(toWorld.point(vertex.asVec3()));
     }
-    detail::addPolygon(scene, vertices, {}, {}, material, object, flip);
+    // Texture coordinates: given, or the unit square (triangle) in vertex order.
+    static constexpr double kDefaultUv[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    std::vector<int32_t> uvs;
+    std::vector<JsonNode> given;
+    if (node.has("uv")) given = node.child("uv").asArray(count, count);
+    for (size_t k = 0; k < count; ++k) {
+      uvs.push_back(static_cast<int32_t>(scene.uvs.size() / 2));
+      const double *fallback = kDefaultUv[count == 3 && k == 2 ? 3 : k];
+      std::vector<JsonNode> uv = given.empty() ? std::vector<JsonNode>{} : given[k].asArray(2, 2);
+      scene.uvs.push_back(uv.empty() ? fallback[0] : uv[0].asNumber());
+      scene.uvs.push_back(uv.empty() ? fallback[1] : uv[1].asNumber());
+    }
+    detail::addPolygon(scene, vertices, uvs, {}, material, object, flip);
   }
 
   void parse(const Json &document) {
@@ -325,6 +364,7 @@ Scene parseSceneJson(const std::string &text, const std::string &path) {
   scene.sourceFile = path;
   SceneParser parser{scene, path, fs::path(path).parent_path()};
   parser.parse(document);
+  detail::loadTextures(scene);
   validateScene(scene);
   return scene;
 }
@@ -336,6 +376,7 @@ Scene loadScene(const std::string &path) {
     // A bare OBJ is taken to be in metres.
     appendObj(scene, path, Transform{}, fs::path(path).stem().string(), -1);
     scene.camera = detail::frameBounds(scene);
+    detail::loadTextures(scene);
     validateScene(scene);
     return scene;
   }

@@ -9,6 +9,8 @@
 #include <string>
 
 #include "colour/spectrum.h"
+#include "texture/texture.h"
+#include "util/error.h"
 #include "util/spectrum.h"
 
 namespace radiant {
@@ -44,12 +46,21 @@ struct Material {
   /// the spectra's linear sRGB colour.
   MaterialSpectra spectra;
 
-  // Surface detail, parsed now and used by the texture/bump stage later.
-  std::string diffuseTexture;  ///< map_Kd, path resolved against the file that named it
-  std::string bumpTexture;     ///< bump / map_Bump
-  double bumpScale = 1.0;      ///< -bm
+  // Surface detail (docs/textures.md; C&W §9.4). Paths are resolved against
+  // the file that named them; the loader loads each image once into
+  // Scene::textures and sets the indices (−1: none).
+  std::string diffuseTexture;  ///< map_Kd / "texture": multiplies `diffuse`
+  std::string bumpTexture;     ///< bump / map_Bump / "bump": a height map
+  std::string normalTexture;   ///< "normal_map": tangent-space normals (JSON only)
+  double bumpScale = 1.0;      ///< -bm / "bump_scale": height per unit of map value, scene units
+  int diffuseTextureIndex = -1, bumpTextureIndex = -1, normalTextureIndex = -1;
+  TextureWrap textureWrap = TextureWrap::Repeat;  ///< -clamp on / "texture_wrap"
+  double uvScale[2] = {1, 1};  ///< -s u v / "texture_scale": texture coordinates are multiplied by it
+  /// Where the maps were named (MTL file and line, or JSON path), for messages.
+  InputLocation diffuseTextureFrom, bumpTextureFrom, normalTextureFrom;
 
   bool isEmitter() const { return emission.max() > 0.0; }
+  bool hasSurfaceDetail() const { return diffuseTextureIndex >= 0 || bumpTextureIndex >= 0 || normalTextureIndex >= 0; }
   /// True when the surface scatters only into a finite set of directions.
   bool isDelta() const { return kind == MaterialKind::Mirror || kind == MaterialKind::Dielectric; }
 };

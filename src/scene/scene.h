@@ -81,6 +81,7 @@ struct Scene {
   std::vector<Face> faces;
   std::vector<Triangle> triangles;
   std::vector<Material> materials;
+  std::vector<Texture> textures;  ///< images named by the materials, each loaded once
   std::vector<SceneObject> objects;
 
   CameraSettings camera;
