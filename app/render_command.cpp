@@ -126,6 +126,11 @@ CommandRunner addRenderCommand(CLI::App &app) {
                  "and interpolate")
       ->default_val("radiance")
       ->check(CLI::IsMember({"radiance", "irradiance"}));
+  app.add_option("--bump-orientations", o->twoPass.bumpOrientations,
+                 "interpolate: normal orientations gathered per node of a bump-mapped surface (Chen & Wu 1990), an "
+                 "even number 4…64")
+      ->default_val(16)
+      ->check(CLI::Range(4, 64));
   app.add_option("--variance", o->variancePath, "Also write the variance of each pixel's mean (.exr or .pfm)");
   app.add_option("--spp", o->spp, "Samples per pixel (default: the scene's render.spp, else 64)");
   app.add_option("--time", o->time,
@@ -185,6 +190,10 @@ CommandRunner addRenderCommand(CLI::App &app) {
       if (!o->solutionPath.empty() && !method.needsSolution)
         throw InputError(InputLocation{"--solution"}, "--method " + o->method + " does not read a radiosity solution");
       rejectUnusedTwoPassOptions(app, o->method);
+      if (app.count("--bump-orientations") > 0 && o->method != "interpolate")
+        throw InputError(flag("--bump-orientations"), "only interpolate uses it, not --method " + o->method);
+      if (o->twoPass.bumpOrientations % 2 != 0)
+        throw InputError(flag("--bump-orientations"), "must be even (two tilts × azimuths)");
       if (o->quantity == "irradiance" && !method.supportsIrradiance)
         throw InputError(flag("--quantity"), "irradiance images come from --method path, flat or interpolate, not " +
                                                  o->method);
@@ -276,6 +285,9 @@ CommandRunner addRenderCommand(CLI::App &app) {
       RendererOptions rendererOptions = o->twoPass;
       rendererOptions.maxDepth = r.maxDepth;
       rendererOptions.irradiance = o->quantity == "irradiance";
+      // The angle a pixel subtends at the image centre: texture filter widths.
+      rendererOptions.pixelSpreadAngle =
+          2 * std::tan(0.5 * scene.camera.verticalFovDegrees * kPi / 180) / std::max(1, r.height);
       Solution solved;
       if (method.needsSolution) {
         if (solutions.empty()) {

@@ -120,6 +120,13 @@ uint64_t sceneFingerprint(const Scene &scene) {
   };
   for (const Material &m : scene.materials) {
     f.value(int(m.kind));
+    // A texture changes ρ̄ (and so the solution): its size, mean, wrap and scale identify it.
+    if (m.diffuseTextureIndex >= 0) {
+      const Texture &texture = scene.textures[m.diffuseTextureIndex];
+      f.value(uint8_t(2)), f.value(texture.width()), f.value(texture.height()), f.value(int(texture.wrap()));
+      for (int b = 0; b < kBandCount; ++b) f.value(texture.mean()[b]);
+      f.value(m.uvScale[0]), f.value(m.uvScale[1]);
+    }
     if (spectral) {
       spectrum(m.spectra.diffuse, m.diffuse), spectrum(m.spectra.emission, m.emission);
       spectrum(m.spectra.specular, m.specular);
@@ -362,6 +369,7 @@ Solution getSolution(Reader &r, const Scene &scene) {
     for (int k = 0; k < e.vertexCount; ++k)
       if (e.nodes[k] >= m.nodes.size()) r.fail("an element refers to a node that does not exist");
   }
+  s.nodeReflectance = s.nodeValues(s.reflectance);  // derived, not stored: only after the checks above
   return s;
 }
 

@@ -29,6 +29,7 @@
 
 #include "radiosity/form_factor.h"
 #include "radiosity/solver.h"
+#include "texture/surface_detail.h"
 #include "render/sampling.h"
 #include "util/error.h"
 
@@ -77,6 +78,10 @@ class Hierarchy {
       // A patch's elements share its material: take ρ and E from its first element.
       n.emission = initial.emission[patch.firstElement];
       n.reflectance = initial.reflectance[patch.firstElement];
+      patchFace_.push_back(patch.face);
+      textured_.push_back(tracer.scene().materials[patch.material].diffuseTextureIndex >= 0 &&
+                          n.reflectance.max() > 0);
+      if (textured_.back()) n.reflectance = nodeReflectance(n);
       n.radiosity = n.emission;
       maxEmission = std::max(maxEmission, n.emission.max());
       nodes_.push_back(n);
@@ -241,7 +246,7 @@ class Hierarchy {
       child.centre = centreOf(child);
       child.level = parent.level + 1;
       child.emission = parent.emission;
-      child.reflectance = parent.reflectance;
+      child.reflectance = textured_[parent.patch] ? nodeReflectance(child) : parent.reflectance;
       child.radiosity = parent.radiosity;
       nodes_[n].children[k] = static_cast<int32_t>(nodes_.size());
       nodes_.push_back(child);
@@ -345,7 +350,14 @@ class Hierarchy {
     return b;
   }
 
+  /// ρ̄ of a textured patch's node: the texture averaged over the node (C&W eq. 9.11).
+  Bands nodeReflectance(const Node &n) const {
+    return averageDiffuse(tracer_.scene(), patchFace_[n.patch], std::span<const Vec3>(n.corners.data(), n.vertexCount));
+  }
+
   const RayTracer &tracer_;
+  std::vector<uint32_t> patchFace_;  ///< the scene face of each patch
+  std::vector<bool> textured_;       ///< per patch: its ρ varies with a texture
   const SolverOptions &options_;
   std::vector<Node> nodes_;
   std::vector<HierarchicalLink> links_;

@@ -1,5 +1,7 @@
 #include "radiosity/solution.h"
 
+#include "texture/surface_detail.h"
+
 #include <cmath>
 #include <unordered_map>
 
@@ -15,6 +17,14 @@ Solution initialSolution(const Scene &scene, RadiosityMesh mesh) {
     // Only the diffuse part takes part in radiosity; mirrors and glass are left
     // to the per-pixel passes (their diffuse reflectance is 0).
     s.reflectance[e] = m.kind == MaterialKind::Lambertian || m.kind == MaterialKind::Glossy ? m.diffuse : Bands(0.0);
+    // A textured surface takes part with its texture's mean over the element, ρ̄ (C&W eq. 9.11).
+    if (m.diffuseTextureIndex >= 0 && s.reflectance[e].max() > 0) {
+      const Element &element = mesh.elements[e];
+      std::array<Vec3, 4> corners;
+      for (int k = 0; k < element.vertexCount; ++k) corners[k] = mesh.nodes[element.nodes[k]];
+      s.reflectance[e] = averageDiffuse(scene, mesh.patchOf(static_cast<uint32_t>(e)).face,
+                                        std::span<const Vec3>(corners.data(), element.vertexCount));
+    }
     s.emission[e] = m.emission * kPi;
   }
   s.radiosity = s.emission;
@@ -108,6 +118,7 @@ void Solution::updateNodesAndErrors() {
   std::vector<Bands> display(mesh.elements.size());
   for (uint32_t e = 0; e < mesh.elements.size(); ++e) display[e] = displayRadiosity(e);
   nodeRadiosity = nodeValues(display);
+  nodeReflectance = nodeValues(reflectance);
   // Gradient estimate (C&W ch. 6, Cohen et al. 1986): how far the nodes around
   // an element stray from its own value, relative to it. Large where the
   // constant element misrepresents a shadow edge or a steep falloff.
@@ -120,6 +131,17 @@ void Solution::updateNodesAndErrors() {
       worst = std::max(worst, std::abs(nodeRadiosity[element.nodes[k]].luminance() - b));
     errorEstimate[e] = b > 0 ? worst / b : (worst > 0 ? 1.0 : 0.0);
   }
+}
+
+}  // namespace radiant
+
+namespace radiant {
+
+Bands Solution::textureFactor(const MeshLocation &location, const Bands &rho) const {
+  Bands average = nodeReflectance.empty() ? reflectance[location.element] : interpolate(nodeReflectance, location);
+  Bands factor(0.0);
+  for (int b = 0; b < kBandCount; ++b) factor[b] = average[b] > 0 ? rho[b] / average[b] : 0.0;  // ρ̄ = 0: nothing reflected
+  return factor;
 }
 
 }  // namespace radiant

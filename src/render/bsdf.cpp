@@ -14,8 +14,9 @@ double fresnelDielectric(double cosThetaI, double eta) {
   return 0.5 * (rParallel * rParallel + rPerpendicular * rPerpendicular);
 }
 
-Bsdf::Bsdf(const Material &material, const Vec3 &shadingNormal, const Vec3 &geometricNormal, const Vec3 &wo)
-    : material_(material) {
+Bsdf::Bsdf(const Material &material, const Vec3 &shadingNormal, const Vec3 &geometricNormal, const Vec3 &wo,
+           const Bands *diffuse)
+    : material_(material), diffuse_(diffuse ? *diffuse : material.diffuse) {
   bool woOnFront = dot(wo, geometricNormal) >= 0;
   entering_ = woOnFront;
   // Opaque surfaces reflect on both sides (the Cornell blocks are seen from
@@ -35,7 +36,7 @@ bool Bsdf::sameHemisphere(const Vec3 &wi) const {
 
 double Bsdf::specularLobeProbability() const {
   if (material_.kind != MaterialKind::Glossy) return 0;
-  double d = material_.diffuse.average(), s = material_.specular.average();
+  double d = diffuse_.average(), s = material_.specular.average();
   return d + s > 0 ? s / (d + s) : 0;
 }
 
@@ -43,7 +44,7 @@ Bands Bsdf::evaluate(const Vec3 &wiWorld) const {
   if (material_.isDelta() || !sameHemisphere(wiWorld)) return Bands(0.0);
   Vec3 wi = frame_.toLocal(wiWorld);
   if (wi.z <= 0 || woLocal_.z <= 0) return Bands(0.0);
-  Bands f = material_.diffuse * kInvPi;
+  Bands f = diffuse_ * kInvPi;
   if (material_.kind == MaterialKind::Glossy) {
     // Torrance–Sparrow with GGX D and separable Smith G; the lobe's reflectance
     // is the constant `specular` (no Fresnel), so ρ_d + ρ_s ≤ 1 bounds the albedo.

@@ -22,7 +22,9 @@ struct BsdfSample {
 class Bsdf {
  public:
   /// `shadingNormal` and `geometricNormal` as in Hit (front side); `wo` chooses which side is lit.
-  Bsdf(const Material &material, const Vec3 &shadingNormal, const Vec3 &geometricNormal, const Vec3 &wo);
+  /// `diffuse`, when given, replaces the material's diffuse reflectance: ρ(x) of a texture map.
+  Bsdf(const Material &material, const Vec3 &shadingNormal, const Vec3 &geometricNormal, const Vec3 &wo,
+       const Bands *diffuse = nullptr);
 
   /// f(wo, wi) of the non-delta lobes, sr⁻¹.
   Bands evaluate(const Vec3 &wi) const;
@@ -39,6 +41,7 @@ class Bsdf {
   double specularLobeProbability() const;
 
   const Material &material_;
+  Bands diffuse_;        ///< the Lambertian (or glossy base) reflectance at this point
   Frame frame_;          ///< shading frame, normal on the side of wo (except for glass)
   Vec3 geometricNormal_; ///< flipped to the side of wo
   Vec3 woLocal_;

@@ -18,6 +18,7 @@
 #include "render/bsdf.h"
 #include "render/light_sampler.h"
 #include "render/sampling.h"
+#include "texture/surface_detail.h"
 
 namespace radiant {
 
@@ -27,7 +28,7 @@ class PathTracer final : public Renderer {
  public:
   PathTracer(const RayTracer &tracer, const RendererOptions &options)
       : tracer_(tracer), scene_(tracer.scene()), lights_(tracer.scene()), maxDepth_(options.maxDepth),
-        irradiance_(options.irradiance) {
+        irradiance_(options.irradiance), pixelSpread_(options.pixelSpreadAngle) {
     meter_.name = "irradiance meter";
     meter_.diffuse = Bands(1.0);
   }
@@ -39,11 +40,21 @@ class PathTracer final : public Renderer {
     double previousBsdfPdf = 0;
     Vec3 previousPosition = ray.origin;
     bool metered = false;  // irradiance: the meter is placed at the first non-delta vertex
+    double travelled = 0;  // camera ray and specular chain: the pixel's footprint grows with it
+    bool cameraChain = true;
 
     for (int depth = 0;; ++depth) {
       Hit hit;
       if (!tracer_.intersect(ray, hit)) break;  // no environment light: the world outside is black
       const Material &material = scene_.materials[hit.material];
+      if (cameraChain) travelled += hit.distance;
+      // Texture and bump maps (texture/surface_detail.h): ρ(x) and the bumped shading normal.
+      Bands diffuse = material.diffuse;
+      if (material.hasSurfaceDetail()) {
+        const SurfaceDetail detail = surfaceDetail(scene_, hit, cameraChain ? travelled * pixelSpread_ : 0.0);
+        diffuse = detail.diffuse;
+        hit.shadingNormal = detail.shadingNormal;
+      }
       Vec3 wo = -ray.direction;
       // Irradiance: at the first surface that is not a mirror or glass, a white
       // Lambertian meter replaces the material, and π·(reflected radiance of
@@ -63,7 +74,8 @@ class PathTracer final : public Renderer {
       }
       if (maxDepth_ > 0 && depth >= maxDepth_) break;  // max depth counts bounces
 
-      Bsdf bsdf(meterHere ? meter_ : material, hit.shadingNormal, hit.geometricNormal, wo);
+      Bsdf bsdf(meterHere ? meter_ : material, hit.shadingNormal, hit.geometricNormal, wo,
+                meterHere ? nullptr : &diffuse);
       if (meterHere) throughput *= kPi, metered = true;
 
       if (!bsdf.isDelta() && !lights_.empty()) L += throughput * sampleLight(hit, bsdf, rng);
@@ -74,6 +86,7 @@ class PathTracer final : public Renderer {
       throughput *= s.weight;
       if (throughput.max() <= 0) break;
       countEmissionFully = s.isDelta;
+      cameraChain = cameraChain && s.isDelta;
       previousBsdfPdf = s.pdf;
       previousPosition = hit.position;
 
@@ -114,6 +127,7 @@ class PathTracer final : public Renderer {
   LightSampler lights_;
   int maxDepth_;
   bool irradiance_;
+  double pixelSpread_;
   Material meter_;  ///< Lambertian, ρ = 1: the irradiance meter
 };
 

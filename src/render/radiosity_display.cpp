@@ -6,6 +6,8 @@
 // barycentric on triangles; Gouraud shading of the mesh), continuous inside a
 // patch. Both include the progressive solver's ambient term. With
 // RendererOptions::irradiance they show the irradiance H the same way.
+// Texture maps apply C&W eq. 9.11 at each pixel; bump maps, in `interpolate`,
+// Chen's perturbed radiosity (render/bump_gather.h).
 //
 // Mirrors and glass seen from the eye are followed (ideal reflection and
 // refraction, Fresnel-weighted choice) until a diffuse surface is reached,
@@ -14,7 +16,10 @@
 #include "render/radiosity_display.h"
 
 #include "radiosity/solution.h"
+#include "render/bump_gather.h"
 #include "render/two_pass.h"
+
+#include <optional>
 
 namespace radiant {
 
@@ -22,8 +27,15 @@ namespace {
 
 class RadiosityDisplay final : public Renderer {
  public:
-  RadiosityDisplay(const RayTracer &tracer, const Solution &solution, bool interpolate, bool irradiance)
-      : tracer_(tracer), solution_(solution), interpolate_(interpolate), irradiance_(irradiance) {
+  RadiosityDisplay(const RayTracer &tracer, const Solution &solution, bool interpolate, const RendererOptions &options)
+      : tracer_(tracer), solution_(solution), interpolate_(interpolate), irradiance_(options.irradiance),
+        pixelSpread_(options.pixelSpreadAngle) {
+    if (interpolate_ && !irradiance_) {
+      BumpGatherOptions bump;
+      bump.orientations = options.bumpOrientations;
+      bumps_.emplace(tracer, solution, bump);
+      if (bumps_->empty()) bumps_.reset();
+    }
     if (!irradiance_) return;
     // H per element (the ambient term arrives as irradiance too, as in the report), and at the nodes.
     for (uint32_t e = 0; e < solution.elementCount(); ++e) elementIrradiance_.push_back(solution.irradiance[e] + solution.ambient);
@@ -32,12 +44,24 @@ class RadiosityDisplay final : public Renderer {
 
   Bands radiance(const Ray &cameraRay, Sampler &rng) const override {
     VisiblePoint x;
-    if (!findVisiblePoint(tracer_, solution_, cameraRay, rng, x)) return Bands(0.0);
+    if (!findVisiblePoint(tracer_, solution_, cameraRay, rng, x, pixelSpread_)) return Bands(0.0);
     if (irradiance_)
       return x.throughput * (interpolate_ ? solution_.interpolate(nodeIrradiance_, x.location)
                                           : elementIrradiance_[x.location.element]);
     Bands radiosity = interpolate_ ? solution_.interpolatedRadiosity(x.location)
                                    : solution_.displayRadiosity(x.location.element);
+    if (x.textured) {
+      // C&W eq. 9.11: B = E + (B(ρ̄) − E)·ρ(x)/ρ̄, with the element's own ρ̄
+      // for flat (so an element's mean stays its B) and the interpolated one
+      // for interpolate; and for a bump map, Chen's ratio r(n') (bump_gather.h).
+      const uint32_t e = x.location.element;
+      Bands factor = x.textureFactor;
+      if (!interpolate_ && x.material->diffuseTextureIndex >= 0)
+        for (int b = 0; b < kBandCount; ++b)
+          factor[b] = solution_.reflectance[e][b] > 0 ? x.reflectance[b] / solution_.reflectance[e][b] : 0.0;
+      if (bumps_) factor *= bumps_->ratio(x.location, x.hit.shadingNormal);
+      radiosity = solution_.emission[e] + (radiosity - solution_.emission[e]) * factor;
+    }
     return x.throughput * radiosity * kInvPi;
   }
 
@@ -46,17 +70,19 @@ class RadiosityDisplay final : public Renderer {
   const Solution &solution_;
   bool interpolate_;
   bool irradiance_;
+  double pixelSpread_;
+  std::optional<BumpGather> bumps_;  ///< interpolate with bump-mapped patches only
   std::vector<Bands> elementIrradiance_, nodeIrradiance_;  ///< H + ambient (irradiance only)
 };
 
 }  // namespace
 
 std::unique_ptr<Renderer> createFlatRadiosityDisplay(const RayTracer &tracer, const RendererOptions &options) {
-  return std::make_unique<RadiosityDisplay>(tracer, requireSolution(options), false, options.irradiance);
+  return std::make_unique<RadiosityDisplay>(tracer, requireSolution(options), false, options);
 }
 
 std::unique_ptr<Renderer> createInterpolatedRadiosityDisplay(const RayTracer &tracer, const RendererOptions &options) {
-  return std::make_unique<RadiosityDisplay>(tracer, requireSolution(options), true, options.irradiance);
+  return std::make_unique<RadiosityDisplay>(tracer, requireSolution(options), true, options);
 }
 
 }  // namespace radiant

@@ -71,7 +71,7 @@ class Reichert final : public TwoPassRenderer {
       double f = visibleFormFactor(x, {polygons_[j].data(), size_t(element.vertexCount)}, nj, u1, u2);
       if (f > 0) irradiance += solution_.displayRadiosity(j) * f;
     }
-    return x.material->diffuse * irradiance * kInvPi;
+    return x.reflectance * irradiance * kInvPi;  // ρ(x): a texture is applied directly
   }
 
   Bands reflectedByLinks(const VisiblePoint &x, Sampler &rng) const override {
@@ -88,8 +88,7 @@ class Reichert final : public TwoPassRenderer {
                      : 0.0;
       correction += solution_.treeRadiosity[link.source] * (f - link.formFactor);
     });
-    Bands interpolated = solution_.interpolatedRadiosity(x.location) - solution_.emission[x.location.element];
-    return (interpolated + x.material->diffuse * correction) * kInvPi;
+    return (reflectedRadiosity(solution_, x) + x.reflectance * correction) * kInvPi;
   }
 
  private:

@@ -34,6 +34,11 @@ struct RendererOptions {
   /// meter lying on it reads, for false-colour illuminance maps. `path`,
   /// `flat` and `interpolate` only (supportsIrradiance).
   bool irradiance = false;
+  /// The angle one pixel subtends, radians: texture maps are filtered over
+  /// the pixel's footprint where a camera ray meets them (0: finest texels).
+  double pixelSpreadAngle = 0;
+  /// interpolate: normal orientations gathered per node of a bump-mapped patch (render/bump_gather.h).
+  int bumpOrientations = 16;
   /// The radiosity solution, for the methods that read one (it must outlive the renderer).
   const Solution *solution = nullptr;
 

@@ -30,7 +30,7 @@ class Rushmeier final : public TwoPassRenderer {
  protected:
   Bands reflected(const VisiblePoint &x, Sampler &rng) const override {
     Bands L = directLight(x, rng);
-    Bsdf bsdf(*x.material, x.hit.shadingNormal, x.hit.geometricNormal, x.wo);
+    Bsdf bsdf(*x.material, x.hit.shadingNormal, x.hit.geometricNormal, x.wo, &x.reflectance);
     BsdfSample s;
     double uLobe = rng.next(), u1 = rng.next(), u2 = rng.next();
     if (!bsdf.sample(uLobe, u1, u2, s)) return L;
@@ -44,7 +44,7 @@ class Rushmeier final : public TwoPassRenderer {
   Bands gatheredRadiance(const Ray &ray, Sampler &rng) const {
     VisiblePoint y;
     if (!findVisiblePoint(tracer_, solution_, ray, rng, y)) return Bands(0.0);
-    Bands L = (solution_.interpolatedRadiosity(y.location) - solution_.emission[y.location.element]) * kInvPi;
+    Bands L = reflectedRadiosity(solution_, y) * kInvPi;
     for (int b = 0; b < kBandCount; ++b) L[b] = std::max(0.0, L[b]);
     if (y.specularBounces > 0) L += y.material->emission;
     return y.throughput * L;

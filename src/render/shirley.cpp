@@ -24,6 +24,7 @@
 
 #include "render/sampling.h"
 #include "render/secondary_sources.h"
+#include "render/bump_gather.h"
 #include "render/two_pass.h"
 
 namespace radiant {
@@ -42,6 +43,12 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
       for (uint32_t e = 0; e < s.elementCount(); ++e) indirect[e] = indirect[e] - sources_->removedRadiosity()[e];
     }
     remainingIndirect_ = s.nodeValues(indirect);
+    // Bump maps: the interpolated indirect light, seen by a tilted normal (Chen's ratio of reflected light).
+    BumpGatherOptions bump;
+    bump.orientations = options.bumpOrientations;
+    bump.reflectedOnly = true;
+    bumps_.emplace(tracer, s, bump);
+    if (bumps_->empty()) bumps_.reset();
   }
 
  protected:
@@ -49,6 +56,8 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
     Bands L = directLight(x, rng);
     if (sources_) L += secondaryLight(x, rng);
     Bands indirect = solution_.interpolate(remainingIndirect_, x.location) * kInvPi;
+    if (x.textured) indirect *= x.textureFactor;  // eq. 9.11 on what is read from the solution
+    if (bumps_ && x.textured) indirect *= bumps_->ratio(x.location, x.hit.shadingNormal);
     for (int b = 0; b < kBandCount; ++b) indirect[b] = std::max(0.0, indirect[b]);
     return L + indirect;
   }
@@ -60,7 +69,7 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
   /// where 1/r² of a nearby large reflector would otherwise give fireflies).
   Bands secondaryLight(const VisiblePoint &x, Sampler &rng) const {
     const Vec3 &n = x.hit.shadingNormal;
-    const Bands f = x.material->diffuse * kInvPi;  // the solution holds only the diffuse part of x's reflection
+    const Bands f = x.reflectance * kInvPi;  // the solution holds only the diffuse part of x's reflection
     if (f.max() <= 0) return Bands(0.0);
     Bands L(0.0);
 
@@ -90,11 +99,12 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
     double pdfSource = pdfArea * y.distance * y.distance / -dot(wi, y.geometricNormal);
     double pdfCosine = dot(wi, n) * kInvPi;
     Bands radiance = sources_->radiance(solution_.mesh.locate(y.face, y.position).element);
-    return L + x.material->diffuse * radiance * powerHeuristic(pdfCosine, pdfSource);  // f·cos/pdf = ρ
+    return L + x.reflectance * radiance * powerHeuristic(pdfCosine, pdfSource);  // f·cos/pdf = ρ
   }
 
   std::optional<SecondarySources> sources_;
   std::vector<Bands> remainingIndirect_;  ///< node values of indirect − removed
+  std::optional<BumpGather> bumps_;       ///< bump-mapped patches only
 };
 
 }  // namespace

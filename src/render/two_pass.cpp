@@ -1,17 +1,21 @@
 #include "render/two_pass.h"
 
 #include "render/bsdf.h"
+#include "texture/surface_detail.h"
 #include "util/error.h"
 
 namespace radiant {
 
-bool findVisiblePoint(const RayTracer &tracer, const Solution &solution, Ray ray, Sampler &rng, VisiblePoint &out) {
+bool findVisiblePoint(const RayTracer &tracer, const Solution &solution, Ray ray, Sampler &rng, VisiblePoint &out,
+                      double pixelSpread) {
   constexpr int kMaxSpecularBounces = 64;
   const Scene &scene = tracer.scene();
   out.throughput = Bands(1.0);
+  double travelled = 0;  // along the specular chain: the pixel's footprint grows with it
   for (int bounce = 0; bounce < kMaxSpecularBounces; ++bounce) {
     out.specularBounces = bounce;
     if (!tracer.intersect(ray, out.hit)) return false;
+    travelled += out.hit.distance;
     const Material &material = scene.materials[out.hit.material];
     out.wo = -ray.direction;
     if (material.isDelta()) {
@@ -27,9 +31,23 @@ bool findVisiblePoint(const RayTracer &tracer, const Solution &solution, Ray ray
     if (solution.mesh.patchOfFace[out.hit.face] < 0) return false;
     out.location = solution.mesh.locate(out.hit.face, out.hit.position);
     out.material = &material;
+    out.reflectance = material.diffuse;
+    out.textured = material.hasSurfaceDetail();
+    if (out.textured) {
+      const SurfaceDetail detail = surfaceDetail(scene, out.hit, travelled * pixelSpread);
+      out.reflectance = detail.diffuse;
+      out.hit.shadingNormal = detail.shadingNormal;
+      out.textureFactor = material.diffuseTextureIndex >= 0 ? solution.textureFactor(out.location, detail.diffuse)
+                                                            : Bands(1.0);
+    }
     return true;
   }
   return false;
+}
+
+Bands reflectedRadiosity(const Solution &solution, const VisiblePoint &x) {
+  Bands reflected = solution.interpolatedRadiosity(x.location) - solution.emission[x.location.element];
+  return x.textured ? reflected * x.textureFactor : reflected;
 }
 
 const Solution &requireSolution(const RendererOptions &options) {
@@ -46,10 +64,11 @@ TwoPassRenderer::TwoPassRenderer(const RayTracer &tracer, const RendererOptions 
 
 Bands TwoPassRenderer::radiance(const Ray &ray, Sampler &rng) const {
   VisiblePoint x;
-  if (!findVisiblePoint(tracer_, solution_, ray, rng, x)) return Bands(0.0);
+  if (!findVisiblePoint(tracer_, solution_, ray, rng, x, options_.pixelSpreadAngle)) return Bands(0.0);
   Bands L(0.0);
   if (options_.selective && !selectsByLinks_ && trustsSolution(x)) {
-    L = solution_.interpolatedRadiosity(x.location) * kInvPi;  // emission included
+    L = x.textured ? (solution_.emission[x.location.element] + reflectedRadiosity(solution_, x)) * kInvPi
+                   : solution_.interpolatedRadiosity(x.location) * kInvPi;  // emission included
   } else {
     L = x.material->emission + (options_.selective && selectsByLinks_ ? reflectedByLinks(x, rng) : reflected(x, rng));
   }
@@ -82,7 +101,7 @@ Bands TwoPassRenderer::directLight(const VisiblePoint &x, Sampler &rng) const {
   Vec3 wi = toLight / std::sqrt(distance2);
   double cosLight = -dot(wi, light.normal);
   if (cosLight <= 0) return Bands(0.0);  // the emitter's back does not emit
-  Bsdf bsdf(*x.material, x.hit.shadingNormal, x.hit.geometricNormal, x.wo);
+  Bsdf bsdf(*x.material, x.hit.shadingNormal, x.hit.geometricNormal, x.wo, &x.reflectance);
   Bands f = bsdf.evaluate(wi);
   if (f.max() <= 0) return Bands(0.0);
   if (!tracer_.visible(x.hit.position, x.hit.geometricNormal, light.position, light.normal)) return Bands(0.0);

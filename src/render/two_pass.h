@@ -28,13 +28,27 @@ struct VisiblePoint {
   int specularBounces = 0;
   MeshLocation location;  ///< in the radiosity mesh
   const Material *material = nullptr;
+  /// Surface detail (texture/surface_detail.h): ρ(x), the diffuse reflectance
+  /// here (the material's, times its texture), and hit.shadingNormal is the
+  /// bumped normal. textureFactor = ρ(x)/ρ̄(x) (C&W eq. 9.11) scales what is
+  /// read from the solution here; exactly 1 without a texture.
+  Bands reflectance;
+  Bands textureFactor{1.0};
+  bool textured = false;
 };
 
 /// Follows a ray through ideal mirrors and glass (Fresnel-weighted choice, as
 /// the path tracer does) to the first non-delta surface. False if it escapes,
 /// is absorbed, or reaches the back of a face or a face outside the mesh
 /// (the one-sided solution says nothing about those: they are black).
-bool findVisiblePoint(const RayTracer &tracer, const Solution &solution, Ray ray, Sampler &rng, VisiblePoint &out);
+/// `pixelSpread`: the angle one pixel subtends (radians), which sets the width
+/// of the texture filter at x (0: the finest texels).
+bool findVisiblePoint(const RayTracer &tracer, const Solution &solution, Ray ray, Sampler &rng, VisiblePoint &out,
+                      double pixelSpread = 0);
+
+/// The solution's reflected radiosity B − E interpolated at x, with the
+/// texture at x applied (eq. 9.11): what x reflects according to the solution.
+Bands reflectedRadiosity(const Solution &solution, const VisiblePoint &x);
 
 class TwoPassRenderer : public Renderer {
  public:
