@@ -165,6 +165,19 @@ fi
 expect_error "irradiance from a two-pass method" "quantity: irradiance images come from" \
   "$radiant" render "$cornell" --method shirley --quantity irradiance -o x.exr -q
 
+# Texture and bump maps (docs/textures.md): the textured box renders with each method.
+textured="$source_dir/scenes/cornell-textured/scene.json"
+for method in path interpolate shirley; do
+  mesh=(--mesh-size 150)
+  [ "$method" = path ] && mesh=()
+  "$radiant" render "$textured" --method "$method" --spp 1 --width 16 --height 16 "${mesh[@]}" -o "tex-$method.png" -q \
+    && [ -s "tex-$method.png" ] && pass || fail "textured box with --method $method"
+done
+expect_error "--bump-orientations with path" "only interpolate uses it" \
+  "$radiant" render "$textured" --bump-orientations 8 -o x.exr -q
+expect_error "odd --bump-orientations" "must be even" \
+  "$radiant" render "$textured" --method interpolate --bump-orientations 9 -o x.exr -q
+
 # tonemap: a saved EXR mapped again without rendering (docs/tone-mapping.md).
 # expect_exit2 NAME PATTERN COMMAND... : bad input exits with status 2 and names the culprit
 expect_exit2() {
