@@ -13,6 +13,7 @@
 #include "colour_options.h"
 #include "commands.h"
 #include "display_options.h"
+#include "multipass_command.h"
 #include "io/solution_file.h"
 #include "radiosity_options.h"
 #include "raytrace/ray_tracer.h"
@@ -190,8 +191,10 @@ CommandRunner addRenderCommand(CLI::App &app) {
       if (!o->solutionPath.empty() && !method.needsSolution)
         throw InputError(InputLocation{"--solution"}, "--method " + o->method + " does not read a radiosity solution");
       rejectUnusedTwoPassOptions(app, o->method);
-      if (app.count("--bump-orientations") > 0 && o->method != "interpolate")
-        throw InputError(flag("--bump-orientations"), "only interpolate uses it, not --method " + o->method);
+      if (app.count("--bump-orientations") > 0 &&
+          ((o->method != "interpolate" && o->method != "shirley" && o->method != "kok") || o->quantity == "irradiance"))
+        throw InputError(flag("--bump-orientations"), "only interpolate, shirley and kok (of radiance) use it, not --method " +
+                                                          o->method + (o->quantity == "irradiance" ? " --quantity irradiance" : ""));
       if (o->twoPass.bumpOrientations % 2 != 0)
         throw InputError(flag("--bump-orientations"), "must be even (two tilts × azimuths)");
       if (o->quantity == "irradiance" && !method.supportsIrradiance)
@@ -270,6 +273,21 @@ CommandRunner addRenderCommand(CLI::App &app) {
     const RendererInfo &method = findRenderer(o->method);
     RayTracer tracer(scene);  // geometry only: a spectral pass changes the materials, not the rays
     PinholeCamera camera(scene.camera, r.width, r.height);
+    if (o->method == "multipass") {
+      if (scene.spectral.enabled())
+        throw InputError(flag("--method"), "multipass does not run spectral scenes yet: use --colour rgb");
+      if (!o->solutionPath.empty())
+        throw InputError(flag("--solution"), "multipass solves progressively itself, pass by pass");
+      if (app.count("--solver") > 0 && o->radiosity.solver.solver != "progressive")
+        throw InputError(flag("--solver"), "multipass's radiosity pass is progressive refinement");
+      MultipassCommand command{outputs, display, app.count("--tonemap") > 0, o->variancePath, o->radiosity,
+                               o->twoPass, r.samplesPerPixel, r.timeBudgetSeconds, r.seed, o->threads, o->quiet};
+      command.renderer.maxDepth = r.maxDepth;
+      command.renderer.pixelSpreadAngle =  // over the 4 samples of its filtered passes
+          0.5 * 2 * std::tan(0.5 * scene.camera.verticalFovDegrees * kPi / 180) / std::max(1, r.height);
+      runMultipass(tracer, camera, r.width, r.height, command);
+      return 0;
+    }
     std::vector<Solution> solutions;
     if (method.needsSolution && !o->solutionPath.empty()) solutions = readSolutionPasses(o->solutionPath, scene);
 
@@ -285,9 +303,11 @@ CommandRunner addRenderCommand(CLI::App &app) {
       RendererOptions rendererOptions = o->twoPass;
       rendererOptions.maxDepth = r.maxDepth;
       rendererOptions.irradiance = o->quantity == "irradiance";
-      // The angle a pixel subtends at the image centre: texture filter widths.
-      rendererOptions.pixelSpreadAngle =
-          2 * std::tan(0.5 * scene.camera.verticalFovDegrees * kPi / 180) / std::max(1, r.height);
+      // Texture filter width: the angle a pixel subtends, shared among its
+      // samples (pbrt scales ray differentials by max(1/8, 1/√spp) the same way).
+      rendererOptions.pixelSpreadAngle = 2 * std::tan(0.5 * scene.camera.verticalFovDegrees * kPi / 180) /
+                                         std::max(1, r.height) *
+                                         std::max(0.125, 1 / std::sqrt(double(r.samplesPerPixel)));
       Solution solved;
       if (method.needsSolution) {
         if (solutions.empty()) {

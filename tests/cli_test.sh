@@ -173,7 +173,7 @@ for method in path interpolate shirley; do
   "$radiant" render "$textured" --method "$method" --spp 1 --width 16 --height 16 "${mesh[@]}" -o "tex-$method.png" -q \
     && [ -s "tex-$method.png" ] && pass || fail "textured box with --method $method"
 done
-expect_error "--bump-orientations with path" "only interpolate uses it" \
+expect_error "--bump-orientations with path" "only interpolate, shirley and kok" \
   "$radiant" render "$textured" --bump-orientations 8 -o x.exr -q
 expect_error "odd --bump-orientations" "must be even" \
   "$radiant" render "$textured" --method interpolate --bump-orientations 9 -o x.exr -q

@@ -271,6 +271,135 @@ TEST(SurfaceDetail, CornellTexturedFloorAndBumpedWallAgreeWithPath) {
             << shirleyPlainWall.mean / pathPlainWall.mean << ")\n";
 }
 
+/// One quad in the plane y = 0 facing +y, with the given corners, texture
+/// coordinates and material; the scene's only face.
+Scene quadScene(const std::array<Vec3, 4> &corners, const std::array<std::array<double, 2>, 4> &uv, Material m) {
+  Scene s;
+  s.objects.push_back({"quad", "test"});
+  Face f;
+  f.vertexCount = 4;
+  for (int k = 0; k < 4; ++k) {
+    f.vertices[k] = uint32_t(s.positions.size());
+    s.positions.push_back(corners[k]);
+    f.uvs[k] = int32_t(s.uvs.size() / 2);
+    s.uvs.push_back(uv[k][0]), s.uvs.push_back(uv[k][1]);
+  }
+  s.materials.push_back(m);
+  s.addFace(f);
+  return s;
+}
+
+Hit hitAt(const Scene &scene, const Vec3 &p) {
+  RayTracer tracer(scene);
+  Hit hit;
+  EXPECT_TRUE(tracer.intersect(Ray{p + Vec3{0, 1, 0}, {0, -1, 0}}, hit));
+  return hit;
+}
+
+// Blinn's bump normal (review): a height ramp h = u over a 1 m square with
+// bump_scale s tilts the normal away from the rising side by atan(s): n' =
+// (−s, 1, 0)/√(1 + s²) when u runs along +x — and mirrored texture
+// coordinates (u along −x) mirror the tilt. A tangent-space normal map of
+// (0.75, 0.5, 0.933) is the normal 0.5 along +u and 0.866 out of the surface.
+TEST(SurfaceDetail, BumpAndNormalMapsTiltTheNormalTheRightWay) {
+  std::vector<Bands> ramp;
+  for (int i = 0; i < 64; ++i) ramp.push_back(Bands((i + 0.5) / 64));
+  Material bumpy;
+  bumpy.name = "bumpy";
+  bumpy.bumpScale = 0.05;
+  bumpy.bumpTextureIndex = 0;
+  const std::array<Vec3, 4> square = {Vec3{0, 0, 0}, Vec3{0, 0, 1}, Vec3{1, 0, 1}, Vec3{1, 0, 0}};
+  for (double direction : {1.0, -1.0}) {
+    // u along +x (or −x), v along +z: corners (0,0,0) (0,0,1) (1,0,1) (1,0,0) in order.
+    const double u0 = direction > 0 ? 0 : 1, u1 = 1 - u0;
+    Scene scene = quadScene(square, {{{u0, 0}, {u0, 1}, {u1, 1}, {u1, 0}}}, bumpy);
+    scene.textures.push_back(Texture(64, 1, ramp));
+    const Vec3 n = surfaceDetail(scene, hitAt(scene, {0.5, 0, 0.5})).shadingNormal;
+    const double s = 0.05;  // dh/dx = ±1 per metre × 0.05 m
+    EXPECT_NEAR(n.x, -direction * s / std::sqrt(1 + s * s), 1e-9) << "u along " << direction << " x";
+    EXPECT_NEAR(n.y, 1 / std::sqrt(1 + s * s), 1e-9);
+    EXPECT_NEAR(n.z, 0, 1e-9);
+  }
+  Material mapped;
+  mapped.name = "mapped";
+  mapped.normalTextureIndex = 0;
+  Scene scene = quadScene(square, {{{0, 0}, {0, 1}, {1, 1}, {1, 0}}}, mapped);
+  scene.textures.push_back(Texture(1, 1, {Bands(0.75, 0.5, 0.5 + 0.5 * std::sqrt(0.75))}));
+  const Vec3 n = surfaceDetail(scene, hitAt(scene, {0.3, 0, 0.6})).shadingNormal;
+  // The map's texels are floats: 1e-7.
+  EXPECT_NEAR(n.x, 0.5, 1e-7);
+  EXPECT_NEAR(n.y, std::sqrt(0.75), 1e-7);
+  EXPECT_NEAR(n.z, 0, 1e-7);
+}
+
+// ρ̄ of an element that crosses a quad's diagonal, where the texture map is
+// affine on each triangle but not across (review): on a trapezoid with the
+// unit square's coordinates and a ramp texture, averageDiffuse equals the
+// mean of ρ(x) over the element's surface (dense midpoint sampling, 200²,
+// error well below 1e-3).
+TEST(SurfaceDetail, ElementMeansFollowTheTextureAcrossTheQuadsDiagonal) {
+  std::vector<Bands> ramp;
+  for (int i = 0; i < 32; ++i) ramp.push_back(Bands((i + 0.5) / 32 * 0.9));
+  Material m;
+  m.name = "ramp";
+  m.diffuse = Bands(1.0);
+  m.diffuseTexture = "ramp";
+  m.diffuseTextureIndex = 0;
+  m.textureWrap = TextureWrap::Clamp;
+  Scene scene = quadScene({Vec3{0, 0, 0}, Vec3{0.25, 0, 1}, Vec3{0.75, 0, 1}, Vec3{1, 0, 0}},
+                          {{{0, 0}, {0, 1}, {1, 1}, {1, 0}}}, m);
+  scene.textures.push_back(Texture(32, 1, ramp, TextureWrap::Clamp));
+  RayTracer tracer(scene);
+  // Elements of a 3 × 4 grid over the trapezoid (bilinear in the corners, like the mesher's).
+  auto at = [&](double a, double b) {
+    const Vec3 p00{0, 0, 0}, p01{0.25, 0, 1}, p11{0.75, 0, 1}, p10{1, 0, 0};
+    return (p00 * (1 - b) + p01 * b) * (1 - a) + (p10 * (1 - b) + p11 * b) * a;
+  };
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 4; ++j) {
+      const std::array<Vec3, 4> element = {at(i / 3.0, j / 4.0), at(i / 3.0, (j + 1) / 4.0), at((i + 1) / 3.0, (j + 1) / 4.0),
+                                           at((i + 1) / 3.0, j / 4.0)};
+      double sum = 0, area = 0;
+      const int n = 200;
+      for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) {
+          const double s = i / 3.0 + (a + 0.5) / n / 3, t = j / 4.0 + (b + 0.5) / n / 4;
+          const double ds = 1e-4, dt = 1e-4;  // the area of the sample's cell (the map is not affine)
+          const double cell = length(cross(at(s + ds, t) - at(s, t), at(s, t + dt) - at(s, t))) / (ds * dt);
+          Hit hit;
+          ASSERT_TRUE(tracer.intersect(Ray{at(s, t) + Vec3{0, 1, 0}, {0, -1, 0}}, hit));
+          sum += surfaceDetail(scene, hit).diffuse[0] * cell, area += cell;
+        }
+      EXPECT_NEAR(averageDiffuse(scene, 0, element)[0], sum / area, 1e-3) << "element " << i << ", " << j;
+    }
+}
+
+// The hierarchical solver decides from the material, not the first element,
+// whether a patch is textured (review): a texture black on its left half must
+// not make the whole floor black under the default solver.
+TEST(SurfaceDetail, HierarchicalSolutionsKeepATexturesBrightHalf) {
+  const auto dir = std::filesystem::temp_directory_path() / ("radiant-detail-h-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  Image half(8, 8);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x)
+      for (int c = 0; c < 3; ++c) half.pixel(x, y)[c] = x < 4 ? 0.0f : 0.8f;
+  const std::string texture = (dir / "half.exr").string();
+  writeExr(half, texture);
+  Scene scene = texturedBox({{R"("texture": "textures/checker.png")", "\"texture\": \"" + texture + "\", \"texture_wrap\": \"clamp\""}});
+  RayTracer tracer(scene);
+  MeshOptions mesh;
+  SolverOptions solver;
+  solver.solver = "hierarchical";
+  Solution solution = meshAndSolve(scene, tracer, mesh, solver);
+  double brightest = 0;
+  for (uint32_t e = 0; e < solution.elementCount(); ++e)
+    if (scene.objects[solution.mesh.patchOf(e).object].name == "floor")
+      brightest = std::max(brightest, solution.reflectance[e][1]);
+  EXPECT_GT(brightest, 0.5);  // the bright half's ρ̄ is 0.8 on elements inside it
+  std::filesystem::remove_all(dir);
+}
+
 TEST(SurfaceDetail, LoaderErrorsNameWhereTheMapWasNamed) {
   const auto dir = std::filesystem::temp_directory_path() / ("radiant-detail-l-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);

@@ -120,11 +120,13 @@ uint64_t sceneFingerprint(const Scene &scene) {
   };
   for (const Material &m : scene.materials) {
     f.value(int(m.kind));
-    // A texture changes ρ̄ (and so the solution): its size, mean, wrap and scale identify it.
+    // A texture changes ρ̄ (and so the solution): its texels, wrap and scale, and
+    // (below) the texture coordinates, identify it.
     if (m.diffuseTextureIndex >= 0) {
       const Texture &texture = scene.textures[m.diffuseTextureIndex];
       f.value(uint8_t(2)), f.value(texture.width()), f.value(texture.height()), f.value(int(texture.wrap()));
-      for (int b = 0; b < kBandCount; ++b) f.value(texture.mean()[b]);
+      const std::span<const float> texels = texture.finestTexels();
+      f.bytes(texels.data(), texels.size_bytes());
       f.value(m.uvScale[0]), f.value(m.uvScale[1]);
     }
     if (spectral) {
@@ -134,6 +136,13 @@ uint64_t sceneFingerprint(const Scene &scene) {
     }
     for (int b = 0; b < kBandCount; ++b) f.value(m.diffuse[b]), f.value(m.emission[b]), f.value(m.specular[b]);
   }
+  // Texture coordinates of textured faces (they decide each element's ρ̄).
+  for (const Face &face : scene.faces)
+    if (scene.materials[face.material].diffuseTextureIndex >= 0)
+      for (int k = 0; k < face.vertexCount; ++k) {
+        f.value(face.uvs[k]);
+        if (face.uvs[k] >= 0) f.value(scene.uvs[2 * size_t(face.uvs[k])]), f.value(scene.uvs[2 * size_t(face.uvs[k]) + 1]);
+      }
   return f.h;
 }
 

@@ -79,8 +79,11 @@ class Hierarchy {
       n.emission = initial.emission[patch.firstElement];
       n.reflectance = initial.reflectance[patch.firstElement];
       patchFace_.push_back(patch.face);
-      textured_.push_back(tracer.scene().materials[patch.material].diffuseTextureIndex >= 0 &&
-                          n.reflectance.max() > 0);
+      // Decided by the material, not by the first element's ρ̄, which a black
+      // corner of the texture makes 0 (review): diffuse, textured, not black.
+      const Material &material = tracer.scene().materials[patch.material];
+      textured_.push_back(material.diffuseTextureIndex >= 0 && material.diffuse.max() > 0 &&
+                          (material.kind == MaterialKind::Lambertian || material.kind == MaterialKind::Glossy));
       if (textured_.back()) n.reflectance = nodeReflectance(n);
       n.radiosity = n.emission;
       maxEmission = std::max(maxEmission, n.emission.max());

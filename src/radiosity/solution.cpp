@@ -133,10 +133,6 @@ void Solution::updateNodesAndErrors() {
   }
 }
 
-}  // namespace radiant
-
-namespace radiant {
-
 Bands Solution::textureFactor(const MeshLocation &location, const Bands &rho) const {
   Bands average = nodeReflectance.empty() ? reflectance[location.element] : interpolate(nodeReflectance, location);
   Bands factor(0.0);

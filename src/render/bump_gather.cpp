@@ -55,10 +55,11 @@ BumpGather::BumpGather(const RayTracer &tracer, const Solution &solution, const 
     const Vec3 n = patch.normal;
     const Frame frame = Frame::fromNormal(n);
     // From a node on the patch's rim, rays along a neighbouring wall would
-    // slip through the corner: gather from 1 % of the way towards the patch's centre.
+    // slip through the corner: gather from 1 % of the way towards the patch's centre, at most 1 mm.
     Vec3 centre;
     for (int k = 0; k < patch.vertexCount; ++k) centre += patch.corners[k] / double(patch.vertexCount);
-    const Vec3 origin = mesh.nodes[v] + (centre - mesh.nodes[v]) * 0.01;
+    const double towards = length(centre - mesh.nodes[v]);
+    const Vec3 origin = mesh.nodes[v] + (centre - mesh.nodes[v]) * (towards > 0 ? std::min(0.01, 1e-3 / towards) : 0.0);
     std::vector<Vec3> tilted;
     for (int t = 0; t < kTilts; ++t)
       for (int a = 0; a < azimuths_; ++a) {
@@ -121,12 +122,20 @@ Bands BumpGather::nodeRatio(uint32_t node, const Vec3 &bumpedNormal) const {
   return lower * (1 - ft) + atTilt(t0 + 1) * ft;
 }
 
-Bands BumpGather::ratio(const MeshLocation &location, const Vec3 &bumpedNormal) const {
+Bands BumpGather::ratio(const MeshLocation &location, const Vec3 &bumpedNormal, const Vec3 &unbumpedNormal) const {
   if (nodeTable_.empty()) return Bands(1.0);
   const Element &e = solution_.mesh.elements[location.element];
+  // Rodrigues: the smallest rotation taking the unbumped normal a to the patch normal b, applied to n'.
+  const Vec3 a = unbumpedNormal, b = solution_.mesh.patches[e.patch].normal;
+  const double c = dot(a, b);
+  const Vec3 k = cross(a, b);
+  const double s2 = dot(k, k);
+  Vec3 n = bumpedNormal;
+  if (s2 > 1e-24 && c > -0.999)
+    n = normalize(bumpedNormal * c + cross(k, bumpedNormal) + k * (dot(k, bumpedNormal) * (1 - c) / s2));
   const std::array<double, 4> w = solution_.mesh.nodeWeights(location);
   Bands r(0.0);
-  for (int k = 0; k < e.vertexCount; ++k) r += w[k] * nodeRatio(e.nodes[k], bumpedNormal);
+  for (int j = 0; j < e.vertexCount; ++j) r += w[j] * nodeRatio(e.nodes[j], n);
   return r;
 }
 

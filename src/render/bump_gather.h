@@ -40,8 +40,11 @@ class BumpGather {
   BumpGather(const RayTracer &tracer, const Solution &solution, const BumpGatherOptions &options);
 
   bool empty() const { return nodeTable_.empty(); }
-  /// r(n') at a location, interpolated from the element's nodes; n' is the bumped shading normal.
-  Bands ratio(const MeshLocation &location, const Vec3 &bumpedNormal) const;
+  /// r(n') at a location, interpolated from the element's nodes; n' is the
+  /// bumped shading normal and `unbumpedNormal` the shading normal it
+  /// perturbs: n' is first turned by the rotation that takes the unbumped
+  /// normal to the patch's, so that smooth shading is not counted as a bump.
+  Bands ratio(const MeshLocation &location, const Vec3 &bumpedNormal, const Vec3 &unbumpedNormal) const;
   /// r(n') of one node (tests).
   Bands nodeRatio(uint32_t node, const Vec3 &bumpedNormal) const;
   int tilts() const { return kTilts; }

@@ -17,6 +17,8 @@
 
 #include "render/bsdf.h"
 #include "render/light_sampler.h"
+#include "radiosity/solution.h"
+#include "render/caustic_photons.h"
 #include "render/sampling.h"
 #include "texture/surface_detail.h"
 
@@ -28,7 +30,8 @@ class PathTracer final : public Renderer {
  public:
   PathTracer(const RayTracer &tracer, const RendererOptions &options)
       : tracer_(tracer), scene_(tracer.scene()), lights_(tracer.scene()), maxDepth_(options.maxDepth),
-        irradiance_(options.irradiance), pixelSpread_(options.pixelSpreadAngle) {
+        irradiance_(options.irradiance), caustics_(options.caustics),
+        solution_(options.solution), readDepth_(options.solution ? options.readSolutionDepth : 0) {
     meter_.name = "irradiance meter";
     meter_.diffuse = Bands(1.0);
   }
@@ -40,18 +43,19 @@ class PathTracer final : public Renderer {
     double previousBsdfPdf = 0;
     Vec3 previousPosition = ray.origin;
     bool metered = false;  // irradiance: the meter is placed at the first non-delta vertex
-    double travelled = 0;  // camera ray and specular chain: the pixel's footprint grows with it
-    bool cameraChain = true;
+    // Multipass (render/multipass.h): non-specular vertices so far, and specular bounces since the last one.
+    int diffuseVertices = 0, specularSinceDiffuse = 0;
 
     for (int depth = 0;; ++depth) {
       Hit hit;
       if (!tracer_.intersect(ray, hit)) break;  // no environment light: the world outside is black
       const Material &material = scene_.materials[hit.material];
-      if (cameraChain) travelled += hit.distance;
       // Texture and bump maps (texture/surface_detail.h): ρ(x) and the bumped shading normal.
       Bands diffuse = material.diffuse;
       if (material.hasSurfaceDetail()) {
-        const SurfaceDetail detail = surfaceDetail(scene_, hit, cameraChain ? travelled * pixelSpread_ : 0.0);
+        // The finest texels, unfiltered: the pixel's own samples integrate the texture
+        // over its footprint, so the reference stays exact (review: prefiltering blurred it).
+        const SurfaceDetail detail = surfaceDetail(scene_, hit, 0.0);
         diffuse = detail.diffuse;
         hit.shadingNormal = detail.shadingNormal;
       }
@@ -61,8 +65,11 @@ class PathTracer final : public Renderer {
       // ρ = 1) = ∫L cos dω is the irradiance; the surface's own emission is not light arriving.
       const bool meterHere = irradiance_ && !metered && !material.isDelta();
 
-      // Emission seen by this ray (front side only).
-      if (material.isEmitter() && dot(wo, hit.geometricNormal) > 0 && !meterHere) {
+      // Emission seen by this ray (front side only). With a caustic map, light
+      // that left a non-specular vertex through specular bounces to reach an
+      // emitter (L S+ D, seen from the eye) is the map's: not counted here.
+      const bool causticPath = caustics_ && diffuseVertices > 0 && specularSinceDiffuse > 0;
+      if (material.isEmitter() && dot(wo, hit.geometricNormal) > 0 && !meterHere && !causticPath) {
         double weight = 1.0;
         if (!countEmissionFully) {
           double cosLight = dot(wo, hit.geometricNormal);
@@ -73,6 +80,20 @@ class PathTracer final : public Renderer {
         L += throughput * material.emission * weight;
       }
       if (maxDepth_ > 0 && depth >= maxDepth_) break;  // max depth counts bounces
+      if (!material.isDelta()) {
+        ++diffuseVertices, specularSinceDiffuse = 0;
+        const Vec3 facing = dot(wo, hit.geometricNormal) >= 0 ? hit.geometricNormal : -hit.geometricNormal;
+        // Multipass's low-frequency passes: past readDepth non-specular bounces
+        // the solution's reflected radiosity stands for the rest of the path (as rushmeier does at depth 1).
+        if (readDepth_ > 0 && diffuseVertices == readDepth_ + 1) {
+          L += throughput * readSolution(hit, wo, diffuse);
+          if (caustics_) L += throughput * caustics_->reflectedRadiance(hit.position, facing, diffuse);
+          break;
+        }
+        if (caustics_) L += throughput * caustics_->reflectedRadiance(hit.position, facing, meterHere ? Bands(1.0) : diffuse);
+      } else {
+        ++specularSinceDiffuse;
+      }
 
       Bsdf bsdf(meterHere ? meter_ : material, hit.shadingNormal, hit.geometricNormal, wo,
                 meterHere ? nullptr : &diffuse);
@@ -86,7 +107,6 @@ class PathTracer final : public Renderer {
       throughput *= s.weight;
       if (throughput.max() <= 0) break;
       countEmissionFully = s.isDelta;
-      cameraChain = cameraChain && s.isDelta;
       previousBsdfPdf = s.pdf;
       previousPosition = hit.position;
 
@@ -126,8 +146,22 @@ class PathTracer final : public Renderer {
   const Scene &scene_;
   LightSampler lights_;
   int maxDepth_;
+  /// B − E of the solution at a hit, interpolated, with eq. 9.11 for its texture, as radiance (front side only).
+  Bands readSolution(const Hit &hit, const Vec3 &wo, const Bands &rho) const {
+    if (dot(wo, hit.geometricNormal) <= 0) return Bands(0.0);  // the one-sided solution says nothing of back sides
+    const int32_t patch = solution_->mesh.patchOfFace[hit.face];
+    if (patch < 0) return Bands(0.0);
+    const MeshLocation at = solution_->mesh.locate(hit.face, hit.position);
+    Bands reflected = solution_->interpolatedRadiosity(at) - solution_->emission[at.element];
+    if (scene_.materials[hit.material].diffuseTextureIndex >= 0) reflected *= solution_->textureFactor(at, rho);
+    for (int b = 0; b < kBandCount; ++b) reflected[b] = std::max(0.0, reflected[b]);
+    return reflected * kInvPi;
+  }
+
   bool irradiance_;
-  double pixelSpread_;
+  const CausticPhotonMap *caustics_;
+  const Solution *solution_;
+  int readDepth_;
   Material meter_;  ///< Lambertian, ρ = 1: the irradiance meter
 };
 

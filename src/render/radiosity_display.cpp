@@ -59,7 +59,7 @@ class RadiosityDisplay final : public Renderer {
       if (!interpolate_ && x.material->diffuseTextureIndex >= 0)
         for (int b = 0; b < kBandCount; ++b)
           factor[b] = solution_.reflectance[e][b] > 0 ? x.reflectance[b] / solution_.reflectance[e][b] : 0.0;
-      if (bumps_) factor *= bumps_->ratio(x.location, x.hit.shadingNormal);
+      if (bumps_) factor *= bumps_->ratio(x.location, x.hit.shadingNormal, x.unbumpedNormal);
       radiosity = solution_.emission[e] + (radiosity - solution_.emission[e]) * factor;
     }
     return x.throughput * radiosity * kInvPi;

@@ -4,6 +4,7 @@
 #include "render/path_tracer.h"
 #include "render/radiosity_display.h"
 #include "render/renderer.h"
+#include "render/multipass.h"
 #include "render/two_pass.h"
 #include "util/error.h"
 
@@ -21,6 +22,8 @@ const std::vector<RendererInfo> &rendererRegistry() {
        true},
       {"shirley", "direct light per pixel, indirect interpolated from the solution", &createShirley, true},
       {"kok", "as shirley, plus the brightest reflectors sampled per pixel (--sources K)", &createKok, true},
+      {"multipass", "progressive passes from a radiosity preview to an unbiased image with caustics (Chen et al. 1991)",
+       &createMultipassPlaceholder, true},
   };
   return table;
 }

@@ -15,6 +15,8 @@
 
 namespace radiant {
 
+class CausticPhotonMap;
+
 class Renderer {
  public:
   virtual ~Renderer() = default;
@@ -39,6 +41,15 @@ struct RendererOptions {
   double pixelSpreadAngle = 0;
   /// interpolate: normal orientations gathered per node of a bump-mapped patch (render/bump_gather.h).
   int bumpOrientations = 16;
+
+  // Multipass (render/multipass.h).
+  /// Caustics (L S+ D) from light-ray tracing, added at non-specular points by
+  /// path, shirley and kok; emission reached from such a point through
+  /// specular bounces is then left out. nullptr: none.
+  const CausticPhotonMap *caustics = nullptr;
+  /// path with a solution: at the (d+1)-th non-specular vertex, read the
+  /// solution's reflected radiosity instead of continuing; 0: never.
+  int readSolutionDepth = 0;
   /// The radiosity solution, for the methods that read one (it must outlive the renderer).
   const Solution *solution = nullptr;
 

@@ -25,6 +25,7 @@
 #include "render/sampling.h"
 #include "render/secondary_sources.h"
 #include "render/bump_gather.h"
+#include "render/caustic_photons.h"
 #include "render/two_pass.h"
 
 namespace radiant {
@@ -57,7 +58,9 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
     if (sources_) L += secondaryLight(x, rng);
     Bands indirect = solution_.interpolate(remainingIndirect_, x.location) * kInvPi;
     if (x.textured) indirect *= x.textureFactor;  // eq. 9.11 on what is read from the solution
-    if (bumps_ && x.textured) indirect *= bumps_->ratio(x.location, x.hit.shadingNormal);
+    if (bumps_ && x.textured) indirect *= bumps_->ratio(x.location, x.hit.shadingNormal, x.unbumpedNormal);
+    // Multipass: caustics from the light-ray pass (the solution holds none; shadow rays cannot find them).
+    if (options_.caustics) L += options_.caustics->reflectedRadiance(x.hit.position, x.hit.geometricNormal, x.reflectance);
     for (int b = 0; b < kBandCount; ++b) indirect[b] = std::max(0.0, indirect[b]);
     return L + indirect;
   }

@@ -32,6 +32,7 @@ bool findVisiblePoint(const RayTracer &tracer, const Solution &solution, Ray ray
     out.location = solution.mesh.locate(out.hit.face, out.hit.position);
     out.material = &material;
     out.reflectance = material.diffuse;
+    out.unbumpedNormal = out.hit.shadingNormal;
     out.textured = material.hasSurfaceDetail();
     if (out.textured) {
       const SurfaceDetail detail = surfaceDetail(scene, out.hit, travelled * pixelSpread);
@@ -88,6 +89,8 @@ double TwoPassRenderer::selectiveWork(const Ray &ray) const {
 }
 
 bool TwoPassRenderer::trustsSolution(const VisiblePoint &x) const {
+  // The interpolated solution has no bumps: bump-mapped points are always re-evaluated.
+  if (x.material->bumpTextureIndex >= 0 || x.material->normalTextureIndex >= 0) return false;
   return solution_.errorEstimate[x.location.element] <= options_.selectiveThreshold;
 }
 

@@ -35,6 +35,7 @@ struct VisiblePoint {
   Bands reflectance;
   Bands textureFactor{1.0};
   bool textured = false;
+  Vec3 unbumpedNormal;  ///< the shading normal before the bump or normal map (smooth shading included)
 };
 
 /// Follows a ray through ideal mirrors and glass (Fresnel-weighted choice, as

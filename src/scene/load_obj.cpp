@@ -275,6 +275,11 @@ Material convertMtlMaterial(const tinyobj::material_t &m, const MtlSource &sourc
     out.kind = MaterialKind::Lambertian;
   }
   auto lineOf = [&](int line) { return InputLocation{source.file, line > 0 ? line : source.newmtlLine, 0, ""}; };
+  // tinyobjloader reads three numbers after -s (u v w): "-s 2 2 file.png" loses the file silently.
+  if (source.mapKdLine > 0 && m.diffuse_texname.empty())
+    fileError(source.file, source.mapKdLine, "map_Kd names no image file (note: -s takes three numbers, -s u v w)");
+  if (source.bumpLine > 0 && m.bump_texname.empty())
+    fileError(source.file, source.bumpLine, "bump names no image file (note: -s takes three numbers, -s u v w)");
   if (!m.diffuse_texname.empty()) {
     out.diffuseTexture = resolveTexture(m.diffuse_texname, source, source.mapKdLine, "map_Kd");
     out.diffuseTextureFrom = lineOf(source.mapKdLine);

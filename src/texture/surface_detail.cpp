@@ -88,7 +88,10 @@ SurfaceDetail surfaceDetail(const Scene &scene, const Hit &hit, double footprint
     const Texture &texture = scene.textures[m.diffuseTextureIndex];
     detail.diffuse = clampedReflectance(m.diffuse * texture.filtered(s.u, s.v, footprint * s.uvPerMetre));
   }
-  if (m.bumpTextureIndex >= 0) {
+  if (!s.hasUv) {
+    // Without texture coordinates a bump has no direction to tilt in: the
+    // triangle's own frame would facet the surface. Only the texture applies.
+  } else if (m.bumpTextureIndex >= 0) {
     const auto [hu, hv] = scene.textures[m.bumpTextureIndex].gradient(s.u, s.v);
     const double metres = m.bumpScale * scene.metresPerUnit;  // height per unit of map value
     detail.shadingNormal = bumpedNormal(hit.shadingNormal, s, metres * hu, metres * hv);
@@ -104,28 +107,54 @@ SurfaceDetail surfaceDetail(const Scene &scene, const Hit &hit, double footprint
 Bands averageDiffuse(const Scene &scene, uint32_t face, std::span<const Vec3> polygon) {
   const Material &m = scene.materials[scene.faces[face].material];
   if (m.diffuseTextureIndex < 0 || polygon.empty()) return m.diffuse;
+  const Texture &texture = scene.textures[m.diffuseTextureIndex];
   // The face's triangles are consecutive in Scene::triangles (Scene::addFace).
   auto first = std::lower_bound(scene.triangles.begin(), scene.triangles.end(), face,
                                 [](const Triangle &t, uint32_t f) { return t.face < f; });
   auto last = std::upper_bound(first, scene.triangles.end(), face,
                                [](uint32_t f, const Triangle &t) { return f < t.face; });
   if (first == last) return m.diffuse;
-  std::vector<std::array<double, 2>> uvPolygon;
-  for (const Vec3 &p : polygon) {
-    // The triangle that holds p best (largest smallest barycentric), so a
-    // quad split in two maps each corner with its own triangle's coordinates.
-    const Triangle *best = &*first;
-    std::array<double, 2> bestB{0, 0};
-    double bestInside = -INFINITY;
-    for (auto t = first; t != last; ++t) {
-      auto b = barycentrics(p, scene.positions[t->v[0]], scene.positions[t->v[1]], scene.positions[t->v[2]]);
-      double inside = std::min({1 - b[0] - b[1], b[0], b[1]});
-      if (inside > bestInside) bestInside = inside, best = &*t, bestB = b;
+  // The texture map is affine on each triangle, not across a quad's diagonal
+  // (review): cut the polygon by each triangle, average each piece in its
+  // own texture coordinates, and weight the pieces by their surface area.
+  Bands sum(0.0);
+  double area = 0;
+  for (auto t = first; t != last; ++t) {
+    const Vec3 p[3] = {scene.positions[t->v[0]], scene.positions[t->v[1]], scene.positions[t->v[2]]};
+    const Vec3 n = cross(p[1] - p[0], p[2] - p[0]);
+    std::vector<Vec3> piece(polygon.begin(), polygon.end());
+    for (int e = 0; e < 3 && piece.size() >= 3; ++e) {  // Sutherland–Hodgman against each edge's inner half-plane
+      const Vec3 a = p[e], b = p[(e + 1) % 3];
+      auto inside = [&](const Vec3 &q) { return dot(cross(b - a, q - a), n); };
+      std::vector<Vec3> clipped;
+      for (size_t i = 0; i < piece.size(); ++i) {
+        const Vec3 &c = piece[i], &d = piece[(i + 1) % piece.size()];
+        const double sc = inside(c), sd = inside(d);
+        if (sc >= 0) clipped.push_back(c);
+        if ((sc >= 0) != (sd >= 0)) clipped.push_back(c + (d - c) * (sc / (sc - sd)));
+      }
+      piece = std::move(clipped);
     }
-    SurfaceParameterisation s = surfaceParameterisation(scene, *best, bestB[0], bestB[1]);
-    uvPolygon.push_back({s.u, s.v});
+    if (piece.size() < 3) continue;
+    double pieceArea = 0;
+    for (size_t i = 1; i + 1 < piece.size(); ++i) pieceArea += 0.5 * length(cross(piece[i] - piece[0], piece[i + 1] - piece[0]));
+    if (!(pieceArea > 0)) continue;
+    std::vector<std::array<double, 2>> uvPiece;
+    for (const Vec3 &q : piece) {
+      const auto b = barycentrics(q, p[0], p[1], p[2]);
+      const SurfaceParameterisation s = surfaceParameterisation(scene, *t, b[0], b[1]);
+      uvPiece.push_back({s.u, s.v});
+    }
+    sum += texture.average(uvPiece) * pieceArea;
+    area += pieceArea;
   }
-  return clampedReflectance(m.diffuse * scene.textures[m.diffuseTextureIndex].average(uvPolygon));
+  if (!(area > 0)) {  // a degenerate polygon: the texture at its first point
+    const auto b = barycentrics(polygon[0], scene.positions[first->v[0]], scene.positions[first->v[1]],
+                                scene.positions[first->v[2]]);
+    const SurfaceParameterisation s = surfaceParameterisation(scene, *first, b[0], b[1]);
+    return clampedReflectance(m.diffuse * texture.bilinear(s.u, s.v));
+  }
+  return clampedReflectance(m.diffuse * (sum / area));
 }
 
 }  // namespace radiant

@@ -49,6 +49,8 @@ class Texture {
   TextureWrap wrap() const { return wrap_; }
   /// Mean of all texels of the finest level.
   Bands mean() const;
+  /// The finest level's texels, 3 floats each, row 0 at the top (for fingerprints).
+  std::span<const float> finestTexels() const { return levels_.front().texels; }
 
   /// Bilinear interpolation of the finest level at (u, v).
   Bands bilinear(double u, double v) const;

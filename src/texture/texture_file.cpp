@@ -22,6 +22,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -187,6 +188,10 @@ Texture Texture::load(const std::string &path, TextureEncoding encoding, Texture
                        "none of their signatures)");
   }
   checkFinite(where, image);
+  // A colour texture is a reflectance: an EXR's values outside [0, 1] are
+  // clamped once here, so that ρ̄ (the mean) and ρ(x) see the same texels.
+  if (encoding == TextureEncoding::Colour)
+    for (float &v : image.texels) v = std::clamp(v, 0.0f, 1.0f);
   return Texture(Level{image.width, image.height, std::move(image.texels)}, wrap);
 }
 

@@ -1,0 +1,59 @@
+// Caustics by light-ray tracing (Chen, Rushmeier, Miller & Turner 1991,
+// "caustics reconstruction"; the caustic photon map of Jensen 1996).
+//
+// Light that reaches a diffuse surface after one or more ideal specular
+// bounces (Heckbert's L S+ D) cannot be found from the eye by sampling the
+// emitters: the mirror or glass between hides them from shadow rays. Photons
+// are traced from the emitters through mirrors and glass and stored where they
+// first land on a non-specular surface after at least one specular bounce; the
+// reflected radiance at a point is then a density estimate over a disc of
+// radius r (biased, consistent as r shrinks with more photons). Every
+// estimator that adds it must leave out the same paths from the eye: emission
+// reached from a non-specular vertex through ≥ 1 specular bounces.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "raytrace/ray_tracer.h"
+
+namespace radiant {
+
+struct CausticPhoton {
+  Vec3 position;
+  Vec3 normal;   ///< geometric normal of the surface it landed on, on the side it arrived from
+  Bands power;   ///< W
+};
+
+class CausticPhotonMap {
+ public:
+  /// Traces `emitted` photons from the scene's emitters (power-proportional,
+  /// cosine-distributed: each carries Φ/emitted), deterministically for the
+  /// seed whatever the thread count. `radius` (metres) of the density
+  /// estimate; ≤ 0 chooses 1 % of the scene's bounding-box diagonal.
+  CausticPhotonMap(const RayTracer &tracer, size_t emitted, uint64_t seed, double radius = 0);
+
+  /// Radiance reflected towards any direction by a Lambertian point of
+  /// reflectance ρ: ρ/π × the caustic irradiance, Σ power / (π r²) over the
+  /// photons within r that arrived on the same side of a surface facing the same way.
+  Bands reflectedRadiance(const Vec3 &position, const Vec3 &normal, const Bands &rho) const;
+  /// The caustic irradiance itself, W·m⁻².
+  Bands irradiance(const Vec3 &position, const Vec3 &normal) const;
+
+  size_t emitted() const { return emitted_; }
+  size_t stored() const { return photons_.size(); }
+  double radius() const { return radius_; }
+  const std::vector<CausticPhoton> &photons() const { return photons_; }
+
+ private:
+  uint64_t cellKey(int64_t x, int64_t y, int64_t z) const;
+  void buildGrid();
+
+  std::vector<CausticPhoton> photons_;
+  std::vector<std::pair<uint64_t, uint32_t>> grid_;  ///< (cell key, photon), sorted
+  size_t emitted_ = 0;
+  double radius_ = 0;
+  Vec3 origin_;
+};
+
+}  // namespace radiant

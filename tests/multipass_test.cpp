@@ -1,0 +1,229 @@
+// The progressive multi-pass method (Chen et al. 1991; render/multipass.h,
+// docs/multipass.md): every light path counted once, convergence to the path
+// tracer, and the caustic map's brightness.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "film_metrics.h"
+#include "radiosity/form_factor.h"
+#include "radiosity/solver.h"
+#include "render/caustic_photons.h"
+#include "render/driver.h"
+#include "render/multipass.h"
+#include "scene/load_scene.h"
+#include "test_scenes.h"
+
+namespace radiant {
+namespace {
+
+const std::string kSpecularBox = std::string(RADIANT_SOURCE_DIR) + "/scenes/cornell-specular/scene.json";
+
+Film renderWith(const RayTracer &tracer, const RendererOptions &options, const std::string &method, int size,
+                int spp, uint64_t seed = 1) {
+  PinholeCamera camera(tracer.scene().camera, size, size);
+  Film film(size, size);
+  DriverOptions driver;
+  driver.samplesPerPixel = spp;
+  driver.seed = seed;
+  renderImage(camera, *createRenderer(method, tracer, options), driver, film);
+  return film;
+}
+
+/// Mean green radiance over a set of pixels and its standard error.
+struct Mean {
+  double value = 0, error = 0;
+};
+Mean regionMean(const Film &film, const std::vector<size_t> &pixels) {
+  Mean m;
+  double variance = 0;
+  for (size_t p : pixels) m.value += film.mean(p)[1], variance += film.varianceOfMean(p)[1];
+  m.value /= pixels.size();
+  m.error = std::sqrt(variance) / pixels.size();
+  return m;
+}
+
+/// The pixels of the glass sphere's caustic on the floor, with a margin wider
+/// than the photon radius (so the density estimate's blur keeps its energy inside).
+std::vector<size_t> causticRegion(const Scene &scene, int size) {
+  // The floor under the glass sphere (centre (170, 0, 175) mm, radius 95): a
+  // disc of 110 mm around the point below its centre, as the camera sees it.
+  RayTracer tracer(scene);
+  PinholeCamera camera(scene.camera, size, size);
+  std::vector<size_t> pixels;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      Hit hit;
+      if (!tracer.intersect(camera.generateRay(x + 0.5, y + 0.5), hit)) continue;
+      const Vec3 d = hit.position - Vec3{0.170, 0, 0.175};
+      if (hit.position.y < 1e-3 && std::hypot(d.x, d.z) < 0.110) pixels.push_back(size_t(y) * size + x);
+    }
+  return pixels;
+}
+
+std::vector<size_t> allPixels(int size) {
+  std::vector<size_t> pixels(size_t(size) * size);
+  for (size_t p = 0; p < pixels.size(); ++p) pixels[p] = p;
+  return pixels;
+}
+
+// Counting once (the first test). The unbiased pass's estimator — path
+// tracing that leaves L S+ D at non-specular vertices to the caustic map — agrees
+// with the plain path tracer over the whole image and over the caustic under
+// the glass sphere, within 4σ of both plus 2 % for the density estimate's blur
+// (the region's margin, 15 mm, is wider than the 8 mm radius, so only what the
+// blur carries across the disc's rim — a share of the rim's caustic — leaves
+// it). With the map's photons left out (exclusion only) the caustic region
+// drops far below; with the map added to the plain path tracer (no exclusion)
+// it rises far above: a missing or doubled path class fails the test.
+TEST(Multipass, EveryLightPathIsCountedOnce) {
+  Scene scene = loadScene(kSpecularBox);
+  RayTracer tracer(scene);
+  const int size = 40;
+  const std::vector<size_t> caustic = causticRegion(scene, size), all = allPixels(size);
+  ASSERT_GT(caustic.size(), 20u);
+  const CausticPhotonMap map(tracer, 400000, 7, 0.008), none(tracer, 0, 7, 0.008);
+  ASSERT_GT(map.stored(), 10000u);
+  RendererOptions plain, withMap, exclusionOnly;
+  withMap.caustics = &map;
+  exclusionOnly.caustics = &none;
+  const Film path = renderWith(tracer, plain, "path", size, 1024);
+  const Film multipass = renderWith(tracer, withMap, "path", size, 256, 2);
+  const Film missing = renderWith(tracer, exclusionOnly, "path", size, 256, 2);
+  for (const auto *region : {&all, &caustic}) {
+    const Mean a = regionMean(path, *region), b = regionMean(multipass, *region);
+    EXPECT_NEAR(b.value, a.value, 4 * std::hypot(a.error, b.error) + 0.02 * a.value)
+        << (region == &all ? "whole image" : "caustic region");
+  }
+  // The caustic is about 3/4 of the region's light (measured 0.12 of 0.16):
+  // a missing class leaves about 1/4, a doubled one about 7/4.
+  const Mean a = regionMean(path, caustic), b = regionMean(multipass, caustic), c = regionMean(missing, caustic);
+  EXPECT_LT(c.value, 0.5 * a.value) << "without the map the caustic must be missing";
+  EXPECT_GT(a.value + (b.value - c.value), 1.5 * a.value) << "the map on top of path must double it";
+  std::cout << "caustic region: path " << a.value << " ± " << a.error << ", multipass " << b.value << " ± " << b.error
+            << ", without the map " << c.value << "\n";
+}
+
+// The caustic map's brightness: with photons forced through a mirror, the
+// light a mirror throws onto the floor is ρ_mirror × what a light of the same
+// shape at the mirrored position would give: here, the map's irradiance under
+// a horizontal mirror below a downward light equals the contour formula of the
+// light's mirror image (REFERENCE §1.4), times the mirror's reflectance.
+TEST(Multipass, CausticMapIrradianceMatchesTheMirrorImageOfTheLight) {
+  Scene scene;
+  scene.objects.push_back({"test", "test"});
+  // A small light at height 1 facing up, a mirror ceiling at height 2 facing
+  // down, a floor at 0 facing up: the floor sees the light only via the mirror
+  // (the light's back is dark), as a light at height 3 facing down.
+  scene.positions = {{-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2},          // floor
+                     {-0.1, 1, -0.1}, {-0.1, 1, 0.1}, {0.1, 1, 0.1}, {0.1, 1, -0.1},  // light, facing +y
+                     {-4, 2, -4}, {4, 2, -4}, {4, 2, 4}, {-4, 2, 4}};          // mirror, facing −y
+  Material white, light, mirror;
+  white.name = "white", white.diffuse = Bands(0.5);
+  light.name = "light", light.diffuse = Bands(0.0), light.emission = Bands(10.0);
+  mirror.name = "mirror", mirror.kind = MaterialKind::Mirror, mirror.diffuse = Bands(0.0), mirror.specular = Bands(0.8);
+  scene.materials = {white, light, mirror};
+  for (uint32_t q = 0; q < 3; ++q) {
+    Face f;
+    f.vertexCount = 4;
+    for (uint32_t i = 0; i < 4; ++i) f.vertices[i] = 4 * q + i;
+    f.material = q;
+    scene.addFace(f);
+  }
+  RayTracer tracer(scene);
+  const CausticPhotonMap map(tracer, 2000000, 3, 0.05);
+  const Vec3 image[4] = {{-0.1, 3, -0.1}, {0.1, 3, -0.1}, {0.1, 3, 0.1}, {-0.1, 3, 0.1}};
+  for (double x : {0.0, 0.5}) {
+    const Vec3 p{x, 0, 0};
+    const double exact = 0.8 * kPi * 10 * formFactorPointToPolygon(p, {0, 1, 0}, image);
+    // Photon noise: ~N photons in the disc, relative error 1/√N; the disc's
+    // blur over a field that varies by < 1 % across 5 cm adds < 0.5 %.
+    const double photonsInDisc = map.irradiance(p, {0, 1, 0})[1] * kPi * 0.05 * 0.05 /
+                                 (map.photons().empty() ? 1 : map.photons()[0].power[1]);
+    EXPECT_NEAR(map.irradiance(p, {0, 1, 0})[1], exact, exact * (4 / std::sqrt(photonsInDisc) + 0.005)) << "x " << x;
+  }
+}
+
+// The furnace holds for multipass: every pass (preview, high and low
+// frequency, unbiased) shows radiance 2 (REFERENCE §8.1) within its noise and
+// the solution's convergence.
+TEST(Multipass, TheFurnaceHoldsInEveryPass) {
+  Scene scene = test::furnace(1.0, 0.5);
+  RayTracer tracer(scene);
+  PinholeCamera camera(scene.camera, 16, 16);
+  MultipassOptions options;
+  options.samplesPerPixel = 32;
+  options.photonsPerPass = 1000;
+  auto solve = [&](int maxShots) {
+    MeshOptions mesh;
+    mesh.maxEdgeLength = 0.25;
+    SolverOptions solver;
+    solver.solver = "progressive";
+    solver.tolerance = 1e-6;
+    if (maxShots > 0) solver.maxIterations = maxShots;
+    return meshAndSolve(scene, tracer, mesh, solver);
+  };
+  int passes = 0;
+  renderMultipass(tracer, camera, 16, 16, options, solve, [&](const MultipassPass &pass, const Image &mean, const Image &variance) {
+    double sum = 0, var = 0;
+    for (size_t i = 1; i < mean.rgb.size(); i += 3) sum += mean.rgb[i], var += variance.rgb[i];
+    const double n = double(mean.rgb.size() / 3);
+    // Later passes read the converged solution (tolerance 1e-6) or nothing: 4σ.
+    // The preview reads a solution stopped after 32 of ~100 shots, whose ambient
+    // term restores the unshot energy on average but not its distribution over
+    // the walls the camera sees: allowed 5 % (measured 1.8 %).
+    EXPECT_NEAR(sum / n, 2.0, pass.index == 1 ? 0.1 : 4 * std::sqrt(var) / n + 1e-3) << pass.name;
+    ++passes;
+  });
+  EXPECT_GE(passes, 5);
+}
+
+// Converging (the second test): with a deliberately coarse first-pass
+// mesh, shirley's error against a converged path image stays above a floor
+// (its interpolated indirect light is the coarse solution's), while the
+// multipass image's error keeps falling pass after pass.
+TEST(Multipass, KeepsConvergingWhereShirleyFlattensOut) {
+  Scene scene = loadScene(kSpecularBox);
+  RayTracer tracer(scene);
+  const int size = 24;
+  RendererOptions plain;
+  const Film reference = renderWith(tracer, plain, "path", size, 8192, 99);
+  MeshOptions mesh;
+  mesh.maxEdgeLength = 0.25;  // coarse: 2 × 2 elements on a wall
+  SolverOptions solver;
+  solver.solver = "progressive";
+  const Solution coarse = meshAndSolve(scene, tracer, mesh, solver);
+  RendererOptions withSolution;
+  withSolution.solution = &coarse;
+  const double shirleyFew = test::meanBlockError(renderWith(tracer, withSolution, "shirley", size, 64), reference, 4);
+  const double shirleyMany = test::meanBlockError(renderWith(tracer, withSolution, "shirley", size, 512), reference, 4);
+
+  PinholeCamera camera(scene.camera, size, size);
+  MultipassOptions options;
+  options.samplesPerPixel = 1024;
+  options.photonsPerPass = 100000;
+  std::vector<double> errors;
+  auto solve = [&](int maxShots) {
+    SolverOptions s = solver;
+    if (maxShots > 0) s.maxIterations = maxShots;
+    return meshAndSolve(scene, tracer, mesh, s);
+  };
+  renderMultipass(tracer, camera, size, size, options, solve, [&](const MultipassPass &pass, const Image &mean, const Image &) {
+    if (!pass.unbiased) return;
+    Film film(size, size);
+    for (size_t p = 0; p < film.pixelCount(); ++p) film.add(p, Bands(mean.rgb[3 * p], mean.rgb[3 * p + 1], mean.rgb[3 * p + 2]));
+    errors.push_back(test::meanBlockError(film, reference, 4));
+  });
+  ASSERT_GE(errors.size(), 4u);
+  // shirley: 8× the samples barely help — bias dominates.
+  EXPECT_GT(shirleyMany, 0.6 * shirleyFew);
+  // multipass: the last unbiased pass is well below shirley's floor and below its own first.
+  EXPECT_LT(errors.back(), 0.5 * shirleyMany);
+  EXPECT_LT(errors.back(), 0.6 * errors.front());
+  std::cout << "block error: shirley 64 spp " << shirleyFew << ", 512 spp " << shirleyMany << "; multipass";
+  for (double e : errors) std::cout << " " << e;
+  std::cout << "\n";
+}
+
+}  // namespace
+}  // namespace radiant
