@@ -8,6 +8,7 @@
 #include "radiosity/solver.h"
 #include "render/driver.h"
 #include "render/renderer.h"
+#include "render_helpers.h"
 #include "test_scenes.h"
 
 namespace radiant {
@@ -21,24 +22,9 @@ struct PixelEstimate {
 /// the pixels and the standard error of that mean.
 PixelEstimate renderIrradiance(const Scene &scene, const std::string &method, int spp, int size,
                                double meshSize = 0.5) {
-  RayTracer tracer(scene);
   RendererOptions options;
   options.irradiance = true;
-  Solution solution;
-  if (findRenderer(method).needsSolution) {
-    MeshOptions mesh;
-    mesh.maxEdgeLength = meshSize;
-    SolverOptions solver;
-    solver.solver = "gauss-seidel";
-    solver.tolerance = 1e-8;
-    solution = meshAndSolve(scene, tracer, mesh, solver);
-    options.solution = &solution;
-  }
-  PinholeCamera camera(scene.camera, size, size);
-  Film film(size, size);
-  DriverOptions driver;
-  driver.samplesPerPixel = spp;
-  renderImage(camera, *createRenderer(method, tracer, options), driver, film);
+  const Film film = test::solveAndRender(scene, method, options, spp, size, meshSize, 1e-8);
   PixelEstimate e;
   double variance = 0;
   for (size_t p = 0; p < film.pixelCount(); ++p) e.mean += film.mean(p)[1], variance += film.varianceOfMean(p)[1];

@@ -12,6 +12,7 @@
 #include "render/driver.h"
 #include "render/multipass.h"
 #include "scene/load_scene.h"
+#include "render_helpers.h"
 #include "test_scenes.h"
 
 namespace radiant {
@@ -48,17 +49,10 @@ Mean regionMean(const Film &film, const std::vector<size_t> &pixels) {
 std::vector<size_t> causticRegion(const Scene &scene, int size) {
   // The floor under the glass sphere (centre (170, 0, 175) mm, radius 95): a
   // disc of 110 mm around the point below its centre, as the camera sees it.
-  RayTracer tracer(scene);
-  PinholeCamera camera(scene.camera, size, size);
-  std::vector<size_t> pixels;
-  for (int y = 0; y < size; ++y)
-    for (int x = 0; x < size; ++x) {
-      Hit hit;
-      if (!tracer.intersect(camera.generateRay(x + 0.5, y + 0.5), hit)) continue;
-      const Vec3 d = hit.position - Vec3{0.170, 0, 0.175};
-      if (hit.position.y < 1e-3 && std::hypot(d.x, d.z) < 0.110) pixels.push_back(size_t(y) * size + x);
-    }
-  return pixels;
+  return test::pixelsWhere(scene, size, [](const Hit &hit) {
+    const Vec3 d = hit.position - Vec3{0.170, 0, 0.175};
+    return hit.position.y < 1e-3 && std::hypot(d.x, d.z) < 0.110;
+  });
 }
 
 std::vector<size_t> allPixels(int size) {

@@ -13,6 +13,7 @@
 #include "render/driver.h"
 #include "render/renderer.h"
 #include "scene/load_scene.h"
+#include "render_helpers.h"
 #include "test_scenes.h"
 #include "texture/surface_detail.h"
 #include "util/error.h"
@@ -42,46 +43,17 @@ Scene texturedBox(const std::vector<std::pair<std::string, std::string>> &edits 
   return parseSceneJson(text, kTexturedBox);
 }
 
-struct Rendered {
-  Film film;
-  Solution solution;
-};
-
-/// Solves (Gauss–Seidel, coarse, for speed) when the method needs it, and renders.
+/// Renders with the pixel spread the command line gives (textures filtered), solving first if needed.
 Film render(const Scene &scene, const std::string &method, int spp, int size = 32, double meshSize = 0.1) {
-  RayTracer tracer(scene);
   RendererOptions options;
   options.pixelSpreadAngle = 2 * std::tan(0.5 * scene.camera.verticalFovDegrees * kPi / 180) / size;
-  Solution solution;
-  if (findRenderer(method).needsSolution) {
-    MeshOptions mesh;
-    mesh.maxEdgeLength = meshSize;
-    SolverOptions solver;
-    solver.solver = "gauss-seidel";
-    solution = meshAndSolve(scene, tracer, mesh, solver);
-    options.solution = &solution;
-  }
-  PinholeCamera camera(scene.camera, size, size);
-  Film film(size, size);
-  DriverOptions driver;
-  driver.samplesPerPixel = spp;
-  renderImage(camera, *createRenderer(method, tracer, options), driver, film);
-  return film;
+  return test::solveAndRender(scene, method, options, spp, size, meshSize);
 }
 
 /// The pixels whose centre ray first meets the named object.
 std::vector<size_t> pixelsOf(const Scene &scene, const std::string &object, int size) {
-  RayTracer tracer(scene);
-  PinholeCamera camera(scene.camera, size, size);
-  std::vector<size_t> pixels;
-  for (int y = 0; y < size; ++y)
-    for (int x = 0; x < size; ++x) {
-      Hit hit;
-      if (tracer.intersect(camera.generateRay(x + 0.5, y + 0.5), hit) &&
-          scene.objects[scene.faces[hit.face].object].name == object)
-        pixels.push_back(size_t(y) * size + x);
-    }
-  return pixels;
+  return test::pixelsWhere(scene, size,
+                           [&](const Hit &hit) { return scene.objects[scene.faces[hit.face].object].name == object; });
 }
 
 struct RegionStats {
