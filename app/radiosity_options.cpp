@@ -52,6 +52,9 @@ void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &o) {
                  "Hierarchical: link when F*B_source is below this fraction of the largest emitted radiosity")
       ->default_val(1e-4)
       ->check(CLI::Range(0.0, 1.0));
+  app.add_flag("--importance", o.solver.importance,
+               "Hierarchical: refine for the scene's camera only (render: the camera it renders from); importance "
+               "from the eye weighs each link (Smits, Arvo & Salesin 1992)");
   app.add_option("--adaptive-rounds", o.solver.adaptiveRounds,
                  "Gauss-Seidel, progressive, stochastic: rounds of splitting the elements whose error estimate "
                  "exceeds --adaptive-threshold and solving again (0: uniform mesh)")
@@ -71,7 +74,8 @@ void rejectUnusedRadiosityOptions(const CLI::App &app, bool solving, const std::
                                   const RadiosityCommandOptions &options) {
   const char *all[] = {"--solver",      "--mesh-size",           "--max-elements",   "--tolerance",
                        "--max-iterations", "--ff-samples",    "--form-factor",      "--hemicube-resolution",
-                       "--link-threshold", "--rays-per-element", "--adaptive-rounds", "--adaptive-threshold"};
+                       "--link-threshold", "--rays-per-element", "--adaptive-rounds", "--adaptive-threshold",
+                       "--importance"};
   for (const char *name : all) {
     if (app.get_option(name)->count() == 0) continue;
     if (!solving) throw InputError(InputLocation{name}, "has no effect here: " + reason);
@@ -82,7 +86,7 @@ void rejectUnusedRadiosityOptions(const CLI::App &app, bool solving, const std::
         throw InputError(InputLocation{name}, std::string("applies only to --solver ") + solver);
     };
     if (flag == "--form-factor" || flag == "--hemicube-resolution") only("progressive", false);
-    if (flag == "--link-threshold") only("hierarchical", true);
+    if (flag == "--link-threshold" || flag == "--importance") only("hierarchical", true);
     if (flag == "--rays-per-element") only("stochastic", true);
     if ((flag == "--adaptive-rounds" || flag == "--adaptive-threshold") && options.solver.solver == "hierarchical")
       throw InputError(InputLocation{name}, "the hierarchical solver refines by itself; use --solver gauss-seidel, "
@@ -100,6 +104,17 @@ Solution solveScene(const Scene &scene, const RayTracer &tracer, const Radiosity
   SolverOptions solverOptions = o.solver;
   solverOptions.seed = seed;
   solverOptions.threads = threads;
+  if (o.solver.importance) {
+    // "auto" is settled by the patch count, one patch per face.
+    const std::string resolved = resolveSolverName(o.solver.solver, scene.faces.size());
+    if (resolved != "hierarchical")
+      throw InputError(InputLocation{"--importance"},
+                       fmt::format("applies only to --solver hierarchical; --solver {} runs {} on {} patches",
+                                   o.solver.solver, resolved, scene.faces.size()));
+    // The view importance comes from: the scene's camera, as `render` has set it from --eye, --target, … .
+    solverOptions.importanceView.camera = scene.camera;
+    solverOptions.importanceView.aspect = double(scene.render.width) / std::max(1, scene.render.height);
+  }
 
   SolverProgressCallback progress;
   if (!quiet) {

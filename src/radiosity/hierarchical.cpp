@@ -20,14 +20,21 @@
 // the solved B and refined where it now carries too much, and the system is
 // solved again (`refinementRounds` times in all).
 //
+// With --importance (Smits, Arvo & Salesin 1992; importance.h) the oracle
+// weighs B_q by the importance of the receiver for one view, which is
+// propagated over the links after each round's solve, so links that matter
+// for the view are refined and the rest left coarse.
+//
 // The leaves become the solution's elements; their corners become nodes
 // shared within a patch, and T-vertices (a node in the middle of a coarser
 // neighbour's edge) are recorded so interpolation stays continuous.
 #include <fmt/format.h>
 
 #include <chrono>
+#include <memory>
 
 #include "radiosity/form_factor.h"
+#include "radiosity/importance.h"
 #include "radiosity/solver.h"
 #include "texture/surface_detail.h"
 #include "render/sampling.h"
@@ -93,6 +100,8 @@ class Hierarchy {
     leaves_ = patchCount_;
     threshold_ = options.linkThreshold * maxEmission;
     minimumArea_ = options.minimumArea > 0 ? options.minimumArea : largestElement;
+    if (options.importance)
+      importance_ = std::make_unique<ImportanceRefinement>(tracer, initial.mesh, options.importanceView);
   }
 
   /// Links every pair of patches that can see each other, refining as needed.
@@ -117,7 +126,7 @@ class Hierarchy {
       // trustworthy kind (HSA refine them further for the same reason).
       bool partial = link.visibleFraction > 0 && link.visibleFraction < 1;
       double factor = partial ? link.unoccludedFormFactor : link.formFactor;
-      if (factor * nodes_[link.source].radiosity.max() <= threshold_) continue;
+      if (factor * weightedSource(link.receiver, link.source) <= threshold_) continue;
       if (!canSubdivide(link.receiver) && !canSubdivide(link.source)) continue;
       links_[l].alive = false;
       auto &incoming = nodes_[link.receiver].links;
@@ -155,6 +164,22 @@ class Hierarchy {
       }
     }
     return sweeps;
+  }
+
+  /// --importance: propagates the view's importance over the current links
+  /// (importance.h), so the next round's oracle sees it. Returns the sweeps.
+  int propagateImportance(double tolerance, int maxSweeps) {
+    if (!importance_) return 0;
+    ImportanceGraph graph;
+    graph.roots = patchCount();
+    for (const Node &n : nodes_) {
+      graph.children.push_back(n.children);
+      graph.area.push_back(n.area);
+      graph.reflectance.push_back(n.reflectance);
+    }
+    for (const HierarchicalLink &l : links_)
+      if (l.alive) graph.links.push_back({l.receiver, l.source, l.formFactor});
+    return importance_->propagate(std::move(graph), tolerance, maxSweeps);
   }
 
   void writeTo(Solution &s) const;
@@ -195,14 +220,20 @@ class Hierarchy {
     return nodes_[n].area > 2 * minimumArea_ && leaves_ + 3 <= options_.maxElements;
   }
 
+  /// B_q as the oracle weighs it for receiver p: its largest band, or with
+  /// --importance the largest band of B_q times p's importance, relative.
+  double weightedSource(uint32_t p, uint32_t q) const {
+    return importance_ ? importance_->weightedRadiosity(p, nodes_[q].radiosity) : nodes_[q].radiosity.max();
+  }
+
   void refine(uint32_t p, uint32_t q) {
     double fpq = estimate(nodes_[p], nodes_[q]), fqp = estimate(nodes_[q], nodes_[p]);
-    double carried = std::max(fpq, 0.0) * nodes_[q].radiosity.max();
+    double carried = std::max(fpq, 0.0) * weightedSource(p, q);
     // Neither centre sees the other's front, but the nodes still face each
     // other (perpendicular neighbours): the estimate is unreliable, so refine.
     bool unreliable = fpq <= 0 && fqp <= 0;
     if (!unreliable && carried <= threshold_) return link(p, q);
-    if (unreliable && nodes_[q].radiosity.max() <= 0) return link(p, q);
+    if (unreliable && weightedSource(p, q) <= 0) return link(p, q);
     refineChildren(p, q, fpq, fqp);
   }
 
@@ -253,6 +284,15 @@ class Hierarchy {
       child.radiosity = parent.radiosity;
       nodes_[n].children[k] = static_cast<int32_t>(nodes_.size());
       nodes_.push_back(child);
+    }
+    if (importance_) {
+      std::array<uint32_t, 4> ids;
+      std::array<ImportanceNodeShape, 4> shapes;
+      for (int k = 0; k < 4; ++k) {
+        ids[k] = static_cast<uint32_t>(nodes_[n].children[k]);
+        shapes[k] = {nodes_[ids[k]].vertexCount, nodes_[ids[k]].corners, nodes_[ids[k]].area};
+      }
+      importance_->split(n, ids, shapes, parent.normal);
     }
   }
 
@@ -368,6 +408,7 @@ class Hierarchy {
   size_t shadowRays_ = 0;
   uint32_t patchCount_ = 0;
   size_t leaves_ = 0;  ///< current leaf count, bounded by options.maxElements
+  std::unique_ptr<ImportanceRefinement> importance_;  ///< --importance only
 };
 
 void Hierarchy::writeTo(Solution &s) const {
@@ -439,9 +480,13 @@ void solveHierarchical(const RayTracer &tracer, Solution &s, const SolverOptions
   const int maxSweeps = options.maxIterations > 0 ? options.maxIterations : 1000;
   int totalSweeps = 0;
   double residual = 0;
-  for (int round = 0; round < std::max(1, options.refinementRounds); ++round) {
+  const int rounds = std::max(1, options.refinementRounds);
+  for (int round = 0; round < rounds; ++round) {
     if (round > 0 && hierarchy.rerefine() == 0) break;
     hierarchy.solve(options.tolerance, maxSweeps, totalSweeps, residual, progress, start);
+    // Smits et al. refine against both solutions: importance travels over
+    // the links just solved, for the next round's re-examination.
+    if (round + 1 < rounds) hierarchy.propagateImportance(options.tolerance, maxSweeps);
   }
   s.stats.iterations = totalSweeps;
   s.stats.residual = residual;

@@ -7,9 +7,18 @@
 
 #include "radiosity/solution.h"
 #include "raytrace/ray_tracer.h"
+#include "scene/camera.h"
 #include "util/random.h"
 
 namespace radiant {
+
+/// The view a view-dependent solve is for (SolverOptions::importance): the
+/// camera as `radiant render` would use it and its image's shape.
+struct ImportanceView {
+  CameraSettings camera;
+  double aspect = 1;     ///< image width / height
+  int resolution = 128;  ///< rows of the internal image importance is traced at; columns = rows × aspect
+};
 
 struct SolverOptions {
   /// A name from solverRegistry(), or "auto": hierarchical for up to 2000
@@ -36,6 +45,12 @@ struct SolverOptions {
   /// shoot fewer, in proportion to the unshot power left).
   int raysPerElement = 64;
   int refinementRounds = 6;
+  /// Hierarchical, --importance: refine for `importanceView` only (Smits,
+  /// Arvo & Salesin 1992; radiosity/importance.h): links are judged by
+  /// F·B_source times the importance of the receiver, which the camera emits
+  /// and the links carry back, so what the view does not show stays coarse.
+  bool importance = false;
+  ImportanceView importanceView;
   /// Hierarchical: stop subdividing when the leaves would exceed this (--max-elements).
   size_t maxElements = 2'000'000;
   /// meshAndSolve with another solver: rounds of "split the elements whose
