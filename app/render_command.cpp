@@ -77,8 +77,8 @@ void rejectUnusedTwoPassOptions(const CLI::App &app, const std::string &method) 
                                                which.find(',') == std::string::npos ? "s" : "", method));
   };
   reject("--ff", method == "reichert", "reichert");
-  reject("--sources", method == "kok", "kok");
-  reject("--source-fraction", method == "kok", "kok");
+  reject("--sources", method == "kok" || method == "multipass", "kok, multipass");
+  reject("--source-fraction", method == "kok" || method == "multipass", "kok, multipass");
   for (const char *name : {"--selective", "--selective-threshold", "--selective-power", "--selective-map"})
     reject(name, twoPass, "the two-pass methods (rushmeier, reichert, shirley, kok)");
   if (app.count("--sources") > 0 && app.count("--source-fraction") > 0)
@@ -192,8 +192,9 @@ CommandRunner addRenderCommand(CLI::App &app) {
         throw InputError(InputLocation{"--solution"}, "--method " + o->method + " does not read a radiosity solution");
       rejectUnusedTwoPassOptions(app, o->method);
       if (app.count("--bump-orientations") > 0 &&
-          ((o->method != "interpolate" && o->method != "shirley" && o->method != "kok") || o->quantity == "irradiance"))
-        throw InputError(flag("--bump-orientations"), "only interpolate, shirley and kok (of radiance) use it, not --method " +
+          ((o->method != "interpolate" && o->method != "shirley" && o->method != "kok" && o->method != "multipass") ||
+           o->quantity == "irradiance"))
+        throw InputError(flag("--bump-orientations"), "only interpolate, shirley, kok and multipass (of radiance) use it, not --method " +
                                                           o->method + (o->quantity == "irradiance" ? " --quantity irradiance" : ""));
       if (o->twoPass.bumpOrientations % 2 != 0)
         throw InputError(flag("--bump-orientations"), "must be even (two tilts × azimuths)");

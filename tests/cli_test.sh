@@ -173,10 +173,24 @@ for method in path interpolate shirley; do
   "$radiant" render "$textured" --method "$method" --spp 1 --width 16 --height 16 "${mesh[@]}" -o "tex-$method.png" -q \
     && [ -s "tex-$method.png" ] && pass || fail "textured box with --method $method"
 done
-expect_error "--bump-orientations with path" "only interpolate, shirley and kok" \
+expect_error "--bump-orientations with path" "only interpolate, shirley, kok and multipass" \
   "$radiant" render "$textured" --bump-orientations 8 -o x.exr -q
 expect_error "odd --bump-orientations" "must be even" \
   "$radiant" render "$textured" --method interpolate --bump-orientations 9 -o x.exr -q
+
+# Multipass (docs/multipass.md): every pass written, the latest under the plain name.
+specular="$source_dir/scenes/cornell-specular/scene.json"
+if "$radiant" render "$specular" --method multipass --spp 16 --width 16 --height 16 --mesh-size 200 -o mp.exr -o mp.png \
+    2>mp.txt; then
+  for f in mp.pass1.exr mp.pass2.png mp.pass5.exr mp.exr mp.png; do [ -s "$f" ] && pass || fail "multipass did not write $f"; done
+  grep -q "multipass 5 (unbiased path tracing)" mp.txt && pass || { fail "multipass does not report its passes"; cat mp.txt; }
+else
+  fail "multipass render"; cat mp.txt
+fi
+expect_error "multipass with another solver" "progressive" \
+  "$radiant" render "$specular" --method multipass --solver gauss-seidel -o x.exr -q
+expect_error "multipass of a spectral scene" "spectral" \
+  "$radiant" render "$spectral" --method multipass -o x.exr -q
 
 # tonemap: a saved EXR mapped again without rendering (docs/tone-mapping.md).
 # expect_exit2 NAME PATTERN COMMAND... : bad input exits with status 2 and names the culprit

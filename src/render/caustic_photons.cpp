@@ -60,9 +60,16 @@ CausticPhotonMap::CausticPhotonMap(const RayTracer &tracer, size_t emitted, uint
         Bsdf bsdf(material, hit.shadingNormal, hit.geometricNormal, wo);
         BsdfSample s;
         if (!bsdf.sample(rng.next(), rng.next(), rng.next(), s)) break;
-        power *= s.weight;
+        // Power, unlike radiance, is not scaled by (η_i/η_t)² across an
+        // interface: undo the BSDF's radiance factor on refraction (review).
+        Bands weight = s.weight;
+        if (s.isTransmission) {
+          const double eta = dot(wo, hit.geometricNormal) >= 0 ? material.ior : 1.0 / material.ior;
+          weight *= eta * eta;
+        }
+        power *= weight;
         // Russian roulette on what a mirror or tinted glass absorbs: unbiased, and photons keep their power.
-        const double survive = std::min(1.0, s.weight.max());
+        const double survive = std::min(1.0, weight.max());
         if (survive < 1) {
           if (rng.next() >= survive) break;
           power *= 1.0 / survive;

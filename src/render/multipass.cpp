@@ -36,6 +36,16 @@ constexpr double kRadiusAlpha = 2.0 / 3.0;
 /// Samples per pixel of passes 1–4 and of the first unbiased pass (the
 /// preview's 4 average the random choices of glass in view).
 constexpr int kPreviewSpp = 4, kHighFrequencySpp = 4, kLowFrequencySpp = 8, kFirstUnbiasedSpp = 16;
+/// Samples per pixel that share one caustic map in the unbiased passes.
+constexpr int kUnbiasedChunk = 16;
+
+/// SplitMix64 of the seed and a stream: distinct runs never share numbers.
+uint64_t hashSeed(uint64_t seed, uint64_t stream) {
+  uint64_t z = seed * 0x9e3779b97f4a7c15ULL + stream + 0x632be59bd9b4e019ULL;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
 
 }  // namespace
 
@@ -46,11 +56,12 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
   const bool budgeted = options.timeBudgetSeconds > 0;
   auto spent = [&] { return budgeted && secondsSince(start) >= options.timeBudgetSeconds; };
 
-  // One pass: render `spp` samples with `renderer` into `film`, timed, reported.
-  auto render = [&](MultipassPass &pass, const Renderer &renderer, int spp, Film &film) {
+  // One pass (or a chunk of one): render `spp` samples with `renderer` into `film`.
+  auto render = [&](MultipassPass &pass, const Renderer &renderer, int spp, Film &film, int chunk = 0) {
     DriverOptions driver;
     driver.samplesPerPixel = spp;
-    driver.seed = options.seed + uint64_t(pass.index);  // each pass its own numbers, reproducibly
+    // Each pass and chunk its own numbers, reproducibly, and no two (seed, pass) alike.
+    driver.seed = hashSeed(options.seed, uint64_t(pass.index) << 32 | uint64_t(chunk));
     driver.threads = options.threads;
     const std::string label = fmt::format("multipass {} ({})", pass.index, pass.name);
     renderImage(camera, renderer, driver, film, progress ? progress(label) : ProgressCallback{});
@@ -79,9 +90,10 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
   double radius = options.photonRadius;
   int photonPass = 0;
   auto causticMap = [&](MultipassPass &p) {
-    CausticPhotonMap map(tracer, options.photonsPerPass, options.seed * 7919 + uint64_t(p.index), radius);
-    radius = map.radius() * std::sqrt((photonPass + kRadiusAlpha) / (photonPass + 1.0));  // for the next map
-    ++photonPass;
+    CausticPhotonMap map(tracer, options.photonsPerPass, hashSeed(options.seed, 0xCA05ULL << 48 | uint64_t(photonPass)),
+                         radius);
+    ++photonPass;  // Knaus & Zwicker's i, from 1: the radius of the next map
+    radius = map.radius() * std::sqrt((photonPass + kRadiusAlpha) / (photonPass + 1.0));
     p.causticPhotons = map.stored(), p.photonRadius = map.radius();
     return map;
   };
@@ -116,7 +128,10 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
   }
 
   // Passes 5…: unbiased path tracing with caustics, accumulated, each pass
-  // about as long as all before it (doubling), within the budget.
+  // about as long as all before it (doubling), within the budget. Within a
+  // pass every kUnbiasedChunk samples per pixel get a new caustic map with a
+  // smaller radius, so that all maps weigh the same in the accumulated image,
+  // as Knaus & Zwicker's convergence argument assumes (review).
   Film unbiased(width, height);
   int done = 0, spp = kFirstUnbiasedSpp;
   double secondsPerSpp = 0;
@@ -129,15 +144,18 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
       const int fits = int((options.timeBudgetSeconds - secondsSince(start)) / secondsPerSpp);
       if (fits < std::max(1, done / 8)) break;
       spp = std::min(spp, fits);
+      if (spp > kUnbiasedChunk) spp -= spp % kUnbiasedChunk;  // whole chunks, each with its map
     }
     pass = {index, "unbiased path tracing", 0, 0, true};
-    const CausticPhotonMap caustics = causticMap(pass);
-    RendererOptions o = options.renderer;
-    o.solution = nullptr;
-    o.caustics = &caustics;
-    Film film(width, height);
-    render(pass, *createRenderer("path", tracer, o), spp, film);
-    accumulate(unbiased, film);
+    for (int chunk = 0, left = spp; left > 0; ++chunk, left -= kUnbiasedChunk) {
+      const CausticPhotonMap caustics = causticMap(pass);
+      RendererOptions o = options.renderer;
+      o.solution = nullptr;
+      o.caustics = &caustics;
+      Film film(width, height);
+      render(pass, *createRenderer("path", tracer, o), std::min(left, kUnbiasedChunk), film, chunk);
+      accumulate(unbiased, film);
+    }
     done += spp;
     pass.samplesPerPixel = done;
     secondsPerSpp = secondsSince(passStart) / spp;

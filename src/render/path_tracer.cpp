@@ -43,8 +43,10 @@ class PathTracer final : public Renderer {
     double previousBsdfPdf = 0;
     Vec3 previousPosition = ray.origin;
     bool metered = false;  // irradiance: the meter is placed at the first non-delta vertex
-    // Multipass (render/multipass.h): non-specular vertices so far, and specular bounces since the last one.
+    // Multipass (render/multipass.h): non-specular vertices so far, specular
+    // bounces since the last one, and whether that one took its caustics from the map.
     int diffuseVertices = 0, specularSinceDiffuse = 0;
+    bool lastUsedMap = false;
 
     for (int depth = 0;; ++depth) {
       Hit hit;
@@ -68,7 +70,7 @@ class PathTracer final : public Renderer {
       // Emission seen by this ray (front side only). With a caustic map, light
       // that left a non-specular vertex through specular bounces to reach an
       // emitter (L S+ D, seen from the eye) is the map's: not counted here.
-      const bool causticPath = caustics_ && diffuseVertices > 0 && specularSinceDiffuse > 0;
+      const bool causticPath = lastUsedMap && specularSinceDiffuse > 0;
       if (material.isEmitter() && dot(wo, hit.geometricNormal) > 0 && !meterHere && !causticPath) {
         double weight = 1.0;
         if (!countEmissionFully) {
@@ -90,7 +92,11 @@ class PathTracer final : public Renderer {
           if (caustics_) L += throughput * caustics_->reflectedRadiance(hit.position, facing, diffuse);
           break;
         }
-        if (caustics_) L += throughput * caustics_->reflectedRadiance(hit.position, facing, meterHere ? Bands(1.0) : diffuse);
+        // The map holds the caustic a Lambertian point reflects; at a glossy
+        // point its lobe's share would be lost, so there the path tracer finds
+        // the whole caustic itself, as without a map (review).
+        lastUsedMap = caustics_ && (meterHere || material.kind == MaterialKind::Lambertian);
+        if (lastUsedMap) L += throughput * caustics_->reflectedRadiance(hit.position, facing, meterHere ? Bands(1.0) : diffuse);
       } else {
         ++specularSinceDiffuse;
       }
