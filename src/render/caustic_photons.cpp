@@ -97,6 +97,13 @@ void CausticPhotonMap::buildGrid() {
                      i});
   }
   std::sort(grid_.begin(), grid_.end());
+  cells_.clear();
+  for (uint32_t i = 0; i < grid_.size();) {
+    uint32_t j = i;
+    while (j < grid_.size() && grid_[j].first == grid_[i].first) ++j;
+    cells_.emplace(grid_[i].first, std::make_pair(i, j));
+    i = j;
+  }
 }
 
 Bands CausticPhotonMap::irradiance(const Vec3 &position, const Vec3 &normal) const {
@@ -105,17 +112,18 @@ Bands CausticPhotonMap::irradiance(const Vec3 &position, const Vec3 &normal) con
   const int64_t cx = int64_t(std::floor(position.x / radius_)), cy = int64_t(std::floor(position.y / radius_)),
                 cz = int64_t(std::floor(position.z / radius_));
   const double r2 = radius_ * radius_;
-  std::vector<uint64_t> seen;  // a hash collision may list one cell's photons twice
+  uint64_t seen[27];  // a hash collision may list one cell's photons twice
+  int seenCount = 0;
   for (int64_t dx = -1; dx <= 1; ++dx)
     for (int64_t dy = -1; dy <= 1; ++dy)
       for (int64_t dz = -1; dz <= 1; ++dz) {
         const uint64_t key = cellKey(cx + dx, cy + dy, cz + dz);
-        if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
-        seen.push_back(key);
-        auto range = std::equal_range(grid_.begin(), grid_.end(), std::make_pair(key, uint32_t(0)),
-                                      [](const auto &a, const auto &b) { return a.first < b.first; });
-        for (auto it = range.first; it != range.second; ++it) {
-          const CausticPhoton &photon = photons_[it->second];
+        if (std::find(seen, seen + seenCount, key) != seen + seenCount) continue;
+        seen[seenCount++] = key;
+        const auto cell = cells_.find(key);
+        if (cell == cells_.end()) continue;
+        for (uint32_t k = cell->second.first; k < cell->second.second; ++k) {
+          const CausticPhoton &photon = photons_[grid_[k].second];
           const Vec3 d = photon.position - position;
           // Same surface: within the disc, and arrived on the side this normal faces.
           if (dot(d, d) <= r2 && dot(photon.normal, normal) > 0.5 && std::abs(dot(d, normal)) < 0.25 * radius_)

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "raytrace/ray_tracer.h"
@@ -51,6 +52,9 @@ class CausticPhotonMap {
 
   std::vector<CausticPhoton> photons_;
   std::vector<std::pair<uint64_t, uint32_t>> grid_;  ///< (cell key, photon), sorted
+  /// Cell key → [first, last) in grid_: a lookup at every non-specular vertex
+  /// of every path must cost a few hash probes, not binary searches.
+  std::unordered_map<uint64_t, std::pair<uint32_t, uint32_t>> cells_;
   size_t emitted_ = 0;
   double radius_ = 0;
   Vec3 origin_;
