@@ -21,6 +21,8 @@
 #include "scene/spectral_scene.h"
 #include "util/error.h"
 
+#include "render_helpers.h"
+
 namespace radiant {
 namespace {
 
@@ -44,24 +46,10 @@ std::string spectralFurnaceJson(const std::string &spectral) {
 }
 
 /// Solves (for the methods that read a solution) and renders every pass at `spp`.
-SpectralImages render(Scene &scene, const std::string &method, int spp, WhiteBalance balance, int size = 24) {
-  RayTracer tracer(scene);
-  PinholeCamera camera(scene.camera, size, size);
+SpectralImages render(Scene &scene, const std::string &method, int spp, WhiteBalance balance, int size = 24,
+                      double meshSize = 0.5, double tolerance = 1e-10 /* converged: the furnace's B = 2 to rounding */) {
   return renderPasses(scene, size, size, balance, [&](int, Film &film) {
-    RendererOptions options;
-    Solution solution;
-    if (findRenderer(method).needsSolution) {
-      MeshOptions mesh;
-      mesh.maxEdgeLength = 0.5;
-      SolverOptions solver;
-      solver.solver = "gauss-seidel";
-      solver.tolerance = 1e-10;  // converged: the furnace's B = 2 holds to rounding
-      solution = meshAndSolve(scene, tracer, mesh, solver);
-      options.solution = &solution;
-    }
-    DriverOptions driver;
-    driver.samplesPerPixel = spp;
-    renderImage(camera, *createRenderer(method, tracer, options), driver, film);
+    film = test::solveAndRender(scene, method, RendererOptions{}, spp, size, meshSize, tolerance);
   });
 }
 
@@ -232,20 +220,7 @@ TEST(Spectral, TheCornellBoxMatchesItsRgbColoursInMeanColour) {
   Scene rgb = loadScene(kSpectralBox);
   convertToRgbScene(rgb, WhiteBalance::EqualEnergy);
   auto meanOf = [](Scene &scene) {
-    RayTracer tracer(scene);
-    PinholeCamera camera(scene.camera, 32, 32);
-    return meanColour(renderPasses(scene, 32, 32, WhiteBalance::EqualEnergy, [&](int, Film &film) {
-             MeshOptions mesh;
-             mesh.maxEdgeLength = 0.1;
-             SolverOptions solver;
-             solver.solver = "gauss-seidel";
-             Solution solution = meshAndSolve(scene, tracer, mesh, solver);
-             RendererOptions options;
-             options.solution = &solution;
-             DriverOptions driver;
-             driver.samplesPerPixel = 1;
-             renderImage(camera, *createRenderer("interpolate", tracer, options), driver, film);
-           }).colour);
+    return meanColour(render(scene, "interpolate", 1, WhiteBalance::EqualEnergy, 32, 0.1, 1e-3).colour);
   };
   const Vec3 a = meanOf(spectral), b = meanOf(rgb);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(a[c] / b[c], 1.0, 0.03) << "channel " << c << ": " << a[c] << " vs " << b[c];

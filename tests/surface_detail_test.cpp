@@ -46,7 +46,7 @@ Scene texturedBox(const std::vector<std::pair<std::string, std::string>> &edits 
 /// Renders with the pixel spread the command line gives (textures filtered), solving first if needed.
 Film render(const Scene &scene, const std::string &method, int spp, int size = 32, double meshSize = 0.1) {
   RendererOptions options;
-  options.pixelSpreadAngle = 2 * std::tan(0.5 * scene.camera.verticalFovDegrees * kPi / 180) / size;
+  options.pixelSpreadAngle = pixelAngle(scene.camera, size);
   return test::solveAndRender(scene, method, options, spp, size, meshSize);
 }
 
@@ -84,6 +84,16 @@ RegionStats regionStats(const Film &film, const std::vector<size_t> &pixels) {
   return s;
 }
 
+/// The largest per-pixel, per-band difference of two films, relative to the
+/// first (dark pixels below 1e-3 compared absolutely).
+double worstRelativeDifference(const Film &a, const Film &b) {
+  double worst = 0;
+  for (size_t p = 0; p < a.pixelCount(); ++p)
+    for (int c = 0; c < 3; ++c)
+      worst = std::max(worst, std::abs(a.mean(p)[c] - b.mean(p)[c]) / std::max(1e-3, a.mean(p)[c]));
+  return worst;
+}
+
 // REFERENCE §5.1: a texture whose value everywhere is the untextured
 // reflectance changes nothing — in the solution (ρ̄ = ρ) and at every pixel
 // (ρ(x)/ρ̄ = 1) — for every method. The texture is stored as float, so the
@@ -102,10 +112,7 @@ TEST(SurfaceDetail, AConstantTextureEqualToTheReflectanceChangesNoImage) {
                                 {R"("bump_scale": 12)", R"("comment": "no bump")"}});
   for (const std::string &method : kMethods) {
     Film a = render(plain, method, 2, 16, 0.15), b = render(textured, method, 2, 16, 0.15);
-    double worst = 0;
-    for (size_t p = 0; p < a.pixelCount(); ++p)
-      for (int c = 0; c < 3; ++c)
-        worst = std::max(worst, std::abs(a.mean(p)[c] - b.mean(p)[c]) / std::max(1e-3, a.mean(p)[c]));
+    const double worst = worstRelativeDifference(a, b);
     EXPECT_LT(worst, 1e-5) << method;
   }
   std::filesystem::remove_all(dir);
@@ -158,10 +165,7 @@ TEST(SurfaceDetail, AFlatBumpChangesNoImage) {
   for (const std::string &method : kMethods) {
     if (method == "reichert") continue;  // slow, and shades with the same VisiblePoint normal as rushmeier
     Film a = render(plain, method, 2, 16, 0.15), b = render(zero, method, 2, 16, 0.15);
-    double worst = 0;
-    for (size_t p = 0; p < a.pixelCount(); ++p)
-      for (int c = 0; c < 3; ++c)
-        worst = std::max(worst, std::abs(a.mean(p)[c] - b.mean(p)[c]) / std::max(1e-3, a.mean(p)[c]));
+    const double worst = worstRelativeDifference(a, b);
     EXPECT_LT(worst, 1e-9) << method;
   }
 }

@@ -2,14 +2,8 @@
 # Renders the figures of docs/multipass.md: the specular Cornell box by
 # --method multipass for 60 s, every pass written, beside path for 60 s.
 # Usage: tools/multipass_figures.sh [build-dir]
-set -euo pipefail
-here=$(cd "$(dirname "$0")/.." && pwd)
-radiant="${1:-$here/build}/radiant"
+source "$(dirname "$0")/figures_common.sh"
 scene="$here/scenes/cornell-specular/scene.json"
-out="$here/docs/images"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-mkdir -p "$out"
 "$radiant" render "$scene" --method multipass --time 60 --width 256 --height 256 -o "$work/mp.png" 2>&1 | grep "radiant: multipass"
 for pass in 1 2 3 5; do cp "$work/mp.pass$pass.png" "$out/multipass-pass$pass.png"; done
 cp "$work/mp.png" "$out/multipass-final.png"

@@ -6,15 +6,9 @@
 #
 # Every image is the path tracer at 256 spp, 256 × 256, shown with the same
 # linear mapping (exposure 0), so brightness and colour compare directly.
-set -euo pipefail
-here=$(cd "$(dirname "$0")/.." && pwd)
-radiant="${1:-$here/build}/radiant"
+source "$(dirname "$0")/figures_common.sh"
 spectral="$here/scenes/cornell-box-spectral/scene.json"
 rgb="$here/scenes/cornell-box/scene.json"
-out="$here/docs/images"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-mkdir -p "$out"
 common=(--spp 256 --width 256 --height 256 -q)
 
 render() {  # name scene [flags…]

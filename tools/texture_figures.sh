@@ -5,14 +5,8 @@
 #
 # 256 × 256, the same linear display mapping for all. Methods that read a
 # solution share one (hierarchical, the default), saved once.
-set -euo pipefail
-here=$(cd "$(dirname "$0")/.." && pwd)
-radiant="${1:-$here/build}/radiant"
+source "$(dirname "$0")/figures_common.sh"
 scene="$here/scenes/cornell-textured/scene.json"
-out="$here/docs/images"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-mkdir -p "$out"
 common=(--width 256 --height 256 -q)
 
 "$radiant" solve "$scene" -o "$work/box.rad" -q

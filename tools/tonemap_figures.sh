@@ -8,14 +8,8 @@
 # searchlight are the same EXR with --scale 1e-4 and 1e4: the scene is linear in
 # its emission, so scaling every emitter by s scales every radiance by s, which
 # is exactly what --scale does to the image.
-set -euo pipefail
-here=$(cd "$(dirname "$0")/.." && pwd)
-radiant="${1:-$here/build}/radiant"
+source "$(dirname "$0")/figures_common.sh"
 scene="$here/scenes/cornell-box/scene.json"
-out="$here/docs/images"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-mkdir -p "$out"
 
 "$radiant" render "$scene" --spp 256 --width 256 --height 256 -o "$work/box.exr" -q
 

@@ -1,14 +1,8 @@
 #!/usr/bin/env bash
 # Renders the figures of docs/two-pass.md into docs/images/ (needs ImageMagick's
 # `convert`). Usage: tools/two_pass_figures.sh [build-dir]   (default: build)
-set -euo pipefail
-here=$(cd "$(dirname "$0")/.." && pwd)
-radiant="${1:-$here/build}/radiant"
+source "$(dirname "$0")/figures_common.sh"
 scene="$here/scenes/cornell-box/scene.json"
-out="$here/docs/images"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-mkdir -p "$out"
 size=(--width 256 --height 256 -q)
 
 "$radiant" solve "$scene" --solver progressive --mesh-size 40 -o "$work/fine.rad" -q
