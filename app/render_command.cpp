@@ -284,8 +284,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
       MultipassCommand command{outputs, display, app.count("--tonemap") > 0, o->variancePath, o->radiosity,
                                o->twoPass, r.samplesPerPixel, r.timeBudgetSeconds, r.seed, o->threads, o->quiet};
       command.renderer.maxDepth = r.maxDepth;
-      command.renderer.pixelSpreadAngle =  // over the 4 samples of its filtered passes
-          0.5 * 2 * std::tan(0.5 * scene.camera.verticalFovDegrees * kPi / 180) / std::max(1, r.height);
+      command.renderer.pixelSpreadAngle = texturePixelSpread(scene.camera, r.height, 4);  // its filtered passes: 4 spp
       runMultipass(tracer, camera, r.width, r.height, command);
       return 0;
     }
@@ -304,11 +303,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
       RendererOptions rendererOptions = o->twoPass;
       rendererOptions.maxDepth = r.maxDepth;
       rendererOptions.irradiance = o->quantity == "irradiance";
-      // Texture filter width: the angle a pixel subtends, shared among its
-      // samples (pbrt scales ray differentials by max(1/8, 1/√spp) the same way).
-      rendererOptions.pixelSpreadAngle = 2 * std::tan(0.5 * scene.camera.verticalFovDegrees * kPi / 180) /
-                                         std::max(1, r.height) *
-                                         std::max(0.125, 1 / std::sqrt(double(r.samplesPerPixel)));
+      rendererOptions.pixelSpreadAngle = texturePixelSpread(scene.camera, r.height, r.samplesPerPixel);
       Solution solved;
       if (method.needsSolution) {
         if (solutions.empty()) {

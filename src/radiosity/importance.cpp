@@ -48,7 +48,7 @@ VisualImportance::VisualImportance(const RayTracer &tracer, const RadiosityMesh 
   PinholeCamera camera(view.camera, width, height);
   // Square pixels of side 2 tan(fov/2) / height on the image plane at distance 1.
   const Vec3 forward = normalize(view.camera.target - view.camera.eye);
-  const double pixelSide = 2 * std::tan(0.5 * view.camera.verticalFovDegrees * kPi / 180) / height;
+  const double pixelSide = pixelAngle(view.camera, height);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       Ray ray = camera.generateRay(x + 0.5, y + 0.5);

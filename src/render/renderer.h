@@ -5,6 +5,8 @@
 // progress and output. A new method is one file plus one line in registry.cpp.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -38,6 +40,7 @@ struct RendererOptions {
   bool irradiance = false;
   /// The angle one pixel subtends, radians: texture maps are filtered over
   /// the pixel's footprint where a camera ray meets them (0: finest texels).
+  /// texturePixelSpread gives the value the command line uses.
   double pixelSpreadAngle = 0;
   /// interpolate: normal orientations gathered per node of a bump-mapped patch (render/bump_gather.h).
   int bumpOrientations = 16;
@@ -69,6 +72,12 @@ struct RendererOptions {
   /// visible links carrying at least this fraction of the emitted power.
   double selectiveLinkPower = 1e-4;
 };
+
+/// The texture filter width for `samplesPerPixel` samples: the pixel's angle
+/// shared among its samples (pbrt scales ray differentials by max(1/8, 1/√spp)).
+inline double texturePixelSpread(const CameraSettings &camera, int height, int samplesPerPixel) {
+  return pixelAngle(camera, height) * std::max(0.125, 1 / std::sqrt(double(std::max(1, samplesPerPixel))));
+}
 
 struct RendererInfo {
   const char *name;

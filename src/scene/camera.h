@@ -12,6 +12,12 @@ struct CameraSettings {
   double verticalFovDegrees = 40.0;
 };
 
+/// The angle one pixel subtends at the image centre, radians: its side on the
+/// image plane at distance 1, for an image `height` pixels high.
+inline double pixelAngle(const CameraSettings &camera, int height) {
+  return 2 * std::tan(0.5 * camera.verticalFovDegrees * kPi / 180) / (height > 0 ? height : 1);
+}
+
 struct Ray {
   Vec3 origin;
   Vec3 direction;  ///< unit length
