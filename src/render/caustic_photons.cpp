@@ -82,55 +82,108 @@ CausticPhotonMap::CausticPhotonMap(const RayTracer &tracer, size_t emitted, uint
   buildGrid();
 }
 
-uint64_t CausticPhotonMap::cellKey(int64_t x, int64_t y, int64_t z) const {
-  // A hash of the integer cell: collisions only cost extra distance tests.
-  return (uint64_t(x) * 73856093ULL) ^ (uint64_t(y) * 19349663ULL) ^ (uint64_t(z) * 83492791ULL);
+void CausticPhotonMap::cellOf(const Vec3 &p, int64_t cell[3]) const {
+  for (int k = 0; k < 3; ++k) cell[k] = int64_t(std::floor(p[k] / cellSize_));
 }
 
+uint64_t CausticPhotonMap::cellKey(int64_t x, int64_t y, int64_t z) {
+  // 21 bits per axis: 2 million cells along each side of the scene. Cells
+  // further apart share a key, which costs only distance tests.
+  constexpr uint64_t mask = (uint64_t(1) << 21) - 1;
+  return (uint64_t(x) & mask) | (uint64_t(y) & mask) << 21 | (uint64_t(z) & mask) << 42;
+}
+
+namespace {
+
+uint64_t mixKey(uint64_t key) {  // SplitMix64's finaliser: neighbouring cells land far apart
+  key = (key ^ (key >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  key = (key ^ (key >> 27)) * 0x94d049bb133111ebULL;
+  return key ^ (key >> 31);
+}
+
+constexpr int kOccupancyBits = 18;  // 32 KiB: stays in each core's cache
+
+}  // namespace
+
 void CausticPhotonMap::buildGrid() {
-  grid_.clear();
-  grid_.reserve(photons_.size());
+  // Each photon is listed in every cell (side 2r) its sphere of radius r
+  // reaches, at most two per axis: a lookup then reads one cell only.
+  cellSize_ = 2 * radius_;
+  std::vector<std::pair<uint64_t, uint32_t>> keyed;
+  keyed.reserve(photons_.size() * 2);
   for (uint32_t i = 0; i < photons_.size(); ++i) {
-    const Vec3 &p = photons_[i].position;
-    grid_.push_back({cellKey(int64_t(std::floor(p.x / radius_)), int64_t(std::floor(p.y / radius_)),
-                             int64_t(std::floor(p.z / radius_))),
-                     i});
+    int64_t lo[3], hi[3];
+    cellOf(photons_[i].position - Vec3(radius_, radius_, radius_), lo);
+    cellOf(photons_[i].position + Vec3(radius_, radius_, radius_), hi);
+    uint64_t keys[8];
+    int count = 0;
+    for (int64_t x = lo[0]; x <= hi[0]; ++x)
+      for (int64_t y = lo[1]; y <= hi[1]; ++y)
+        for (int64_t z = lo[2]; z <= hi[2]; ++z) {
+          // Cells 2 million apart share a key: list the photon there once.
+          const uint64_t key = cellKey(x, y, z);
+          if (std::find(keys, keys + count, key) != keys + count) continue;
+          keys[count++] = key;
+          keyed.push_back({key, i});
+        }
   }
-  std::sort(grid_.begin(), grid_.end());
-  cells_.clear();
-  for (uint32_t i = 0; i < grid_.size();) {
+  std::sort(keyed.begin(), keyed.end());
+  size_t cells = 0;
+  for (size_t i = 0; i < keyed.size(); ++i) cells += i == 0 || keyed[i].first != keyed[i - 1].first;
+  size_t capacity = 16;
+  while (capacity < 2 * cells) capacity *= 2;  // load ≤ 1/2: short probe sequences
+  table_.assign(capacity, Slot{});
+  occupied_.assign((size_t(1) << kOccupancyBits) / 64, 0);
+  cellPhotons_.resize(keyed.size());
+  for (size_t k = 0; k < keyed.size(); ++k) {
+    const CausticPhoton &photon = photons_[keyed[k].second];
+    GridPhoton &g = cellPhotons_[k];
+    for (int a = 0; a < 3; ++a) g.position[a] = float(photon.position[a]), g.normal[a] = float(photon.normal[a]);
+    for (int b = 0; b < kBandCount; ++b) g.power[b] = float(photon.power[b]);
+  }
+  for (uint32_t i = 0; i < keyed.size();) {
     uint32_t j = i;
-    while (j < grid_.size() && grid_[j].first == grid_[i].first) ++j;
-    cells_.emplace(grid_[i].first, std::make_pair(i, j));
+    while (j < keyed.size() && keyed[j].first == keyed[i].first) ++j;
+    const uint64_t hash = mixKey(keyed[i].first);
+    size_t slot = hash & (capacity - 1);
+    while (table_[slot].key != kEmptyKey) slot = (slot + 1) & (capacity - 1);
+    table_[slot] = {keyed[i].first, i, j};
+    const uint64_t bit = hash >> (64 - kOccupancyBits);
+    occupied_[bit / 64] |= uint64_t(1) << (bit % 64);
     i = j;
+  }
+}
+
+std::pair<uint32_t, uint32_t> CausticPhotonMap::cellRange(uint64_t key) const {
+  const uint64_t hash = mixKey(key), bit = hash >> (64 - kOccupancyBits);
+  if (!(occupied_[bit / 64] >> (bit % 64) & 1)) return {0, 0};
+  for (size_t slot = hash & (table_.size() - 1);; slot = (slot + 1) & (table_.size() - 1)) {
+    if (table_[slot].key == key) return {table_[slot].first, table_[slot].last};
+    if (table_[slot].key == kEmptyKey) return {0, 0};
   }
 }
 
 Bands CausticPhotonMap::irradiance(const Vec3 &position, const Vec3 &normal) const {
   Bands sum(0.0);
   if (photons_.empty()) return sum;
-  const int64_t cx = int64_t(std::floor(position.x / radius_)), cy = int64_t(std::floor(position.y / radius_)),
-                cz = int64_t(std::floor(position.z / radius_));
-  const double r2 = radius_ * radius_;
-  uint64_t seen[27];  // a hash collision may list one cell's photons twice
-  int seenCount = 0;
-  for (int64_t dx = -1; dx <= 1; ++dx)
-    for (int64_t dy = -1; dy <= 1; ++dy)
-      for (int64_t dz = -1; dz <= 1; ++dz) {
-        const uint64_t key = cellKey(cx + dx, cy + dy, cz + dz);
-        if (std::find(seen, seen + seenCount, key) != seen + seenCount) continue;
-        seen[seenCount++] = key;
-        const auto cell = cells_.find(key);
-        if (cell == cells_.end()) continue;
-        for (uint32_t k = cell->second.first; k < cell->second.second; ++k) {
-          const CausticPhoton &photon = photons_[grid_[k].second];
-          const Vec3 d = photon.position - position;
-          // Same surface: within the disc, and arrived on the side this normal faces.
-          if (dot(d, d) <= r2 && dot(photon.normal, normal) > 0.5 && std::abs(dot(d, normal)) < 0.25 * radius_)
-            sum += photon.power;
-        }
-      }
-  return sum / (kPi * r2);
+  int64_t cell[3];
+  cellOf(position, cell);
+  const auto [first, last] = cellRange(cellKey(cell[0], cell[1], cell[2]));
+  const float r2 = float(radius_ * radius_), slab = float(0.25 * radius_);
+  const float px = float(position.x), py = float(position.y), pz = float(position.z);
+  const float nx = float(normal.x), ny = float(normal.y), nz = float(normal.z);
+  float power[kBandCount] = {};
+  for (uint32_t k = first; k < last; ++k) {
+    const GridPhoton &photon = cellPhotons_[k];
+    const float dx = photon.position[0] - px, dy = photon.position[1] - py, dz = photon.position[2] - pz;
+    // Same surface: within the disc, and arrived on the side this normal faces.
+    if (dx * dx + dy * dy + dz * dz <= r2 &&
+        photon.normal[0] * nx + photon.normal[1] * ny + photon.normal[2] * nz > 0.5f &&
+        std::abs(dx * nx + dy * ny + dz * nz) < slab)
+      for (int b = 0; b < kBandCount; ++b) power[b] += photon.power[b];
+  }
+  for (int b = 0; b < kBandCount; ++b) sum[b] = power[b];
+  return sum / (kPi * radius_ * radius_);
 }
 
 Bands CausticPhotonMap::reflectedRadiance(const Vec3 &position, const Vec3 &normal, const Bands &rho) const {

@@ -13,7 +13,6 @@
 #pragma once
 
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include "raytrace/ray_tracer.h"
@@ -47,17 +46,34 @@ class CausticPhotonMap {
   const std::vector<CausticPhoton> &photons() const { return photons_; }
 
  private:
-  uint64_t cellKey(int64_t x, int64_t y, int64_t z) const;
+  /// The grid cell of side 2r holding a point (one integer per axis).
+  void cellOf(const Vec3 &p, int64_t cell[3]) const;
+  static uint64_t cellKey(int64_t x, int64_t y, int64_t z);
+  /// The photons listed in one cell: [first, last) in order_, or an empty range.
+  std::pair<uint32_t, uint32_t> cellRange(uint64_t key) const;
   void buildGrid();
 
   std::vector<CausticPhoton> photons_;
-  std::vector<std::pair<uint64_t, uint32_t>> grid_;  ///< (cell key, photon), sorted
-  /// Cell key → [first, last) in grid_: a lookup at every non-specular vertex
-  /// of every path must cost a few hash probes, not binary searches.
-  std::unordered_map<uint64_t, std::pair<uint32_t, uint32_t>> cells_;
+  /// A lookup happens at every non-specular vertex of every path, and almost
+  /// every one lands where no caustic is: it must cost a few cache reads.
+  /// Cells of side 2r, each listing the photons within r of it (a photon in
+  /// up to 8 cells); an occupancy bitset answers "no photons here" before
+  /// the hash table is touched.
+  struct Slot {
+    uint64_t key = kEmptyKey;
+    uint32_t first = 0, last = 0;
+  };
+  static constexpr uint64_t kEmptyKey = ~uint64_t(0);
+  /// A photon as a lookup reads it, copied into every cell it is listed in:
+  /// single precision and contiguous, since a lookup scans a whole cell.
+  struct GridPhoton {
+    float position[3], normal[3], power[kBandCount];
+  };
+  std::vector<GridPhoton> cellPhotons_;  ///< by cell
+  std::vector<Slot> table_;         ///< open addressing, linear probing, power-of-two size
+  std::vector<uint64_t> occupied_;  ///< one bit per hashed cell key
   size_t emitted_ = 0;
-  double radius_ = 0;
-  Vec3 origin_;
+  double radius_ = 0, cellSize_ = 0;
 };
 
 }  // namespace radiant
