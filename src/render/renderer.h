@@ -64,6 +64,9 @@ struct RendererOptions {
   int secondarySources = 4;
   /// …or, when > 0, the fewest patches carrying this fraction of the reflected power.
   double secondarySourceFraction = 0;
+  /// kok: the visibility of each removed form factor, from grid × grid points
+  /// on the source element (multipass's pass 2 takes 1: its image is a preview).
+  int removalVisibilityGrid = 2;
   /// Re-evaluate per pixel only where the solution is flagged inaccurate.
   bool selective = false;
   /// Element mode: re-evaluate where the element's error estimate exceeds this.

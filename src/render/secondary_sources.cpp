@@ -59,10 +59,10 @@ SecondarySources::SecondarySources(const RayTracer &tracer, const Solution &solu
   if (!cumulative_.empty()) cumulative_.back() = 1.0;
   pdfAreaOfPatch_.assign(mesh.patches.size(), 0.0);
   for (size_t j = 0; j < patches_.size(); ++j) pdfAreaOfPatch_[patches_[j]] = probability_[j] / mesh.patches[patches_[j]].area;
-  computeRemovedRadiosity(tracer);
+  computeRemovedRadiosity(tracer, std::max(1, options.removalVisibilityGrid));
 }
 
-void SecondarySources::computeRemovedRadiosity(const RayTracer &tracer) {
+void SecondarySources::computeRemovedRadiosity(const RayTracer &tracer, int grid) {
   const RadiosityMesh &mesh = solution_.mesh;
   const Solution &s = solution_;
   // The selected patches' elements, with their polygons and values, once.
@@ -93,16 +93,17 @@ void SecondarySources::computeRemovedRadiosity(const RayTracer &tracer) {
       const Vec3 &nk = mesh.normalOf(source.element);
       if (dot(receiver.centre - k.centre, nk) <= 0) continue;  // behind the source: its front faces away
       // The part of the source in front of the receiver, its exact factor,
-      // and its visible fraction from 2×2 stratified points on that part.
+      // and its visible fraction from grid × grid stratified points on that part.
       clipToFrontHalfSpace(receiver.centre, n, source.polygon, front);
       if (front.size() < 3) continue;
       double f = formFactorPointToPolygon(receiver.centre, n, front);
       if (f <= 0) continue;
       int visible = 0;
-      for (int a = 0; a < 2; ++a)
-        for (int b = 0; b < 2; ++b)
-          visible += tracer.visible(receiver.centre, n, sampleConvexPolygon(front, (a + 0.5) / 2, (b + 0.5) / 2), nk);
-      gathered += source.reflected * (f * visible / 4.0);
+      for (int a = 0; a < grid; ++a)
+        for (int b = 0; b < grid; ++b)
+          visible +=
+              tracer.visible(receiver.centre, n, sampleConvexPolygon(front, (a + 0.5) / grid, (b + 0.5) / grid), nk);
+      gathered += source.reflected * (f * visible / double(grid * grid));
     }
     removed_[i] = s.reflectance[i] * gathered;
   });

@@ -44,7 +44,7 @@ class SecondarySources {
   const std::vector<Bands> &removedRadiosity() const { return removed_; }
 
  private:
-  void computeRemovedRadiosity(const RayTracer &tracer);
+  void computeRemovedRadiosity(const RayTracer &tracer, int grid);
 
   const Solution &solution_;
   std::vector<uint32_t> patches_;
