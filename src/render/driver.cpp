@@ -26,18 +26,18 @@ struct Tile {
   int x0, y0, x1, y1;
 };
 
-}  // namespace
-
-RenderStats renderImage(const PinholeCamera &camera, const Renderer &renderer, const DriverOptions &options,
-                        Film &film, const ProgressCallback &progress) {
+/// The driver for either film: `shade(pixel, ray, rng)` takes one camera sample.
+template <typename Shade>
+RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, int width, int height,
+                  const Shade &shade, const ProgressCallback &progress) {
   const auto start = Clock::now();
   std::vector<Tile> tiles;
   if (options.onlyPixelX >= 0) {
     tiles.push_back({options.onlyPixelX, options.onlyPixelY, options.onlyPixelX + 1, options.onlyPixelY + 1});
   } else {
-    for (int y = 0; y < film.height; y += options.tileSize)
-      for (int x = 0; x < film.width; x += options.tileSize)
-        tiles.push_back({x, y, std::min(x + options.tileSize, film.width), std::min(y + options.tileSize, film.height)});
+    for (int y = 0; y < height; y += options.tileSize)
+      for (int x = 0; x < width; x += options.tileSize)
+        tiles.push_back({x, y, std::min(x + options.tileSize, width), std::min(y + options.tileSize, height)});
   }
 
   const int target = options.samplesPerPixel;
@@ -85,12 +85,11 @@ RenderStats renderImage(const PinholeCamera &camera, const Renderer &renderer, c
           const Tile &tile = tiles[t];
           for (int y = tile.y0; y < tile.y1; ++y)
             for (int x = tile.x0; x < tile.x1; ++x) {
-              size_t pixel = size_t(y) * film.width + x;
+              size_t pixel = size_t(y) * width + x;
               for (int s = first; s < last; ++s) {
                 Sampler rng(options.seed, pixel, s);  // the first two numbers place the sample in its pixel
                 double jitterX = rng.next(), jitterY = rng.next();
-                Ray ray = camera.generateRay(x + jitterX, y + jitterY);
-                film.add(pixel, renderer.radiance(ray, rng));
+                shade(pixel, camera.generateRay(x + jitterX, y + jitterY), rng);
               }
             }
           size_t finished = ++tilesDone;
@@ -105,8 +104,28 @@ RenderStats renderImage(const PinholeCamera &camera, const Renderer &renderer, c
   RenderStats stats;
   stats.samplesPerPixel = done;
   stats.seconds = secondsSince(start);
-  stats.cameraSamples = uint64_t(done) * (options.onlyPixelX >= 0 ? 1 : film.pixelCount());
+  stats.cameraSamples = uint64_t(done) * (options.onlyPixelX >= 0 ? 1 : size_t(width) * height);
   return stats;
+}
+
+}  // namespace
+
+RenderStats renderImage(const PinholeCamera &camera, const Renderer &renderer, const DriverOptions &options,
+                        Film &film, const ProgressCallback &progress) {
+  return drive(
+      camera, options, film.width, film.height,
+      [&](size_t pixel, const Ray &ray, Sampler &rng) { film.add(pixel, renderer.radiance(ray, rng)); }, progress);
+}
+
+RenderStats renderPairedImage(const PinholeCamera &camera, const Renderer &renderer, const DriverOptions &options,
+                              PairedFilm &film, const ProgressCallback &progress) {
+  return drive(
+      camera, options, film.width, film.height,
+      [&](size_t pixel, const Ray &ray, Sampler &rng) {
+        const PairedRadiance pair = renderer.pairedRadiance(ray, rng);
+        film.add(pixel, pair.radiance, pair.control);
+      },
+      progress);
 }
 
 ProgressCallback makeConsoleProgress(const std::string &label) {

@@ -49,6 +49,10 @@ using ProgressCallback = std::function<void(const Progress &)>;
 RenderStats renderImage(const PinholeCamera &camera, const Renderer &renderer, const DriverOptions &options,
                         Film &film, const ProgressCallback &progress = {});
 
+/// The same for paired samples (Renderer::pairedRadiance): multipass's control variate.
+RenderStats renderPairedImage(const PinholeCamera &camera, const Renderer &renderer, const DriverOptions &options,
+                              PairedFilm &film, const ProgressCallback &progress = {});
+
 /// A progress reporter for a terminal (bar with ETA on one line) or for logs
 /// (a plain line every few seconds), chosen by whether stderr is a terminal.
 ProgressCallback makeConsoleProgress(const std::string &label);

@@ -36,7 +36,23 @@ class PathTracer final : public Renderer {
     meter_.diffuse = Bands(1.0);
   }
 
-  Bands radiance(const Ray &cameraRay, Sampler &rng) const override {
+  Bands radiance(const Ray &cameraRay, Sampler &rng) const override { return trace(cameraRay, rng, nullptr); }
+
+  /// The control is this path read the solution where radiance() would stop,
+  /// from the same numbers (so the two differ only past that vertex); paths
+  /// that end before it give the control their radiance (multipass, render/control_variate.h).
+  PairedRadiance pairedRadiance(const Ray &cameraRay, Sampler &rng) const override {
+    PairedRadiance pair;
+    bool controlSet = false;
+    pair.radiance = trace(cameraRay, rng, readDepth_ > 0 ? &pair.control : nullptr, &controlSet);
+    if (!controlSet) pair.control = pair.radiance;
+    return pair;
+  }
+
+ private:
+  /// One path; with `control`, the solution-reading estimate is stored there
+  /// (and `*controlSet` raised) at the read vertex, and the path continues.
+  Bands trace(const Ray &cameraRay, Sampler &rng, Bands *control, bool *controlSet = nullptr) const {
     Bands L(0.0), throughput(1.0);
     Ray ray = cameraRay;
     bool countEmissionFully = true;  // camera rays and delta bounces: no light sample competed
@@ -88,9 +104,10 @@ class PathTracer final : public Renderer {
         // Multipass's low-frequency passes: past readDepth non-specular bounces
         // the solution's reflected radiosity stands for the rest of the path (as rushmeier does at depth 1).
         if (readDepth_ > 0 && diffuseVertices == readDepth_ + 1) {
-          L += throughput * readSolution(hit, wo, diffuse);
-          if (caustics_) L += throughput * caustics_->reflectedRadiance(hit.position, facing, diffuse);
-          break;
+          Bands read = L + throughput * readSolution(hit, wo, diffuse);
+          if (caustics_) read += throughput * caustics_->reflectedRadiance(hit.position, facing, diffuse);
+          if (!control) return read.isFinite() ? read : Bands(0.0);
+          *control = read.isFinite() ? read : Bands(0.0), *controlSet = true;
         }
         // The map holds the caustic a Lambertian point reflects; at a glossy
         // point its lobe's share would be lost, so there the path tracer finds
@@ -127,7 +144,6 @@ class PathTracer final : public Renderer {
     return L.isFinite() ? L : Bands(0.0);
   }
 
- private:
   /// Next-event estimate of direct light at a non-delta vertex, MIS-weighted.
   Bands sampleLight(const Hit &hit, const Bsdf &bsdf, Sampler &rng) const {
     LightSample light;

@@ -19,12 +19,25 @@ namespace radiant {
 
 class CausticPhotonMap;
 
+/// One camera sample's estimate and, from the same random numbers, a cheaper
+/// biased one of the same radiance: multipass's control variate (render/control_variate.h).
+struct PairedRadiance {
+  Bands radiance;  ///< unbiased
+  Bands control;   ///< the path tracer: what it would give reading the solution (readSolutionDepth)
+};
+
 class Renderer {
  public:
   virtual ~Renderer() = default;
   /// Radiance arriving at the camera along `ray`, W·sr⁻¹·m⁻² per band. Must be
   /// finite and non-negative; `rng` is this camera sample's own numbers (render/sampler.h).
   virtual Bands radiance(const Ray &ray, Sampler &rng) const = 0;
+  /// The radiance and its control. A renderer without one returns the
+  /// radiance as its own control (a difference of zero).
+  virtual PairedRadiance pairedRadiance(const Ray &ray, Sampler &rng) const {
+    const Bands L = radiance(ray, rng);
+    return {L, L};
+  }
 };
 
 struct Solution;
@@ -51,7 +64,8 @@ struct RendererOptions {
   /// specular bounces is then left out. nullptr: none.
   const CausticPhotonMap *caustics = nullptr;
   /// path with a solution: at the (d+1)-th non-specular vertex, read the
-  /// solution's reflected radiosity instead of continuing; 0: never.
+  /// solution's reflected radiosity instead of continuing (pairedRadiance:
+  /// that reading is the control, and the path goes on); 0: never.
   int readSolutionDepth = 0;
   /// The radiosity solution, for the methods that read one (it must outlive the renderer).
   const Solution *solution = nullptr;
