@@ -25,11 +25,11 @@ void runMultipass(const RayTracer &tracer, const PinholeCamera &camera, int widt
   options.threads = command.threads;
   options.renderer = command.renderer;
 
-  // The radiosity pass is progressive refinement: it can be stopped after any shot.
+  // The preview is progressive refinement, stopped after its first shots; the
+  // later passes read the solution of --solver (auto by default, as every method).
   auto solve = [&](int maxShots) {
     RadiosityCommandOptions o = command.radiosity;
-    o.solver.solver = "progressive";
-    if (maxShots > 0) o.solver.maxIterations = maxShots;
+    if (maxShots > 0) o.solver.solver = "progressive", o.solver.maxIterations = maxShots;
     return solveScene(tracer.scene(), tracer, o, command.seed, command.threads, command.quiet || maxShots > 0);
   };
   auto write = [&](const MultipassPass &pass, const Image &mean, const Image &variance) {
@@ -41,11 +41,16 @@ void runMultipass(const RayTracer &tracer, const PinholeCamera &camera, int widt
                        true);
     if (!command.variancePath.empty()) writeImage(variance, command.variancePath);
     if (!command.quiet)
-      fmt::print(stderr, "radiant: multipass {} ({}): {} spp, {:.2f} s{}; wrote {}\n", pass.index, pass.name,
+      fmt::print(stderr, "radiant: multipass {} ({}): {} spp, {:.2f} s{}{}; wrote {}\n", pass.index, pass.name,
                  pass.samplesPerPixel, pass.seconds,
                  pass.causticPhotons ? fmt::format(", {} caustic photons within {:.1f} mm", pass.causticPhotons,
                                                    pass.photonRadius * 1e3)
                                      : std::string(),
+                 pass.index >= 3 ? fmt::format("; so far {} spp reading the solution, {} of them paired with the unbiased "
+                                               "path, which weighs {:.2f} (the solution's bias {:.3g} W/(sr m²) RMS)",
+                                               pass.controlSamples, pass.pairedSamples, pass.unbiasedWeight,
+                                               pass.estimatedBias)
+                                 : std::string(),
                  fmt::join(paths, ", "));
   };
   MultipassProgress progress;

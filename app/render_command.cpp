@@ -278,9 +278,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
       if (scene.spectral.enabled())
         throw InputError(flag("--method"), "multipass does not run spectral scenes yet: use --colour rgb");
       if (!o->solutionPath.empty())
-        throw InputError(flag("--solution"), "multipass solves progressively itself, pass by pass");
-      if (app.count("--solver") > 0 && o->radiosity.solver.solver != "progressive")
-        throw InputError(flag("--solver"), "multipass's radiosity pass is progressive refinement");
+        throw InputError(flag("--solution"), "multipass solves itself: a progressive preview, then --solver");
       MultipassCommand command{outputs, display, app.count("--tonemap") > 0, o->variancePath, o->radiosity,
                                o->twoPass, r.samplesPerPixel, r.timeBudgetSeconds, r.seed, o->threads, o->quiet};
       command.renderer.maxDepth = r.maxDepth;

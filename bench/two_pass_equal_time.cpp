@@ -194,27 +194,29 @@ int main(int argc, char **argv) {
             options.seed = uint64_t(repeat);
             options.threads = threads;
             options.renderer = baseOptions;
-            auto solve = [&](int maxShots) {
+            auto solve = [&](int maxShots) {  // the preview progressive, then --solver as the others
               SolverOptions solverOptions;
-              solverOptions.solver = "progressive";
+              solverOptions.solver = maxShots > 0 ? "progressive" : solverName;
               solverOptions.seed = uint64_t(repeat);
               solverOptions.threads = threads;
               if (maxShots > 0) solverOptions.maxIterations = maxShots;
               return meshAndSolve(scene, tracer, meshOptions, solverOptions);
             };
             Image last;
+            int pairs = 0;
             renderMultipass(tracer, camera, kSize, kSize, options, solve,
                             [&](const MultipassPass &pass, const Image &mean, const Image &) {
                               last = mean;
-                              m.spp = pass.samplesPerPixel;
+                              m.spp = pass.controlSamples;  // R samples per pixel, the pairs among them
+                              pairs = pass.pairedSamples;
                             });
             m.totalSeconds = secondsSince(start);
             ImageComparison c = compareImages(last, reference);
             m.rmse = std::sqrt(std::max(0.0, c.average.rmse * c.average.rmse - referenceNoise));
             for (const ChannelComparison &channel : c.channels) m.biasPercent += 100 * std::abs(channel.meanRatio - 1) / 3;
             m.nonFinitePixels = c.nonFinitePixels;
-            std::fprintf(stderr, "[%gs] %-11s %d/%d: %g spp, total %.2f s, RMSE %.4g, bias %.2f%%\n", budget,
-                         method.c_str(), repeat, repeats, m.spp, m.totalSeconds, m.rmse, m.biasPercent);
+            std::fprintf(stderr, "[%gs] %-11s %d/%d: %g spp reading the solution, %d of them paired, total %.2f s, RMSE %.4g, bias %.2f%%\n",
+                         budget, method.c_str(), repeat, repeats, m.spp, pairs, m.totalSeconds, m.rmse, m.biasPercent);
             runs.push_back(m);
             continue;
           }

@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "render/caustic_photons.h"
+#include "render/control_variate.h"
 #include "render/film_image.h"
 
 namespace radiant {
@@ -18,26 +20,29 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
-/// Adds another film's samples (same size): the mean of all samples of both.
-void accumulate(Film &into, const Film &from) {
-  for (size_t p = 0; p < into.pixelCount(); ++p) {
-    into.sum[p] += from.sum[p];
-    into.sumSquares[p] += from.sumSquares[p];
-    into.samples[p] += from.samples[p];
-  }
-}
-
 /// Shots of the progressive solution before the preview: the first image
 /// comes within a second on the Cornell box.
 constexpr int kPreviewShots = 32;
 /// Knaus & Zwicker (2011): r²_{i+1} = r²_i (i + α)/(i + 1) keeps the caustic
 /// estimate consistent as passes accumulate; α = 2/3 as they recommend.
 constexpr double kRadiusAlpha = 2.0 / 3.0;
-/// Samples per pixel of passes 1–4 and of the first unbiased pass (the
-/// preview's 4 average the random choices of glass in view).
-constexpr int kPreviewSpp = 4, kHighFrequencySpp = 4, kLowFrequencySpp = 8, kFirstUnbiasedSpp = 16;
-/// Samples per pixel that share one caustic map in the unbiased passes.
-constexpr int kUnbiasedChunk = 16;
+/// Samples per pixel of the preview (they average the random choices of glass
+/// in view), of the high-frequency pass and of the first paired pass.
+constexpr int kPreviewSpp = 4, kHighFrequencySpp = 2, kFirstPairedSpp = 2;
+/// Samples per pixel that share one caustic map: all maps weigh the same in
+/// the accumulated image, as Knaus & Zwicker's convergence argument assumes.
+constexpr int kSamplesPerMap = 16;
+/// Paired samples get at least this share of the passes' time whatever the
+/// forecast says, so that the bias estimate keeps sharpening and the image
+/// converges (λ → 1 wherever the solution is wrong).
+constexpr double kMinPairedShare = 0.1;
+/// Without a time budget the schedule must not depend on measured speed
+/// (the image would change from run to run): a control sample is taken to
+/// cost this fraction of a paired one (measured 0.5–0.55 on the Cornell boxes).
+constexpr double kControlCostRatio = 0.5;
+/// A pass is never planned shorter than this (seconds; samples-per-pixel
+/// units without a budget): a photon map and an image write per pass.
+constexpr double kMinPassSeconds = 0.1, kMinPassUnits = 4;
 
 /// SplitMix64 of the seed and a stream: distinct runs never share numbers.
 uint64_t hashSeed(uint64_t seed, uint64_t stream) {
@@ -56,15 +61,16 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
   const bool budgeted = options.timeBudgetSeconds > 0;
   auto spent = [&] { return budgeted && secondsSince(start) >= options.timeBudgetSeconds; };
 
-  // One pass (or a chunk of one): render `spp` samples with `renderer` into `film`.
-  auto render = [&](MultipassPass &pass, const Renderer &renderer, int spp, Film &film, int chunk = 0) {
+  auto driverFor = [&](const MultipassPass &pass, int spp, int chunk) {
     DriverOptions driver;
     driver.samplesPerPixel = spp;
     // Each pass and chunk its own numbers, reproducibly, and no two (seed, pass) alike.
     driver.seed = hashSeed(options.seed, uint64_t(pass.index) << 32 | uint64_t(chunk));
     driver.threads = options.threads;
-    const std::string label = fmt::format("multipass {} ({})", pass.index, pass.name);
-    renderImage(camera, renderer, driver, film, progress ? progress(label) : ProgressCallback{});
+    return driver;
+  };
+  auto progressFor = [&](const MultipassPass &pass) {
+    return progress ? progress(fmt::format("multipass {} ({})", pass.index, pass.name)) : ProgressCallback{};
   };
   auto finish = [&](MultipassPass &pass, const Film &film, Clock::time_point passStart) {
     pass.seconds = secondsSince(passStart);
@@ -79,12 +85,13 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
     RendererOptions o = options.renderer;
     o.solution = &preview;
     Film film(width, height);
-    render(pass, *createRenderer("interpolate", tracer, o), pass.samplesPerPixel, film);
+    renderImage(camera, *createRenderer("interpolate", tracer, o), driverFor(pass, kPreviewSpp, 0), film,
+                progressFor(pass));
     finish(pass, film, passStart);
   }
   if (spent()) return;
 
-  // The solution the later passes read: progressive, to its tolerance.
+  // The solution the later passes read.
   passStart = Clock::now();
   const Solution solution = solve(0);
   double radius = options.photonRadius;
@@ -106,61 +113,95 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
     RendererOptions o = options.renderer;
     o.solution = &solution;
     o.caustics = &caustics;
+    o.removalVisibilityGrid = 1;  // a quarter of kok's set-up; no later pass reads this image
     Film film(width, height);
-    render(pass, *createRenderer("kok", tracer, o), pass.samplesPerPixel, film);
+    renderImage(camera, *createRenderer("kok", tracer, o), driverFor(pass, kHighFrequencySpp, 0), film,
+                progressFor(pass));
     finish(pass, film, passStart);
   }
 
-  // Passes 3 and 4: low frequency — path tracing that reads the solution
-  // after one, then two non-specular bounces.
-  for (int depth = 1; depth <= 2 && !spent(); ++depth) {
-    passStart = Clock::now();
-    pass = {2 + depth, fmt::format("low frequency, solution after {} bounce{}", depth, depth > 1 ? "s" : ""),
-            kLowFrequencySpp};
-    const CausticPhotonMap caustics = causticMap(pass);
-    RendererOptions o = options.renderer;
-    o.solution = &solution;
-    o.caustics = &caustics;
-    o.readSolutionDepth = depth;
-    Film film(width, height);
-    render(pass, *createRenderer("path", tracer, o), pass.samplesPerPixel, film);
-    finish(pass, film, passStart);
-  }
-
-  // Passes 5…: unbiased path tracing with caustics, accumulated, each pass
-  // about as long as all before it (doubling), within the budget. Within a
-  // pass every kUnbiasedChunk samples per pixel get a new caustic map with a
-  // smaller radius, so that all maps weigh the same in the accumulated image,
-  // as Knaus & Zwicker's convergence argument assumes (review).
-  Film unbiased(width, height);
-  int done = 0, spp = kFirstUnbiasedSpp;
-  double secondsPerSpp = 0;
-  for (int index = 5; !spent() && done < options.samplesPerPixel; ++index) {
-    passStart = Clock::now();
-    spp = std::min(spp, options.samplesPerPixel - done);
-    if (budgeted && secondsPerSpp > 0) {
-      // Fit the pass in what is left; a sliver of a pass (under 1/8 of the
-      // samples so far) would cost a photon map for little: stop instead.
-      const int fits = int((options.timeBudgetSeconds - secondsSince(start)) / secondsPerSpp);
-      if (fits < std::max(1, done / 8)) break;
-      spp = std::min(spp, fits);
-      if (spp > kUnbiasedChunk) spp -= spp % kUnbiasedChunk;  // whole chunks, each with its map
+  // Passes 3…: path tracing that reads the solution after one non-specular
+  // bounce (control samples R), and the same paths continued to their end
+  // beside it (paired samples: P and R from the same numbers). The image is
+  // R̄ + λ D̄ (render/control_variate.h); each pass adds the kind of sample
+  // that the forecast says lowers the error more per second, so that the
+  // cheap, biased R carry the short budgets and the unbiased pairs the long ones.
+  ControlVariateImage combined(width, height);
+  std::optional<CausticPhotonMap> map;
+  int mapServed = kSamplesPerMap;  // samples per pixel rendered with the current map
+  // Time (or, without a budget, cost units) spent on each kind, and per sample.
+  double controlSpent = 0, pairedSpent = 0, controlCost = 0, pairedCost = 0;
+  // The samples-per-pixel budget counts paired-sample equivalents: a control costs kControlCostRatio.
+  double unitsSpent = 0;
+  for (int index = 3; !spent(); ++index) {
+    const double unitsLeft = options.samplesPerPixel - unitsSpent;
+    if (unitsLeft < kControlCostRatio) break;
+    // What to render: pairs first (nothing is known of R's bias before), then
+    // by the forecast, with a floor on the pairs' share.
+    const double spentSoFar = controlSpent + pairedSpent;
+    const double pairCost = budgeted ? pairedCost : 1.0;
+    const double controlCostNow = budgeted ? (controlCost > 0 ? controlCost : kControlCostRatio * pairedCost)
+                                           : kControlCostRatio;
+    const double minimumLength = budgeted ? kMinPassSeconds : kMinPassUnits;
+    double length = std::max(minimumLength, spentSoFar);
+    const double left = budgeted ? options.timeBudgetSeconds - secondsSince(start) : unitsLeft;
+    if (left - length < 0.5 * length) length = left;  // no sliver of a pass at the end
+    length = std::min(length, left);
+    bool paired = true;
+    if (combined.pairedSamples() > 0) {
+      const double asControls = combined.forecastMse(length / controlCostNow, 0);
+      const double asPairs = combined.forecastMse(0, length / pairCost);
+      paired = asPairs <= asControls;
+      // The floor on the pairs' share: if a pass of controls would sink
+      // below it, first a pass of pairs just long enough to keep it.
+      const double owed = kMinPairedShare * (spentSoFar + length) - pairedSpent;
+      if (!paired && owed > 0) paired = true, length = std::min(length, std::max(owed, minimumLength));
     }
-    pass = {index, "unbiased path tracing", 0, 0, true};
-    for (int chunk = 0, left = spp; left > 0; ++chunk, left -= kUnbiasedChunk) {
-      const CausticPhotonMap caustics = causticMap(pass);
+    int spp = combined.pairedSamples() == 0 ? kFirstPairedSpp
+                                              : int(length / (paired ? pairCost : controlCostNow));
+    spp = std::min(spp, int(unitsLeft / (paired ? 1.0 : kControlCostRatio)));  // --spp caps the work
+    if (spp < 1) {
+      if (budgeted || !paired) break;  // not one more sample per pixel fits
+      paired = false, spp = int(unitsLeft / kControlCostRatio);  // a last half unit: controls
+    }
+
+    passStart = Clock::now();
+    pass = {index, paired ? "unbiased, the solution as control variate" : "low frequency, solution after 1 bounce",
+            spp};
+    for (int chunk = 0, left = spp; left > 0; ++chunk) {
+      if (mapServed >= kSamplesPerMap) map.emplace(causticMap(pass)), mapServed = 0;
+      const int n = std::min(left, kSamplesPerMap - mapServed);
       RendererOptions o = options.renderer;
-      o.solution = nullptr;
-      o.caustics = &caustics;
-      Film film(width, height);
-      render(pass, *createRenderer("path", tracer, o), std::min(left, kUnbiasedChunk), film, chunk);
-      accumulate(unbiased, film);
+      o.solution = &solution;
+      o.caustics = &*map;
+      o.readSolutionDepth = 1;
+      const auto renderer = createRenderer("path", tracer, o);
+      if (paired) {
+        PairedFilm film(width, height);
+        renderPairedImage(camera, *renderer, driverFor(pass, n, chunk), film, progressFor(pass));
+        combined.addPairs(film);
+      } else {
+        Film film(width, height);
+        renderImage(camera, *renderer, driverFor(pass, n, chunk), film, progressFor(pass));
+        combined.addControls(film);
+      }
+      mapServed += n, left -= n;
     }
-    done += spp;
-    pass.samplesPerPixel = done;
-    secondsPerSpp = secondsSince(passStart) / spp;
-    finish(pass, unbiased, passStart);
-    spp = done;  // the next pass doubles the samples so far
+    const double seconds = secondsSince(passStart);
+    const double units = spp * (paired ? 1.0 : kControlCostRatio);
+    unitsSpent += units;
+    (paired ? pairedSpent : controlSpent) += budgeted ? seconds : units;
+    (paired ? pairedCost : controlCost) = seconds / spp;
+
+    ControlVariateStats stats;
+    const Image mean = combined.mean(&stats);
+    pass.seconds = seconds;
+    pass.unbiased = paired;
+    pass.controlSamples = combined.controlSamples();
+    pass.pairedSamples = combined.pairedSamples();
+    pass.unbiasedWeight = stats.meanWeight;
+    pass.estimatedBias = stats.biasRms;
+    output(pass, mean, combined.variance());
   }
 }
 

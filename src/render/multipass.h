@@ -2,22 +2,25 @@
 // (SIGGRAPH 1991; C&W §9.3.2; docs/multipass.md): a radiosity preview, then
 // passes that replace more and more of the radiosity approximation by Monte
 // Carlo estimates, specular light and caustics included, until the image is
-// the path-traced answer. Every light path is counted by exactly one
-// estimator in every pass (docs/multipass.md has the table).
+// the path-traced answer. Every light path is counted once by every estimator
+// (docs/multipass.md has the table).
 //
 //   pass 1  radiosity preview: an interrupted progressive solution, interpolated
 //   pass 2  high frequency: emission and specular chains from the eye, direct
 //           light and the brightest reflectors sampled per pixel (kok:
 //           light-source reclassification), caustics from light-ray tracing,
 //           the rest read from the solution
-//   pass 3  low frequency: path tracing of indirect light that reads the
-//           solution after one non-specular bounce (rushmeier-like), caustics
-//           from a new photon map at every non-specular vertex
-//   pass 4  the same, reading the solution after two bounces
-//   pass 5… unbiased: path tracing to the end (Russian roulette) with the
-//           caustic map, a new map with a smaller radius every pass
-//           (progressive photon mapping, Knaus & Zwicker 2011); these passes'
-//           samples accumulate, and their image converges to the true solution.
+//   pass 3… the solution as a control variate (render/control_variate.h):
+//           low-frequency passes trace paths that read the solution after one
+//           non-specular bounce (rushmeier-like, R); unbiased passes trace the
+//           same paths to their end (Russian roulette) beside R, from the same
+//           numbers. The image is R̄ + λ·(P − R)‾ with λ per tile estimated from
+//           the pairs, → 1 wherever the solution is wrong; each pass renders
+//           the kind the error forecast favours. Caustics come from photon
+//           maps at every non-specular vertex, a new map with a smaller radius
+//           every 16 samples per pixel (progressive photon mapping, Knaus &
+//           Zwicker 2011). All these samples accumulate, and the image
+//           converges to the true solution.
 #pragma once
 
 #include <functional>
@@ -32,7 +35,9 @@ namespace radiant {
 
 struct MultipassOptions {
   double timeBudgetSeconds = 0;  ///< 0: none; otherwise stop after the pass that reaches it
-  int samplesPerPixel = 64;      ///< samples per pixel of the unbiased passes together
+  /// The work of passes 3… together, in paired samples per pixel (a sample
+  /// that only reads the solution counts half: render/multipass.cpp)
+  int samplesPerPixel = 64;
   uint64_t seed = 1;
   int threads = 0;
   size_t photonsPerPass = 200000;  ///< emitted per caustic map
@@ -43,17 +48,23 @@ struct MultipassOptions {
 struct MultipassPass {
   int index = 0;            ///< 1, 2, …
   std::string name;         ///< "radiosity preview", "high frequency", …
-  int samplesPerPixel = 0;  ///< of this pass (unbiased passes: accumulated so far)
+  int samplesPerPixel = 0;  ///< of this pass
   double seconds = 0;       ///< wall time of this pass, solving included
-  bool unbiased = false;
+  bool unbiased = false;    ///< passes 3…: it rendered paired (unbiased) samples, not only R
+  // Passes 3…, all passes so far together (render/control_variate.h):
+  int controlSamples = 0;      ///< R samples per pixel (R-only passes and pairs)
+  int pairedSamples = 0;       ///< paired samples per pixel
+  double unbiasedWeight = 0;   ///< λ, the weight of the pairs' correction, averaged over the pixels
+  double estimatedBias = 0;    ///< RMS of R's bias as the pairs measure it, W·sr⁻¹·m⁻²
   size_t causticPhotons = 0;  ///< stored in this pass's map
   double photonRadius = 0;
 };
 
-/// What the method needs from the command line: a progressive solution,
-/// interrupted after `maxShots` shots (0: to its tolerance).
+/// What the method needs from the command line: `maxShots` > 0, the preview's
+/// progressive solution interrupted after that many shots; 0, the solution
+/// the later passes read (the command line's --solver).
 using MultipassSolver = std::function<Solution(int maxShots)>;
-/// Called after each pass with its image (for the unbiased passes: all their samples so far).
+/// Called after each pass with its image (passes 3…: the combination of all their samples so far).
 using MultipassOutput = std::function<void(const MultipassPass &pass, const Image &mean, const Image &variance)>;
 /// A progress reporter for one pass (driver.h), or none.
 using MultipassProgress = std::function<ProgressCallback(const std::string &label)>;
