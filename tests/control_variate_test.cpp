@@ -121,8 +121,9 @@ TEST(ControlVariate, AnUnbiasedControlKeepsItsWeight) {
   EXPECT_LT(squaredError(mean), 1.2 * 0.09 / 72);
 }
 
-// The forecast is the expected squared error: with correlated R and D (a =
-// 0.5: Cov(R, D) = −σ_R²/2), averaged over independent runs, the measured
+// The forecast is the expected squared error, and λ takes the covariance
+// into account: with correlated R and D (a = 0.5: Cov(R, D) = −σ_R²/2),
+// averaged over independent runs, the measured
 // squared error of the image matches the predicted one, now and — from the
 // statistics of fewer samples — after more samples of either kind.
 TEST(ControlVariate, TheForecastIsTheExpectedError) {
@@ -136,12 +137,17 @@ TEST(ControlVariate, TheForecastIsTheExpectedError) {
     ControlVariateStats stats;
     measuredNow += squaredError(image.mean(&stats));
     predictedNow += sqr(stats.predictedRmse);
-    EXPECT_NEAR(sqr(stats.predictedRmse), image.forecastMse(0, 0), 1e-12);
+    // λ* = (b² − Cov(R̄, D̄))/(b² + Var D̄) with Cov = −σ_R²/2 / n_R = −0.08/24 and
+    // Var D̄ = (σ_R²/4 + s²)/n_P = 0.05/8: (0.0025 + 0.00333)/(0.0025 + 0.00625) = 0.667.
+    // (A wrong sign of the covariance gives 0, its omission 0.29.)
+    EXPECT_NEAR(stats.meanWeight, 0.667, 0.05);
     predictedLater += image.forecastMse(32, 24);
     pixels.controls(image, 32);
     pixels.pairs(image, 24);
     measuredLater += squaredError(image.mean());
   }
+  // Better than R̄ alone (b² + σ_R²/24 = 0.00917) by the pairs' correction.
+  EXPECT_LT(measuredNow / runs, 0.7 * (0.0025 + 0.16 / 24));
   // 12 runs × 3072 values: the measured means are within a few % of their expectation.
   EXPECT_NEAR(measuredNow / runs, predictedNow / runs, 0.1 * predictedNow / runs);
   EXPECT_NEAR(measuredLater / runs, predictedLater / runs, 0.1 * predictedLater / runs);

@@ -3,6 +3,7 @@
 // tracer, and the caustic map's brightness.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 
 #include "film_metrics.h"
@@ -11,6 +12,8 @@
 #include "render/caustic_photons.h"
 #include "render/driver.h"
 #include "render/multipass.h"
+#include "render/sampling.h"
+#include "util/random.h"
 #include "scene/load_scene.h"
 #include "render_helpers.h"
 #include "test_scenes.h"
@@ -227,6 +230,46 @@ TEST(Multipass, CausticMapIrradianceMatchesTheMirrorImageOfTheLight) {
   }
 }
 
+// The map's grid finds exactly the photons a scan of all of them finds: at
+// each photon, at points near the rim of its disc (inside and outside), and
+// at points on the cells' boundaries (multiples of 2r), where a photon listed
+// in too few cells would be missed.
+TEST(Multipass, TheMapGridFindsWhatAScanFinds) {
+  Scene scene = loadScene(kSpecularBox);
+  RayTracer tracer(scene);
+  const double r = 0.02;
+  const CausticPhotonMap map(tracer, 100000, 5, r);
+  ASSERT_GT(map.stored(), 3000u);
+  auto scan = [&](const Vec3 &x, const Vec3 &n) {
+    Bands sum(0.0);
+    for (const CausticPhoton &photon : map.photons()) {
+      const Vec3 d = photon.position - x;
+      if (dot(d, d) <= r * r && dot(photon.normal, n) > 0.5 && std::abs(dot(d, n)) < 0.25 * r) sum += photon.power;
+    }
+    return sum / (kPi * r * r);
+  };
+  Pcg32 rng(9, 9);
+  int checked = 0, nonZero = 0;
+  for (size_t i = 0; i < map.photons().size(); i += 37) {
+    const CausticPhoton &photon = map.photons()[i];
+    const Frame frame = Frame::fromNormal(photon.normal);
+    std::vector<Vec3> points = {photon.position};
+    for (double rim : {0.999, 1.001}) {
+      const double angle = 2 * kPi * rng.next();
+      points.push_back(photon.position + frame.toWorld(Vec3{std::cos(angle), std::sin(angle), 0}) * (rim * r));
+    }
+    Vec3 boundary = photon.position;  // the nearest cell boundary along x, in the photon's plane if it is one
+    boundary.x = std::round(boundary.x / (2 * r)) * 2 * r;
+    points.push_back(boundary);
+    for (const Vec3 &x : points) {
+      const Bands grid = map.irradiance(x, photon.normal), all = scan(x, photon.normal);
+      for (int b = 0; b < kBandCount; ++b) EXPECT_NEAR(grid[b], all[b], 1e-5 * std::max(1.0, all[b])) << "photon " << i;
+      ++checked, nonZero += all[1] > 0;
+    }
+  }
+  EXPECT_GT(nonZero, checked / 2);
+}
+
 // The furnace holds for multipass: every pass (preview, high and low
 // frequency, unbiased) shows radiance 2 (REFERENCE §8.1) within its noise and
 // the solution's convergence.
@@ -259,6 +302,80 @@ TEST(Multipass, TheFurnaceHoldsInEveryPass) {
     ++passes;
   });
   EXPECT_GE(passes, 5);
+}
+
+// The schedule of passes 3… ends, and without a time budget depends only
+// on the seed and --spp: the same image on 1 and on 2 threads, bit for bit.
+// Also at --spp 1 and 2, on a 1 × 1 image, and in a scene without light
+// (D ≡ 0, so every pass is a pair: the loop must still end).
+TEST(Multipass, TheScheduleEndsAndIsDeterministic) {
+  Scene scene = loadScene(kSpecularBox);
+  RayTracer tracer(scene);
+  auto run = [&](const RayTracer &t, int size, int spp, int threads, int *passes = nullptr) {
+    PinholeCamera camera(t.scene().camera, size, size);
+    MultipassOptions options;
+    options.samplesPerPixel = spp;
+    options.threads = threads;
+    options.photonsPerPass = 5000;
+    auto solve = [&](int maxShots) {
+      MeshOptions mesh;
+      mesh.maxEdgeLength = 0.25;
+      SolverOptions solver;
+      solver.solver = "progressive";
+      if (maxShots > 0) solver.maxIterations = maxShots;
+      return meshAndSolve(t.scene(), t, mesh, solver);
+    };
+    Image last;
+    int count = 0, units2 = 0;  // work of passes 3… in half units
+    renderMultipass(t, camera, size, size, options, solve, [&](const MultipassPass &pass, const Image &mean, const Image &) {
+      last = mean, ++count;
+      if (pass.index >= 3) units2 += pass.samplesPerPixel * (pass.unbiased ? 2 : 1);
+    });
+    EXPECT_LE(units2, 2 * spp) << "--spp caps the work";
+    EXPECT_GE(units2, 2 * spp - 1) << "--spp is used";
+    if (passes) *passes = count;
+    return last;
+  };
+  const Image one = run(tracer, 12, 24, 1), two = run(tracer, 12, 24, 2);
+  ASSERT_EQ(one.rgb.size(), two.rgb.size());
+  for (size_t i = 0; i < one.rgb.size(); ++i) ASSERT_EQ(one.rgb[i], two.rgb[i]) << "value " << i;
+  int passes = 0;
+  run(tracer, 8, 1, 2, &passes);
+  EXPECT_EQ(passes, 3);  // the preview, pass 2 and one pair
+  run(tracer, 8, 2, 2, &passes);
+  EXPECT_EQ(passes, 3);
+  run(tracer, 1, 8, 2, &passes);
+  EXPECT_GE(passes, 4);
+  Scene dark = test::furnace(0.0, 0.5);
+  RayTracer darkTracer(dark);
+  const Image black = run(darkTracer, 8, 16, 2, &passes);
+  for (float v : black.rgb) EXPECT_EQ(v, 0.0f);
+}
+
+// With a time budget the passes go on until it is spent (review: a pass
+// too short for one sample must not end the render early).
+TEST(Multipass, ATimeBudgetIsUsed) {
+  Scene scene = loadScene(kSpecularBox);
+  RayTracer tracer(scene);
+  const int size = 32;
+  PinholeCamera camera(scene.camera, size, size);
+  MultipassOptions options;
+  options.timeBudgetSeconds = 1.5;
+  options.samplesPerPixel = 1 << 20;
+  options.photonsPerPass = 20000;
+  auto solve = [&](int maxShots) {
+    SolverOptions solver;
+    solver.solver = maxShots > 0 ? "progressive" : "auto";
+    if (maxShots > 0) solver.maxIterations = maxShots;
+    return meshAndSolve(scene, tracer, MeshOptions{}, solver);
+  };
+  const auto start = std::chrono::steady_clock::now();
+  int last = 0;
+  renderMultipass(tracer, camera, size, size, options, solve,
+                  [&](const MultipassPass &pass, const Image &, const Image &) { last = pass.index; });
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_GE(seconds, 0.9 * options.timeBudgetSeconds);
+  EXPECT_GE(last, 4);
 }
 
 // Converging (the second test): with a deliberately coarse first-pass

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "render/bsdf.h"
 #include "render/light_sampler.h"
@@ -106,26 +107,27 @@ constexpr int kOccupancyBits = 18;  // 32 KiB: stays in each core's cache
 }  // namespace
 
 void CausticPhotonMap::buildGrid() {
-  // Each photon is listed in every cell (side 2r) its sphere of radius r
-  // reaches, at most two per axis: a lookup then reads one cell only.
+  // Each photon is listed in the cells (side 2r) its sphere of radius r
+  // reaches: two per axis, the one holding p − r and the next (taken
+  // exactly, not from p + r, whose rounding could name a third), so a
+  // lookup reads one cell only.
   cellSize_ = 2 * radius_;
+  if (photons_.size() > (size_t(1) << 28))  // 8 listings each must fit the table's 32-bit ranges
+    throw std::length_error("caustic photon map: more than 2^28 photons stored");
   std::vector<std::pair<uint64_t, uint32_t>> keyed;
-  keyed.reserve(photons_.size() * 2);
+  keyed.reserve(photons_.size() * 8);
   for (uint32_t i = 0; i < photons_.size(); ++i) {
-    int64_t lo[3], hi[3];
+    int64_t lo[3];
     cellOf(photons_[i].position - Vec3(radius_, radius_, radius_), lo);
-    cellOf(photons_[i].position + Vec3(radius_, radius_, radius_), hi);
     uint64_t keys[8];
     int count = 0;
-    for (int64_t x = lo[0]; x <= hi[0]; ++x)
-      for (int64_t y = lo[1]; y <= hi[1]; ++y)
-        for (int64_t z = lo[2]; z <= hi[2]; ++z) {
-          // Cells 2 million apart share a key: list the photon there once.
-          const uint64_t key = cellKey(x, y, z);
-          if (std::find(keys, keys + count, key) != keys + count) continue;
-          keys[count++] = key;
-          keyed.push_back({key, i});
-        }
+    for (int corner = 0; corner < 8; ++corner) {
+      // Cells 2 million apart share a key: list the photon there once.
+      const uint64_t key = cellKey(lo[0] + (corner & 1), lo[1] + (corner >> 1 & 1), lo[2] + (corner >> 2 & 1));
+      if (std::find(keys, keys + count, key) != keys + count) continue;
+      keys[count++] = key;
+      keyed.push_back({key, i});
+    }
   }
   std::sort(keyed.begin(), keyed.end());
   size_t cells = 0;
@@ -138,7 +140,8 @@ void CausticPhotonMap::buildGrid() {
   for (size_t k = 0; k < keyed.size(); ++k) {
     const CausticPhoton &photon = photons_[keyed[k].second];
     GridPhoton &g = cellPhotons_[k];
-    for (int a = 0; a < 3; ++a) g.position[a] = float(photon.position[a]), g.normal[a] = float(photon.normal[a]);
+    g.position = photon.position;
+    for (int a = 0; a < 3; ++a) g.normal[a] = float(photon.normal[a]);
     for (int b = 0; b < kBandCount; ++b) g.power[b] = float(photon.power[b]);
   }
   for (uint32_t i = 0; i < keyed.size();) {
@@ -169,17 +172,16 @@ Bands CausticPhotonMap::irradiance(const Vec3 &position, const Vec3 &normal) con
   int64_t cell[3];
   cellOf(position, cell);
   const auto [first, last] = cellRange(cellKey(cell[0], cell[1], cell[2]));
-  const float r2 = float(radius_ * radius_), slab = float(0.25 * radius_);
-  const float px = float(position.x), py = float(position.y), pz = float(position.z);
+  const double r2 = radius_ * radius_, slab = 0.25 * radius_;
   const float nx = float(normal.x), ny = float(normal.y), nz = float(normal.z);
-  float power[kBandCount] = {};
+  double power[kBandCount] = {};  // a cell in a bright caustic sums thousands
   for (uint32_t k = first; k < last; ++k) {
     const GridPhoton &photon = cellPhotons_[k];
-    const float dx = photon.position[0] - px, dy = photon.position[1] - py, dz = photon.position[2] - pz;
+    // In double: a scene far from the origin must not lose the disc to rounding.
+    const Vec3 d = photon.position - position;
     // Same surface: within the disc, and arrived on the side this normal faces.
-    if (dx * dx + dy * dy + dz * dz <= r2 &&
-        photon.normal[0] * nx + photon.normal[1] * ny + photon.normal[2] * nz > 0.5f &&
-        std::abs(dx * nx + dy * ny + dz * nz) < slab)
+    if (dot(d, d) <= r2 && photon.normal[0] * nx + photon.normal[1] * ny + photon.normal[2] * nz > 0.5f &&
+        std::abs(dot(d, normal)) < slab)
       for (int b = 0; b < kBandCount; ++b) power[b] += photon.power[b];
   }
   for (int b = 0; b < kBandCount; ++b) sum[b] = power[b];

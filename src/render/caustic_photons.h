@@ -57,17 +57,18 @@ class CausticPhotonMap {
   /// A lookup happens at every non-specular vertex of every path, and almost
   /// every one lands where no caustic is: it must cost a few cache reads.
   /// Cells of side 2r, each listing the photons within r of it (a photon in
-  /// up to 8 cells); an occupancy bitset answers "no photons here" before
-  /// the hash table is touched.
+  /// 8 cells); an occupancy bitset answers "no photons here" before the hash
+  /// table is touched.
   struct Slot {
     uint64_t key = kEmptyKey;
     uint32_t first = 0, last = 0;
   };
   static constexpr uint64_t kEmptyKey = ~uint64_t(0);
-  /// A photon as a lookup reads it, copied into every cell it is listed in:
-  /// single precision and contiguous, since a lookup scans a whole cell.
+  /// A photon as a lookup reads it, copied into every cell it is listed in,
+  /// contiguous since a lookup scans a whole cell (normal and power in single precision).
   struct GridPhoton {
-    float position[3], normal[3], power[kBandCount];
+    Vec3 position;
+    float normal[3], power[kBandCount];
   };
   std::vector<GridPhoton> cellPhotons_;  ///< by cell
   std::vector<Slot> table_;         ///< open addressing, linear probing, power-of-two size

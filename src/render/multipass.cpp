@@ -155,22 +155,24 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
       // The floor on the pairs' share: if a pass of controls would sink
       // below it, first a pass of pairs just long enough to keep it.
       const double owed = kMinPairedShare * (spentSoFar + length) - pairedSpent;
-      if (!paired && owed > 0) paired = true, length = std::min(length, std::max(owed, minimumLength));
+      if (!paired && owed > 0) paired = true, length = std::min(length, std::max({owed, minimumLength, pairCost}));
     }
-    int spp = combined.pairedSamples() == 0 ? kFirstPairedSpp
-                                              : int(length / (paired ? pairCost : controlCostNow));
-    spp = std::min(spp, int(unitsLeft / (paired ? 1.0 : kControlCostRatio)));  // --spp caps the work
+    const double sampleCost = paired ? pairCost : controlCostNow;
+    int spp = combined.pairedSamples() == 0 ? kFirstPairedSpp : int(length / sampleCost);
     if (spp < 1) {
-      if (budgeted || !paired) break;  // not one more sample per pixel fits
-      paired = false, spp = int(unitsLeft / kControlCostRatio);  // a last half unit: controls
+      if (budgeted && left < 0.5 * sampleCost) break;  // not half a sample per pixel fits in what is left
+      spp = 1;
     }
+    // --spp caps the work (the loop's condition leaves at least half a unit); a last half unit: controls.
+    if (paired && unitsLeft < 1) paired = false;
+    spp = std::min(spp, int(unitsLeft / (paired ? 1.0 : kControlCostRatio)));
 
     passStart = Clock::now();
     pass = {index, paired ? "unbiased, the solution as control variate" : "low frequency, solution after 1 bounce",
             spp};
-    for (int chunk = 0, left = spp; left > 0; ++chunk) {
+    for (int chunk = 0, remaining = spp; remaining > 0; ++chunk) {
       if (mapServed >= kSamplesPerMap) map.emplace(causticMap(pass)), mapServed = 0;
-      const int n = std::min(left, kSamplesPerMap - mapServed);
+      const int n = std::min(remaining, kSamplesPerMap - mapServed);
       RendererOptions o = options.renderer;
       o.solution = &solution;
       o.caustics = &*map;
@@ -185,7 +187,7 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
         renderImage(camera, *renderer, driverFor(pass, n, chunk), film, progressFor(pass));
         combined.addControls(film);
       }
-      mapServed += n, left -= n;
+      mapServed += n, remaining -= n;
     }
     const double seconds = secondsSince(passStart);
     const double units = spp * (paired ? 1.0 : kControlCostRatio);
