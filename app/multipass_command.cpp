@@ -29,7 +29,7 @@ void runMultipass(const RayTracer &tracer, const PinholeCamera &camera, int widt
   // later passes read the solution of --solver (auto by default, as every method).
   auto solve = [&](int maxShots) {
     RadiosityCommandOptions o = command.radiosity;
-    if (maxShots > 0) o.solver.solver = "progressive", o.solver.maxIterations = maxShots;
+    if (maxShots > 0) o.solver.solver = "progressive", o.solver.maxIterations = maxShots, o.solver.importance = false;
     return solveScene(tracer.scene(), tracer, o, command.seed, command.threads, command.quiet || maxShots > 0);
   };
   auto write = [&](const MultipassPass &pass, const Image &mean, const Image &variance) {

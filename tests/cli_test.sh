@@ -190,6 +190,8 @@ else
 fi
 "$radiant" render "$specular" --method multipass --solver gauss-seidel --spp 4 --width 8 --height 8 --mesh-size 200 \
   -o mpgs.exr -q && [ -s mpgs.exr ] && pass || fail "multipass reading a Gauss-Seidel solution"
+"$radiant" render "$cornell" --method multipass --solver hierarchical --importance --spp 2 --width 8 --height 8 \
+  -o mpimp.exr -q && [ -s mpimp.exr ] && pass || fail "multipass reading an importance-driven hierarchical solution"
 expect_error "multipass with a saved solution" "solves itself" \
   "$radiant" render "$specular" --method multipass --solution x.rad -o x.exr -q
 expect_error "multipass of a spectral scene" "spectral" \
