@@ -145,6 +145,7 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
     const double minimumLength = budgeted ? kMinPassSeconds : kMinPassUnits;
     double length = std::max(minimumLength, spentSoFar);
     const double left = budgeted ? options.timeBudgetSeconds - secondsSince(start) : unitsLeft;
+    if (budgeted && left < 0.5 * minimumLength) break;  // a sliver of a pass would cost an image for nothing
     if (left - length < 0.5 * length) length = left;  // no sliver of a pass at the end
     length = std::min(length, left);
     bool paired = true;
@@ -153,9 +154,10 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
       const double asPairs = combined.forecastMse(0, length / pairCost);
       paired = asPairs <= asControls;
       // The floor on the pairs' share: if a pass of controls would sink
-      // below it, first a pass of pairs just long enough to keep it.
+      // below it, first a pass of pairs — twice what is owed, so that the
+      // longer control pass planned after it does not owe again at once.
       const double owed = kMinPairedShare * (spentSoFar + length) - pairedSpent;
-      if (!paired && owed > 0) paired = true, length = std::min(length, std::max({owed, minimumLength, pairCost}));
+      if (!paired && owed > 0) paired = true, length = std::min(length, std::max({2 * owed, minimumLength, pairCost}));
     }
     const double sampleCost = paired ? pairCost : controlCostNow;
     int spp = combined.pairedSamples() == 0 ? kFirstPairedSpp : int(length / sampleCost);
