@@ -64,6 +64,20 @@ std::vector<size_t> allPixels(int size) {
   return pixels;
 }
 
+/// Multipass's solver on a mesh of `meshSize` metres: progressive
+/// refinement for the preview and (to `tolerance`, 0: its default) for the rest.
+MultipassSolver progressiveOn(const RayTracer &tracer, double meshSize, double tolerance = 0) {
+  return [&tracer, meshSize, tolerance](int maxShots) {
+    MeshOptions mesh;
+    mesh.maxEdgeLength = meshSize;
+    SolverOptions solver;
+    solver.solver = "progressive";
+    if (tolerance > 0) solver.tolerance = tolerance;
+    if (maxShots > 0) solver.maxIterations = maxShots;
+    return meshAndSolve(tracer.scene(), tracer, mesh, solver);
+  };
+}
+
 // Counting once (the first test). The unbiased pass's estimator — path
 // tracing that leaves L S+ D at non-specular vertices to the caustic map — agrees
 // with the plain path tracer over the whole image and over the caustic under
@@ -280,15 +294,7 @@ TEST(Multipass, TheFurnaceHoldsInEveryPass) {
   MultipassOptions options;
   options.samplesPerPixel = 32;
   options.photonsPerPass = 1000;
-  auto solve = [&](int maxShots) {
-    MeshOptions mesh;
-    mesh.maxEdgeLength = 0.25;
-    SolverOptions solver;
-    solver.solver = "progressive";
-    solver.tolerance = 1e-6;
-    if (maxShots > 0) solver.maxIterations = maxShots;
-    return meshAndSolve(scene, tracer, mesh, solver);
-  };
+  const MultipassSolver solve = progressiveOn(tracer, 0.25, 1e-6);
   int passes = 0;
   renderMultipass(tracer, camera, 16, 16, options, solve, [&](const MultipassPass &pass, const Image &mean, const Image &variance) {
     double sum = 0, var = 0;
@@ -317,14 +323,7 @@ TEST(Multipass, TheScheduleEndsAndIsDeterministic) {
     options.samplesPerPixel = spp;
     options.threads = threads;
     options.photonsPerPass = 5000;
-    auto solve = [&](int maxShots) {
-      MeshOptions mesh;
-      mesh.maxEdgeLength = 0.25;
-      SolverOptions solver;
-      solver.solver = "progressive";
-      if (maxShots > 0) solver.maxIterations = maxShots;
-      return meshAndSolve(t.scene(), t, mesh, solver);
-    };
+    const MultipassSolver solve = progressiveOn(t, 0.25);
     Image last;
     int count = 0, units2 = 0;  // work of passes 3… in half units
     renderMultipass(t, camera, size, size, options, solve, [&](const MultipassPass &pass, const Image &mean, const Image &) {
@@ -403,11 +402,7 @@ TEST(Multipass, KeepsConvergingWhereShirleyFlattensOut) {
   options.samplesPerPixel = 1024;
   options.photonsPerPass = 100000;
   std::vector<double> errors;
-  auto solve = [&](int maxShots) {
-    SolverOptions s = solver;
-    if (maxShots > 0) s.maxIterations = maxShots;
-    return meshAndSolve(scene, tracer, mesh, s);
-  };
+  const MultipassSolver solve = progressiveOn(tracer, mesh.maxEdgeLength);
   renderMultipass(tracer, camera, size, size, options, solve, [&](const MultipassPass &pass, const Image &mean, const Image &) {
     if (pass.index < 3) return;  // the preview and the high-frequency pass read the coarse solution
     Film film(size, size);
