@@ -96,12 +96,6 @@ uint64_t CausticPhotonMap::cellKey(int64_t x, int64_t y, int64_t z) {
 
 namespace {
 
-uint64_t mixKey(uint64_t key) {  // SplitMix64's finaliser: neighbouring cells land far apart
-  key = (key ^ (key >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  key = (key ^ (key >> 27)) * 0x94d049bb133111ebULL;
-  return key ^ (key >> 31);
-}
-
 constexpr int kOccupancyBits = 18;  // 32 KiB: stays in each core's cache
 
 }  // namespace
@@ -147,7 +141,7 @@ void CausticPhotonMap::buildGrid() {
   for (uint32_t i = 0; i < keyed.size();) {
     uint32_t j = i;
     while (j < keyed.size() && keyed[j].first == keyed[i].first) ++j;
-    const uint64_t hash = mixKey(keyed[i].first);
+    const uint64_t hash = mixBits(keyed[i].first);
     size_t slot = hash & (capacity - 1);
     while (table_[slot].key != kEmptyKey) slot = (slot + 1) & (capacity - 1);
     table_[slot] = {keyed[i].first, i, j};
@@ -158,7 +152,7 @@ void CausticPhotonMap::buildGrid() {
 }
 
 std::pair<uint32_t, uint32_t> CausticPhotonMap::cellRange(uint64_t key) const {
-  const uint64_t hash = mixKey(key), bit = hash >> (64 - kOccupancyBits);
+  const uint64_t hash = mixBits(key), bit = hash >> (64 - kOccupancyBits);
   if (!(occupied_[bit / 64] >> (bit % 64) & 1)) return {0, 0};
   for (size_t slot = hash & (table_.size() - 1);; slot = (slot + 1) & (table_.size() - 1)) {
     if (table_[slot].key == key) return {table_[slot].first, table_[slot].last};

@@ -98,9 +98,7 @@ double ControlVariateImage::mse(const TileStats &t, double nR, double nP, double
   return std::max(0.0, m);
 }
 
-double ControlVariateImage::forecastMse(double moreControls, double morePairs) const {
-  const std::vector<TileStats> tiles = tileStats();
-  const double nR = controlSpp_ + moreControls + morePairs, nP = pairedSpp_ + morePairs;
+double ControlVariateImage::meanMse(const std::vector<TileStats> &tiles, double nR, double nP) {
   double sum = 0, pixels = 0;
   for (const TileStats &t : tiles) {
     sum += t.pixels * mse(t, nR, nP, bestWeight(t, nR, nP));
@@ -109,8 +107,11 @@ double ControlVariateImage::forecastMse(double moreControls, double morePairs) c
   return pixels > 0 ? sum / pixels : 0;
 }
 
-std::vector<double> ControlVariateImage::pixelWeights() const {
-  const std::vector<TileStats> tiles = tileStats();
+double ControlVariateImage::forecastMse(double moreControls, double morePairs) const {
+  return meanMse(tileStats(), controlSpp_ + moreControls + morePairs, pairedSpp_ + morePairs);
+}
+
+std::vector<double> ControlVariateImage::pixelWeights(const std::vector<TileStats> &tiles) const {
   std::vector<double> tileWeight(tiles.size());
   for (size_t t = 0; t < tiles.size(); ++t) tileWeight[t] = bestWeight(tiles[t], controlSpp_, pairedSpp_);
   // Bilinear between tile centres: no seams where λ changes from tile to tile.
@@ -136,7 +137,8 @@ std::vector<double> ControlVariateImage::pixelWeights() const {
 }
 
 Image ControlVariateImage::mean(ControlVariateStats *stats) const {
-  const std::vector<double> weights = pixelWeights();
+  const std::vector<TileStats> tiles = tileStats();
+  const std::vector<double> weights = pixelWeights(tiles);
   Image image(width_, height_);
   double weightSum = 0;
   for (size_t p = 0; p < weights.size(); ++p) {
@@ -146,22 +148,17 @@ Image ControlVariateImage::mean(ControlVariateStats *stats) const {
     weightSum += weights[p];
   }
   if (stats) {
-    const std::vector<TileStats> tiles = tileStats();
-    double bias2 = 0, m = 0, pixels = 0;
-    for (const TileStats &t : tiles) {
-      bias2 += t.pixels * t.bias2;
-      m += t.pixels * mse(t, controlSpp_, pairedSpp_, bestWeight(t, controlSpp_, pairedSpp_));
-      pixels += t.pixels;
-    }
+    double bias2 = 0, pixels = 0;
+    for (const TileStats &t : tiles) bias2 += t.pixels * t.bias2, pixels += t.pixels;
     stats->meanWeight = weights.empty() ? 0 : weightSum / weights.size();
     stats->biasRms = pixels > 0 ? std::sqrt(bias2 / pixels) : 0;
-    stats->predictedRmse = pixels > 0 ? std::sqrt(m / pixels) : 0;
+    stats->predictedRmse = std::sqrt(meanMse(tiles, controlSpp_, pairedSpp_));
   }
   return image;
 }
 
 Image ControlVariateImage::variance() const {
-  const std::vector<double> weights = pixelWeights();
+  const std::vector<double> weights = pixelWeights(tileStats());
   Image image(width_, height_);
   for (size_t p = 0; p < weights.size(); ++p) {
     const PixelStats s = pixelStats(controls_, pairs_, p);

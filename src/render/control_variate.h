@@ -74,8 +74,10 @@ class ControlVariateImage {
   /// The tile's λ* and its predicted MSE with n_R, n_P samples.
   static double bestWeight(const TileStats &t, double nR, double nP);
   static double mse(const TileStats &t, double nR, double nP, double weight);
+  /// The predicted MSE over the image, each tile at its λ*.
+  static double meanMse(const std::vector<TileStats> &tiles, double nR, double nP);
   /// λ at each pixel, bilinear between the tile centres.
-  std::vector<double> pixelWeights() const;
+  std::vector<double> pixelWeights(const std::vector<TileStats> &tiles) const;
 
   int width_, height_, tileSize_, tilesX_, tilesY_;
   Film controls_;      ///< every R sample

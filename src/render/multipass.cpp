@@ -11,6 +11,7 @@
 #include "render/caustic_photons.h"
 #include "render/control_variate.h"
 #include "render/film_image.h"
+#include "util/random.h"
 
 namespace radiant {
 
@@ -46,10 +47,7 @@ constexpr double kMinPassSeconds = 0.1, kMinPassUnits = 4;
 
 /// SplitMix64 of the seed and a stream: distinct runs never share numbers.
 uint64_t hashSeed(uint64_t seed, uint64_t stream) {
-  uint64_t z = seed * 0x9e3779b97f4a7c15ULL + stream + 0x632be59bd9b4e019ULL;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
+  return mixBits(seed * 0x9e3779b97f4a7c15ULL + stream + 0x632be59bd9b4e019ULL);
 }
 
 }  // namespace
