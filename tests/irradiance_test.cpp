@@ -66,12 +66,7 @@ TEST(Irradiance, UnderASquareLightItIsTheContourFormula) {
   light.diffuse = Bands(0.0);
   light.emission = Bands(1.0);
   scene.materials = {white, light};
-  Face floor, lamp;
-  floor.vertexCount = lamp.vertexCount = 4;
-  for (uint32_t i = 0; i < 4; ++i) floor.vertices[i] = i, lamp.vertices[i] = 4 + i;
-  lamp.material = 1;
-  scene.addFace(floor);
-  scene.addFace(lamp);
+  test::addQuads(scene, {0, 1});  // the floor, the lamp
   scene.camera.eye = {0, 0.3, 0};
   scene.camera.target = {0, 0, 0};
   scene.camera.up = {0, 0, 1};

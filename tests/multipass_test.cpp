@@ -218,13 +218,7 @@ TEST(Multipass, CausticMapIrradianceMatchesTheMirrorImageOfTheLight) {
   light.name = "light", light.diffuse = Bands(0.0), light.emission = Bands(10.0);
   mirror.name = "mirror", mirror.kind = MaterialKind::Mirror, mirror.diffuse = Bands(0.0), mirror.specular = Bands(0.8);
   scene.materials = {white, light, mirror};
-  for (uint32_t q = 0; q < 3; ++q) {
-    Face f;
-    f.vertexCount = 4;
-    for (uint32_t i = 0; i < 4; ++i) f.vertices[i] = 4 * q + i;
-    f.material = q;
-    scene.addFace(f);
-  }
+  test::addQuads(scene, {0, 1, 2});
   RayTracer tracer(scene);
   const CausticPhotonMap map(tracer, 2000000, 3, 0.05);
   const Vec3 image[4] = {{-0.1, 3, -0.1}, {0.1, 3, -0.1}, {0.1, 3, 0.1}, {-0.1, 3, 0.1}};

@@ -649,12 +649,7 @@ TEST(ClosedForm, TwoParallelPlates) {
   receiver.diffuse = Bands(0.8);
   scene.materials = {emitter, receiver};
   scene.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}};
-  Face bottom, top;
-  bottom.vertexCount = top.vertexCount = 4;
-  for (int k = 0; k < 4; ++k) bottom.vertices[k] = k, top.vertices[k] = 4 + k;
-  top.material = 1;
-  scene.addFace(bottom);
-  scene.addFace(top);
+  test::addQuads(scene, {0, 1});  // the bottom plate, the top one
   Solution s = solvePatchLevel(scene);
   const double F = 0.1998249, E1 = 1, rho1 = 0.5, rho2 = 0.8;
   const double B1 = E1 / (1 - rho1 * rho2 * F * F), B2 = rho2 * F * B1;

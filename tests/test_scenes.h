@@ -1,6 +1,8 @@
 // Small analytic scenes built in code, for tests that must not depend on the loader.
 #pragma once
 
+#include <initializer_list>
+
 #include "scene/scene.h"
 
 namespace radiant::test {
@@ -30,6 +32,20 @@ inline Scene closedBox(double size, const int wallMaterial[6]) {
     s.addFace(f);
   }
   return s;
+}
+
+/// Quad faces over consecutive positions: quad q is positions 4q … 4q + 3
+/// (counter-clockwise seen from its front), with material `materials[q]`.
+inline void addQuads(Scene &s, std::initializer_list<uint32_t> materials) {
+  uint32_t q = 0;
+  for (uint32_t material : materials) {
+    Face f;
+    f.vertexCount = 4;
+    for (uint32_t i = 0; i < 4; ++i) f.vertices[i] = 4 * q + i;
+    f.material = material;
+    s.addFace(f);
+    ++q;
+  }
 }
 
 /// The furnace: every wall emits `emission` and reflects `reflectance`

@@ -139,13 +139,7 @@ TEST(TwoPass, ReichertCountsTheFrontPartOfACutElement) {
   wall.name = "wall";
   wall.diffuse = Bands(0.5);
   scene.materials = {floor, wall};
-  for (uint32_t k = 0; k < 2; ++k) {
-    Face f;
-    f.vertexCount = 4;
-    for (uint32_t i = 0; i < 4; ++i) f.vertices[i] = 4 * k + i;
-    f.material = k;
-    scene.addFace(f);
-  }
+  test::addQuads(scene, {0, 1});
   RayTracer tracer(scene);
   MeshOptions meshOptions;
   meshOptions.maxEdgeLength = 10;  // one element per face
