@@ -1,0 +1,228 @@
+#include "radiosity/backprojection.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "radiosity/form_factor.h"
+
+namespace radiant {
+
+namespace {
+
+struct Point2 {
+  double u = 0, v = 0;
+};
+using Polygon2 = std::vector<Point2>;
+
+double signedArea(const Polygon2 &p) {
+  double a = 0;
+  for (size_t k = 0; k < p.size(); ++k) {
+    const Point2 &s = p[k], &t = p[(k + 1) % p.size()];
+    a += s.u * t.v - t.u * s.v;
+  }
+  return 0.5 * a;
+}
+
+struct Bounds2 {
+  double uLo = INFINITY, vLo = INFINITY, uHi = -INFINITY, vHi = -INFINITY;
+  explicit Bounds2(const Polygon2 &p) {
+    for (const Point2 &q : p) {
+      uLo = std::min(uLo, q.u), uHi = std::max(uHi, q.u);
+      vLo = std::min(vLo, q.v), vHi = std::max(vHi, q.v);
+    }
+  }
+  bool overlaps(const Bounds2 &b) const { return uLo < b.uHi && b.uLo < uHi && vLo < b.vHi && b.vLo < vHi; }
+};
+
+/// Splits a convex polygon by the directed line a → b into the part on its
+/// left (inside a counter-clockwise polygon whose edge it is) and the part
+/// on its right. Points within `tolerance` (a cross product, length²) of the
+/// line go to both.
+void splitByLine(const Polygon2 &poly, const Point2 &a, const Point2 &b, double tolerance, Polygon2 &left,
+                 Polygon2 &right) {
+  left.clear();
+  right.clear();
+  const double eu = b.u - a.u, ev = b.v - a.v;
+  auto side = [&](const Point2 &p) {
+    double s = eu * (p.v - a.v) - ev * (p.u - a.u);
+    return std::abs(s) <= tolerance ? 0.0 : s;
+  };
+  for (size_t k = 0; k < poly.size(); ++k) {
+    const Point2 &p = poly[k], &q = poly[(k + 1) % poly.size()];
+    const double sp = side(p), sq = side(q);
+    if (sp >= 0) left.push_back(p);
+    if (sp <= 0) right.push_back(p);
+    if ((sp > 0 && sq < 0) || (sp < 0 && sq > 0)) {
+      const double t = sp / (sp - sq);
+      const Point2 i{p.u + (q.u - p.u) * t, p.v + (q.v - p.v) * t};
+      left.push_back(i);
+      right.push_back(i);
+    }
+  }
+}
+
+/// Sutherland–Hodgman clip of a 3-D polygon to a half-space, keeping the
+/// points at signed distance ≥ `keepAbove`.
+void clipToHalfSpace(const std::vector<Vec3> &in, const HalfSpace &h, double keepAbove, std::vector<Vec3> &out) {
+  out.clear();
+  for (size_t k = 0; k < in.size(); ++k) {
+    const Vec3 &a = in[k], &b = in[(k + 1) % in.size()];
+    const double da = h.signedDistance(a) - keepAbove, db = h.signedDistance(b) - keepAbove;
+    if (da >= 0) out.push_back(a);
+    if ((da >= 0) != (db >= 0)) out.push_back(a + (b - a) * (da / (da - db)));
+  }
+}
+
+/// What one query works on; one per thread, so queries allocate nothing
+/// once warm.
+struct Scratch {
+  std::vector<Vec3> base, clipped, swap;
+  std::vector<uint32_t> candidates;
+  std::vector<Polygon2> pieces, next;
+  Polygon2 projected, rest, left, right;
+  std::vector<Vec3> lifted;
+};
+
+}  // namespace
+
+DirectIrradiance::DirectIrradiance(const Scene &scene) : scene_(scene), faces_(scene) {
+  const Box3 &b = faces_.sceneBounds();
+  scale_ = std::max(1e-9, length(b.hi - b.lo));
+  for (uint32_t f = 0; f < scene.faces.size(); ++f) {
+    const Face &face = scene.faces[f];
+    if (!scene.materials[face.material].isEmitter()) continue;
+    EmitterPolygon e;
+    e.face = f;
+    e.material = face.material;
+    e.vertexCount = face.vertexCount;
+    for (int k = 0; k < face.vertexCount; ++k) e.corners[k] = scene.positions[face.vertices[k]];
+    e.normal = scene.faceNormal(face);
+    e.area = scene.faceArea(face);
+    if (e.area > 0) emitters_.push_back(e);
+  }
+}
+
+double DirectIrradiance::unoccludedFormFactor(const Vec3 &x, const Vec3 &n, size_t emitter) const {
+  const EmitterPolygon &e = emitters_[emitter];
+  if (dot(x - e.corners[0], e.normal) <= 1e-12 * scale_) return 0;  // behind the emitting side
+  return formFactorPointToPolygon(x, n, std::span<const Vec3>(e.corners.data(), size_t(e.vertexCount)));
+}
+
+double DirectIrradiance::visibleFormFactor(const Vec3 &x, const Vec3 &n, size_t emitter) const {
+  const EmitterPolygon &e = emitters_[emitter];
+  const double heightOfX = dot(x - e.corners[0], e.normal);
+  if (heightOfX <= 1e-12 * scale_) return 0;  // behind the emitting side (or in its plane)
+  thread_local Scratch s;
+
+  // The part of the emitter in front of x's tangent plane: the pyramid's base.
+  clipToFrontHalfSpace(x, n, std::span<const Vec3>(e.corners.data(), size_t(e.vertexCount)), s.base);
+  if (s.base.size() < 3) return 0;
+  Vec3 baseCentre;
+  for (const Vec3 &v : s.base) baseCentre += v;
+  baseCentre = baseCentre / double(s.base.size());
+
+  // The pyramid: one half-space through x and each base edge, and the
+  // emitter's plane (an occluder must lie strictly between x and the emitter).
+  HalfSpace pyramid[10];
+  int planes = 0;
+  for (size_t k = 0; k < s.base.size() && planes < 9; ++k) {
+    const Vec3 &a = s.base[k], &b = s.base[(k + 1) % s.base.size()];
+    Vec3 normal = cross(a - x, b - x);
+    const double len = length(normal);
+    if (!(len > 0)) continue;  // an edge seen end-on spans no plane
+    normal = normal / len;
+    if (dot(normal, baseCentre - x) < 0) normal = -normal;
+    pyramid[planes++] = {normal, -dot(normal, x)};
+  }
+  pyramid[planes++] = {e.normal, -dot(e.normal, e.corners[0])};
+  const double tolerance = 1e-9 * scale_;
+  faces_.facesInConvexRegion(pyramid, planes, tolerance, s.candidates);
+
+  const double unoccluded = formFactorPointToPolygon(x, n, s.base);
+  if (s.candidates.empty() || !(unoccluded > 0)) return unoccluded;
+
+  // The base in the emitter plane's 2-D frame, counter-clockwise.
+  const Frame frame = Frame::fromNormal(e.normal);
+  const Vec3 origin = e.corners[0];
+  auto to2 = [&](const Vec3 &p) { return Point2{dot(p - origin, frame.tangent), dot(p - origin, frame.bitangent)}; };
+  s.pieces.clear();
+  s.pieces.emplace_back();
+  for (const Vec3 &v : s.base) s.pieces.back().push_back(to2(v));
+  if (signedArea(s.pieces.back()) < 0) std::reverse(s.pieces.back().begin(), s.pieces.back().end());
+  const double baseArea = std::abs(signedArea(s.pieces.back()));
+  const double negligibleArea = 1e-12 * baseArea;
+  const double baseSize = std::sqrt(baseArea);
+
+  bool occluded = false;
+  for (uint32_t f : s.candidates) {
+    if (f == e.face) continue;
+    const Face &face = scene_.faces[f];
+    const Vec3 faceNormal = scene_.faceNormal(face);
+    // A face whose plane passes through x (x's own face, a coplanar
+    // neighbour, a wall standing on x's edge) projects to a line: no area.
+    if (std::abs(dot(x - scene_.positions[face.vertices[0]], faceNormal)) <= tolerance) continue;
+    s.clipped.clear();
+    for (int k = 0; k < face.vertexCount; ++k) s.clipped.push_back(scene_.positions[face.vertices[k]]);
+    for (int h = 0; h < planes && s.clipped.size() >= 3; ++h) {
+      const bool emitterPlane = h == planes - 1;
+      clipToHalfSpace(s.clipped, pyramid[h], emitterPlane ? tolerance : 0.0, s.swap);
+      std::swap(s.clipped, s.swap);
+    }
+    if (s.clipped.size() < 3) continue;
+    // Central projection from x onto the emitter's plane: a point at height
+    // h above it (x is at heightOfX) lands at x + (p − x)·heightOfX/(heightOfX − h).
+    s.projected.clear();
+    for (const Vec3 &p : s.clipped) {
+      const double drop = heightOfX - dot(p - origin, e.normal);
+      if (!(drop > 1e-15 * heightOfX)) continue;  // at the apex: already excluded by the plane test
+      s.projected.push_back(to2(x + (p - x) * (heightOfX / drop)));
+    }
+    if (s.projected.size() < 3) continue;
+    double area = signedArea(s.projected);
+    if (std::abs(area) <= negligibleArea) continue;
+    if (area < 0) std::reverse(s.projected.begin(), s.projected.end());
+    occluded = true;
+
+    // Subtract the projection from every visible piece: what lies outside
+    // each of its edges in turn is kept, what remains inside all is hidden.
+    const Bounds2 qBounds(s.projected);
+    s.next.clear();
+    for (Polygon2 &piece : s.pieces) {
+      if (!Bounds2(piece).overlaps(qBounds)) {
+        s.next.push_back(std::move(piece));
+        continue;
+      }
+      s.rest = piece;
+      for (size_t k = 0; k < s.projected.size() && s.rest.size() >= 3; ++k) {
+        const Point2 &a = s.projected[k], &b = s.projected[(k + 1) % s.projected.size()];
+        const double edge = std::hypot(b.u - a.u, b.v - a.v);
+        splitByLine(s.rest, a, b, 1e-12 * edge * baseSize, s.left, s.right);
+        if (s.right.size() >= 3 && std::abs(signedArea(s.right)) > negligibleArea) s.next.push_back(s.right);
+        std::swap(s.rest, s.left);
+      }
+    }
+    std::swap(s.pieces, s.next);
+    if (s.pieces.empty()) return 0;
+  }
+  if (!occluded) return unoccluded;
+
+  double visible = 0;
+  for (const Polygon2 &piece : s.pieces) {
+    s.lifted.clear();
+    for (const Point2 &q : piece) s.lifted.push_back(origin + frame.tangent * q.u + frame.bitangent * q.v);
+    visible += formFactorPointToPolygon(x, n, s.lifted);
+  }
+  return std::min(visible, unoccluded);
+}
+
+Bands DirectIrradiance::irradiance(const Vec3 &x, const Vec3 &n) const {
+  Bands h(0.0);
+  for (size_t k = 0; k < emitters_.size(); ++k) {
+    const Bands &radiance = scene_.materials[emitters_[k].material].emission;
+    const double f = visibleFormFactor(x, n, k);
+    if (f > 0) h += radiance * (kPi * f);
+  }
+  return h;
+}
+
+}  // namespace radiant

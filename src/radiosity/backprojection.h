@@ -1,0 +1,66 @@
+// Direct light from area emitters, exactly, by backprojection (Drettakis &
+// Fiume, "A fast shadow algorithm for area light sources using
+// backprojection", SIGGRAPH 1994; Stewart & Ghali 1994).
+//
+// The irradiance a point x receives straight from a Lambertian emitter of
+// exitance E is E·F(x → the part of the emitter x sees). That part is found
+// as a polygon, not sampled: the emitter, clipped to x's front half-space, is
+// the base of a pyramid with apex x (the shaft of Haines & Wallace 1991);
+// every face that may lie inside it (raytrace/face_tree.h) is clipped to the
+// pyramid and projected from x onto the emitter's plane, and the projections
+// are subtracted from the emitter, leaving convex pieces. Lambert's contour
+// integral (radiosity/form_factor.h) over the pieces is the exact form factor
+// with visibility: no noise, no shadow rays, and a penumbra that is exact at
+// every point. The cost grows with the faces in the shaft, which is none for
+// most points of a room and a handful near the objects that cast shadows.
+//
+// Used for the direct light of the radiosity solution at its nodes (which
+// puts the shadows, penumbrae included, into the mesh) and per pixel by the
+// two-pass methods that recompute direct light.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "raytrace/face_tree.h"
+#include "scene/scene.h"
+#include "util/spectrum.h"
+
+namespace radiant {
+
+struct EmitterPolygon {
+  uint32_t face = 0;
+  uint32_t material = 0;
+  int vertexCount = 3;
+  std::array<Vec3, 4> corners{};
+  Vec3 normal;  ///< front (emitting) side, unit
+  double area = 0;
+};
+
+class DirectIrradiance {
+ public:
+  /// Every face of an emitting material is an emitter; every face occludes.
+  /// The scene must outlive this object; its materials are read at each
+  /// query, so a spectral pass's emission (applySpectralPass) is honoured.
+  explicit DirectIrradiance(const Scene &scene);
+
+  bool empty() const { return emitters_.empty(); }
+  const std::vector<EmitterPolygon> &emitters() const { return emitters_; }
+
+  /// Irradiance at x (unit normal n) arriving straight from the emitters'
+  /// fronts, W·m⁻² per band: Σ π L_e F(x → visible part).
+  Bands irradiance(const Vec3 &x, const Vec3 &n) const;
+  /// F(x → the part of emitter `emitter` that x sees), exact.
+  double visibleFormFactor(const Vec3 &x, const Vec3 &n, size_t emitter) const;
+  /// F(x → emitter) as if nothing were in between (Lambert's contour integral).
+  double unoccludedFormFactor(const Vec3 &x, const Vec3 &n, size_t emitter) const;
+
+ private:
+  const Scene &scene_;
+  FaceTree faces_;
+  std::vector<EmitterPolygon> emitters_;
+  double scale_ = 1;  ///< the scene's size, metres: sets the tolerances
+};
+
+}  // namespace radiant
