@@ -198,6 +198,11 @@ void putSolution(Writer &w, const Solution &s) {
     w.put(l.receiver), w.put(l.source), w.put(l.formFactor), w.put(l.visibleFraction);
     w.put(uint8_t(l.visibility)), w.put(l.carriedPower);
   }
+  // Version 5: the irradiance computed at the nodes, direct and indirect (hierarchical-exact; else none).
+  const bool atNodes = s.hasNodeIrradiance();
+  w.put(uint64_t(atNodes ? m.nodes.size() : 0));
+  if (atNodes)
+    for (size_t v = 0; v < m.nodes.size(); ++v) w.put(s.nodeDirectIrradiance[v]), w.put(s.nodeIndirectIrradiance[v]);
 }
 
 }  // namespace
@@ -333,6 +338,15 @@ Solution getSolution(Reader &r, const Scene &scene) {
     if (visibility > 2) r.fail("a link's visibility is not none, partial or full");
     l.visibility = static_cast<LinkVisibility>(visibility);
     l.carriedPower = r.get<float>();
+  }
+  const uint64_t irradianceNodes = r.get<uint64_t>();
+  if (irradianceNodes != 0 && irradianceNodes != nodes) r.fail("the nodes' irradiance does not match the nodes");
+  s.nodeDirectIrradiance.resize(r.count(irradianceNodes, 2 * kBandCount * 8, "node irradiances"));
+  s.nodeIndirectIrradiance.resize(s.nodeDirectIrradiance.size());
+  for (size_t v = 0; v < s.nodeDirectIrradiance.size(); ++v) {
+    s.nodeDirectIrradiance[v] = r.bands(), s.nodeIndirectIrradiance[v] = r.bands();
+    for (const Bands *b : {&s.nodeDirectIrradiance[v], &s.nodeIndirectIrradiance[v]})
+      if (!b->isFinite() || b->min() < 0) r.fail("a node's irradiance is negative or not finite");
   }
 
   // Cross-references must stay inside their arrays: a corrupt file must not crash a renderer.

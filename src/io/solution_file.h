@@ -12,7 +12,7 @@
 namespace radiant {
 
 /// 4: a pass count, then one solution per spectral pass (one for RGB scenes).
-constexpr uint32_t kSolutionFormatVersion = 4;
+constexpr uint32_t kSolutionFormatVersion = 5;
 
 /// A hash of what the solution depends on: geometry, faces and the
 /// radiometric material values. A solution is refused for a scene whose

@@ -109,16 +109,31 @@ std::vector<Bands> Solution::nodeValues(const std::vector<Bands> &perElement) co
   shareNodesAcrossPatches(values, weight);
   for (size_t v = 0; v < values.size(); ++v)
     if (weight[v] > 0) values[v] = values[v] / weight[v];
-  for (const RadiosityMesh::TVertex &t : mesh.tVertices)
-    values[t.node] = (values[t.edgeStart] + values[t.edgeEnd]) * 0.5;
+  applyTVertices(values);
   return values;
 }
 
+void Solution::applyTVertices(std::vector<Bands> &values) const {
+  for (const RadiosityMesh::TVertex &t : mesh.tVertices)
+    values[t.node] = (values[t.edgeStart] + values[t.edgeEnd]) * 0.5;
+}
+
 void Solution::updateNodesAndErrors() {
+  const bool atNodes = hasNodeIrradiance();
   std::vector<Bands> display(mesh.elements.size());
-  for (uint32_t e = 0; e < mesh.elements.size(); ++e) display[e] = displayRadiosity(e);
+  for (uint32_t e = 0; e < mesh.elements.size(); ++e)
+    display[e] = atNodes ? emission[e] + reflectance[e] * ambient : displayRadiosity(e);
   nodeRadiosity = nodeValues(display);
   nodeReflectance = nodeValues(reflectance);
+  if (atNodes) {
+    // The reflected part from the values computed at the nodes, ρ̄H there;
+    // T-vertices again from their edges' ends, so the sum does not crack.
+    std::vector<Bands> reflected(mesh.nodes.size());
+    for (size_t v = 0; v < mesh.nodes.size(); ++v)
+      reflected[v] = nodeReflectance[v] * (nodeDirectIrradiance[v] + nodeIndirectIrradiance[v]);
+    applyTVertices(reflected);
+    for (size_t v = 0; v < mesh.nodes.size(); ++v) nodeRadiosity[v] += reflected[v];
+  }
   // Gradient estimate (C&W ch. 6, Cohen et al. 1986): how far the nodes around
   // an element stray from its own value, relative to it. Large where the
   // constant element misrepresents a shadow edge or a steep falloff.
@@ -131,6 +146,18 @@ void Solution::updateNodesAndErrors() {
       worst = std::max(worst, std::abs(nodeRadiosity[element.nodes[k]].luminance() - b));
     errorEstimate[e] = b > 0 ? worst / b : (worst > 0 ? 1.0 : 0.0);
   }
+}
+
+std::vector<Bands> Solution::nodeIndirectRadiosity() const {
+  if (!hasNodeIrradiance()) {
+    std::vector<Bands> indirectPerElement(elementCount());
+    for (uint32_t e = 0; e < elementCount(); ++e) indirectPerElement[e] = indirect[e] + reflectance[e] * indirectAmbient;
+    return nodeValues(indirectPerElement);
+  }
+  std::vector<Bands> values(mesh.nodes.size());
+  for (size_t v = 0; v < mesh.nodes.size(); ++v) values[v] = nodeReflectance[v] * nodeIndirectIrradiance[v];
+  applyTVertices(values);
+  return values;
 }
 
 Bands Solution::textureFactor(const MeshLocation &location, const Bands &rho) const {

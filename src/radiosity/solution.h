@@ -55,6 +55,21 @@ struct Solution {
   Bands indirectAmbient;
   std::vector<double> errorEstimate;///< per element: max relative difference between its nodes and itself
   std::vector<Bands> nodeRadiosity; ///< display B (ambient included) at mesh nodes: area-weighted average of the elements around
+  /// When the solver computed them at the nodes themselves (hierarchical-exact):
+  /// the irradiance arriving there straight from the emitters, exact
+  /// (radiosity/backprojection.h), and after reflections, W·m⁻². nodeRadiosity
+  /// is then E + ρ̄(direct + indirect) at each node instead of an average of
+  /// the elements around it. Both empty otherwise.
+  std::vector<Bands> nodeDirectIrradiance, nodeIndirectIrradiance;
+  bool hasNodeIrradiance() const {
+    return !mesh.nodes.empty() && nodeDirectIrradiance.size() == mesh.nodes.size() &&
+           nodeIndirectIrradiance.size() == mesh.nodes.size();
+  }
+  /// The indirect radiosity at the nodes (reflected light that arrived after
+  /// at least one reflection, plus indirectAmbient's share), what shirley and
+  /// kok interpolate: from nodeIndirectIrradiance when there is one, else the
+  /// node values of the elements' indirect radiosity.
+  std::vector<Bands> nodeIndirectRadiosity() const;
   /// ρ̄ at the nodes (nodeValues of `reflectance`): with textures, the texture
   /// averaged over each element; recomputed by updateNodesAndErrors and on reading.
   std::vector<Bands> nodeReflectance;
@@ -88,6 +103,8 @@ struct Solution {
  private:
   /// Pools the area-weighted sums of coincident nodes of neighbouring patches of one smooth surface.
   void shareNodesAcrossPatches(std::vector<Bands> &sums, std::vector<double> &weight) const;
+  /// Sets every T-vertex to the mean of its edge's ends, coarse to fine, so interpolation does not crack.
+  void applyTVertices(std::vector<Bands> &values) const;
 
  public:
 };

@@ -18,6 +18,10 @@ const std::vector<SolverInfo> &solverRegistry() {
        &solveHierarchical},
       {"stochastic", "stochastic Jacobi radiosity: shoots unshot power with rays, no form factors; for large scenes",
        &solveStochasticJacobi},
+      {"hierarchical-exact",
+       "direct light exact at every node (backprojection, mesh refined to the shadows); reflected light by "
+       "hierarchical radiosity with an error-bounding oracle",
+       &solveHierarchicalExact},
   };
   return table;
 }
@@ -30,6 +34,14 @@ std::string resolveSolverName(const std::string &name, size_t patches) {
 
 Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOptions &meshOptions,
                       const SolverOptions &options, const SolverProgressCallback &progress) {
+  if (resolveSolverName(options.solver, scene.faces.size()) == "hierarchical-exact") {
+    // It refines the patches' trees itself, from a uniform start.
+    if (options.adaptiveRounds > 0)
+      throw InputError(InputLocation{"--adaptive-rounds"}, "hierarchical-exact refines by itself");
+    Solution s = initialSolution(scene, buildTreeMesh(scene, meshOptions));
+    solveRadiosity(tracer, s, options, progress);
+    return s;
+  }
   if (options.adaptiveRounds <= 0) {
     Solution s = initialSolution(scene, buildMesh(scene, meshOptions));
     solveRadiosity(tracer, s, options, progress);

@@ -45,6 +45,16 @@ struct SolverOptions {
   /// shoot fewer, in proportion to the unshot power left).
   int raysPerElement = 64;
   int refinementRounds = 6;
+  /// hierarchical-exact (radiosity/hierarchical_exact.cpp): tolerances relative to
+  /// the scene's mean first-bounce radiosity (the area mean of ρ·H_direct).
+  /// The direct light is refined until it interpolates within this fraction…
+  double directTolerance = 0.01;
+  /// …down to leaves of this edge, metres (0: 1/256 of the scene's extent);
+  double directMinimumEdge = 0;
+  /// a link is refined while its estimated error exceeds this fraction…
+  double linkError = 0.01;
+  /// …and its nodes' edges are at least twice this, metres (0: 1/64 of the extent).
+  double linkMinimumEdge = 0;
   /// Hierarchical, --importance: refine for `importanceView` only (Smits,
   /// Arvo & Salesin 1992; radiosity/importance.h): links are judged by
   /// F·B_source times the importance of the receiver, which the camera emits
@@ -106,5 +116,6 @@ void solveGaussSeidel(const RayTracer &, Solution &, const SolverOptions &, cons
 void solveProgressive(const RayTracer &, Solution &, const SolverOptions &, const SolverProgressCallback &);
 void solveHierarchical(const RayTracer &, Solution &, const SolverOptions &, const SolverProgressCallback &);
 void solveStochasticJacobi(const RayTracer &, Solution &, const SolverOptions &, const SolverProgressCallback &);
+void solveHierarchicalExact(const RayTracer &, Solution &, const SolverOptions &, const SolverProgressCallback &);
 
 }  // namespace radiant

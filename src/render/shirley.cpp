@@ -37,13 +37,12 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
   DirectPlusInterpolatedIndirect(const RayTracer &tracer, const RendererOptions &options, bool sampleReflectors)
       : TwoPassRenderer(tracer, options) {
     const Solution &s = solution_;
-    std::vector<Bands> indirect(s.elementCount());
-    for (uint32_t e = 0; e < s.elementCount(); ++e) indirect[e] = s.indirect[e] + s.reflectance[e] * s.indirectAmbient;
+    remainingIndirect_ = s.nodeIndirectRadiosity();
     if (sampleReflectors) {
       sources_.emplace(tracer, s, options);
-      for (uint32_t e = 0; e < s.elementCount(); ++e) indirect[e] = indirect[e] - sources_->removedRadiosity()[e];
+      const std::vector<Bands> removed = s.nodeValues(sources_->removedRadiosity());
+      for (size_t v = 0; v < remainingIndirect_.size(); ++v) remainingIndirect_[v] = remainingIndirect_[v] - removed[v];
     }
-    remainingIndirect_ = s.nodeValues(indirect);
     // Bump maps: the interpolated indirect light, seen by a tilted normal (Chen's ratio of reflected light).
     BumpGatherOptions bump;
     bump.orientations = options.bumpOrientations;
