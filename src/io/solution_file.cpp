@@ -203,6 +203,11 @@ void putSolution(Writer &w, const Solution &s) {
   w.put(uint64_t(atNodes ? m.nodes.size() : 0));
   if (atNodes)
     for (size_t v = 0; v < m.nodes.size(); ++v) w.put(s.nodeDirectIrradiance[v]), w.put(s.nodeIndirectIrradiance[v]);
+  // Version 5: faces cut into several patches (mesh/face_split.h), and the nodes on the cuts.
+  w.put(uint8_t(m.facePatchCount.empty() ? 0 : 1));
+  for (uint32_t c : m.facePatchCount) w.put(c);
+  w.put(uint8_t(m.nodeOnCut.empty() ? 0 : 1));
+  for (uint8_t c : m.nodeOnCut) w.put(c);
 }
 
 }  // namespace
@@ -348,11 +353,22 @@ Solution getSolution(Reader &r, const Scene &scene) {
     for (const Bands *b : {&s.nodeDirectIrradiance[v], &s.nodeIndirectIrradiance[v]})
       if (!b->isFinite() || b->min() < 0) r.fail("a node's irradiance is negative or not finite");
   }
+  if (r.get<uint8_t>() != 0) {
+    m.facePatchCount.resize(r.count(faces, 4, "face patch counts"));
+    for (uint32_t &c : m.facePatchCount) c = r.get<uint32_t>();
+  }
+  if (r.get<uint8_t>() != 0) {
+    m.nodeOnCut.resize(r.count(nodes, 1, "node cut flags"));
+    for (uint8_t &c : m.nodeOnCut) c = r.get<uint8_t>();
+  }
 
   // Cross-references must stay inside their arrays: a corrupt file must not crash a renderer.
   if (m.patchOfFace.size() != scene.faces.size()) r.fail("the solution's face count differs from the scene's");
   for (int32_t p : m.patchOfFace)
     if (p < -1 || p >= int32_t(m.patches.size())) r.fail("a face refers to a patch that does not exist");
+  for (size_t f = 0; f < m.facePatchCount.size(); ++f)
+    if (m.patchOfFace[f] >= 0 && (m.facePatchCount[f] < 1 || uint64_t(m.patchOfFace[f]) + m.facePatchCount[f] > m.patches.size()))
+      r.fail("a face's patches are inconsistent");
   for (const Patch &p : m.patches)
     if (p.vertexCount < 3 || p.vertexCount > 4 || p.divisionsU < 1 || p.divisionsV < 1 ||
         uint64_t(p.firstElement) + p.elementCount > m.elements.size() ||
@@ -392,6 +408,7 @@ Solution getSolution(Reader &r, const Scene &scene) {
     for (int k = 0; k < e.vertexCount; ++k)
       if (e.nodes[k] >= m.nodes.size()) r.fail("an element refers to a node that does not exist");
   }
+  m.buildPatchLookup();
   s.nodeReflectance = s.nodeValues(s.reflectance);  // derived, not stored: only after the checks above
   return s;
 }

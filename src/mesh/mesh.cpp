@@ -58,8 +58,111 @@ std::vector<Vec3> RadiosityMesh::polygon(uint32_t element) const {
   return p;
 }
 
+int32_t RadiosityMesh::patchAt(uint32_t face, const Vec3 &position) const {
+  const int32_t first = patchOfFace[face];
+  const uint32_t count = facePatchCount.empty() || first < 0 ? 1 : facePatchCount[face];
+  if (first < 0 || count <= 1) return first;
+  // The patch whose edges the point is furthest inside of (all patches of a
+  // face share its plane and normal): robust on the cuts between them. The
+  // face's grid names the few patches near the point.
+  const uint32_t *candidates = nullptr;
+  uint32_t candidateCount = 0;
+  std::vector<uint32_t> all;
+  if (face < patchGridOfFace.size() && patchGridOfFace[face] >= 0) {
+    const PatchGrid &g = patchGrids[patchGridOfFace[face]];
+    const Vec3 d = position - g.origin;
+    const int i = std::clamp(static_cast<int>(std::floor(dot(d, g.axisU) / g.cellU)), 0, g.cellsU - 1);
+    const int j = std::clamp(static_cast<int>(std::floor(dot(d, g.axisV) / g.cellV)), 0, g.cellsV - 1);
+    const uint32_t cell = uint32_t(j * g.cellsU + i);
+    candidates = g.patches.data() + g.cellStart[cell];
+    candidateCount = g.cellStart[cell + 1] - g.cellStart[cell];
+  }
+  if (candidateCount == 0) {
+    for (uint32_t k = 0; k < count; ++k) all.push_back(first + k);
+    candidates = all.data();
+    candidateCount = count;
+  }
+  int32_t best = first;
+  double bestDepth = -INFINITY;
+  for (uint32_t c = 0; c < candidateCount; ++c) {
+    const uint32_t k = candidates[c] - uint32_t(first);
+    const Patch &p = patches[first + k];
+    double depth = INFINITY;
+    for (int v = 0; v < p.vertexCount; ++v) depth = std::min(depth, dot(position - p.corners[v], p.inwardEdgeNormals[v]));
+    if (depth > bestDepth) bestDepth = depth, best = static_cast<int32_t>(first + k);
+  }
+  return best;
+}
+
+void RadiosityMesh::buildPatchLookup() {
+  for (Patch &p : patches)
+    for (int v = 0; v < p.vertexCount; ++v)
+      p.inwardEdgeNormals[v] = normalize(cross(p.normal, p.corners[(v + 1) % p.vertexCount] - p.corners[v]));
+  patchGridOfFace.assign(patchOfFace.size(), -1);
+  patchGrids.clear();
+  for (size_t f = 0; f < patchOfFace.size(); ++f) {
+    if (patchOfFace[f] < 0 || facePatchCount.empty() || facePatchCount[f] <= 1) continue;
+    const uint32_t first = static_cast<uint32_t>(patchOfFace[f]), count = facePatchCount[f];
+    PatchGrid g;
+    const Frame frame = Frame::fromNormal(patches[first].normal);
+    g.axisU = frame.tangent, g.axisV = frame.bitangent;
+    double loU = INFINITY, loV = INFINITY, hiU = -INFINITY, hiV = -INFINITY;
+    const Vec3 base = patches[first].corners[0];
+    for (uint32_t k = 0; k < count; ++k)
+      for (int v = 0; v < patches[first + k].vertexCount; ++v) {
+        const Vec3 d = patches[first + k].corners[v] - base;
+        loU = std::min(loU, dot(d, g.axisU)), hiU = std::max(hiU, dot(d, g.axisU));
+        loV = std::min(loV, dot(d, g.axisV)), hiV = std::max(hiV, dot(d, g.axisV));
+      }
+    g.origin = base + g.axisU * loU + g.axisV * loV;
+    const int side = std::clamp(static_cast<int>(std::ceil(std::sqrt(double(count)))), 1, 64);
+    g.cellsU = g.cellsV = side;
+    g.cellU = std::max(hiU - loU, 1e-12) / side, g.cellV = std::max(hiV - loV, 1e-12) / side;
+    std::vector<std::vector<uint32_t>> cells(size_t(side) * side);
+    for (uint32_t k = 0; k < count; ++k) {
+      double pu0 = INFINITY, pv0 = INFINITY, pu1 = -INFINITY, pv1 = -INFINITY;
+      for (int v = 0; v < patches[first + k].vertexCount; ++v) {
+        const Vec3 d = patches[first + k].corners[v] - g.origin;
+        pu0 = std::min(pu0, dot(d, g.axisU)), pu1 = std::max(pu1, dot(d, g.axisU));
+        pv0 = std::min(pv0, dot(d, g.axisV)), pv1 = std::max(pv1, dot(d, g.axisV));
+      }
+      // Widened by a cell's hundredth, so a point on a shared edge finds both sides.
+      const int i0 = std::clamp(static_cast<int>(std::floor(pu0 / g.cellU - 0.01)), 0, side - 1);
+      const int i1 = std::clamp(static_cast<int>(std::floor(pu1 / g.cellU + 0.01)), 0, side - 1);
+      const int j0 = std::clamp(static_cast<int>(std::floor(pv0 / g.cellV - 0.01)), 0, side - 1);
+      const int j1 = std::clamp(static_cast<int>(std::floor(pv1 / g.cellV + 0.01)), 0, side - 1);
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) cells[size_t(j) * side + i].push_back(first + k);
+    }
+    g.cellStart.push_back(0);
+    for (const auto &cell : cells) {
+      g.patches.insert(g.patches.end(), cell.begin(), cell.end());
+      g.cellStart.push_back(static_cast<uint32_t>(g.patches.size()));
+    }
+    patchGridOfFace[f] = static_cast<int32_t>(patchGrids.size());
+    patchGrids.push_back(std::move(g));
+  }
+}
+
+void RadiosityMesh::markNodesOnCuts() {
+  nodeOnCut.assign(nodes.size(), 0);
+  if (faceCuts.empty()) return;
+  for (size_t v = 0; v < nodes.size(); ++v) {
+    const std::vector<CutSegment> &cuts = faceCuts[patches[nodePatch[v]].face];
+    for (const CutSegment &c : cuts) {
+      const Vec3 d = c.b - c.a;
+      const double l2 = dot(d, d);
+      const double t = l2 > 0 ? std::clamp(dot(nodes[v] - c.a, d) / l2, 0.0, 1.0) : 0.0;
+      if (length(nodes[v] - (c.a + d * t)) <= 1e-7 * std::sqrt(l2)) {
+        nodeOnCut[v] = 1;
+        break;
+      }
+    }
+  }
+}
+
 MeshLocation RadiosityMesh::locate(uint32_t face, const Vec3 &position) const {
-  const Patch &patch = patches[patchOfFace[face]];
+  const Patch &patch = patches[patchAt(face, position)];
   MeshLocation location;
   if (patch.treeRoot >= 0) return locateInTree(patch, position);
   if (patch.vertexCount == 4) {
@@ -161,23 +264,40 @@ RadiosityMesh buildMesh(const Scene &scene, const MeshOptions &options) {
     edge = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-9}) / 8;
   }
 
+  // The polygons that become patches: each face whole, or the quads and
+  // triangles of its visible pieces when it was cut (mesh/face_split.h).
+  const std::vector<FaceSplit> *splits = options.faceSplits;
+  std::vector<std::vector<std::vector<Vec3>>> polygons(scene.faces.size());
+  for (size_t f = 0; f < scene.faces.size(); ++f) {
+    if (splits && (*splits)[f].split()) {
+      for (const std::vector<Vec3> &piece : (*splits)[f].pieces)
+        for (std::vector<Vec3> &p : convexToPatches(piece)) polygons[f].push_back(std::move(p));
+      continue;
+    }
+    const Face &face = scene.faces[f];
+    std::vector<Vec3> p;
+    for (int k = 0; k < face.vertexCount; ++k) p.push_back(scene.positions[face.vertices[k]]);
+    polygons[f].push_back(std::move(p));
+  }
+
   // First the counts, so an absurd request fails before any allocation.
   size_t totalElements = 0;
-  std::vector<std::array<int, 2>> divisions(scene.faces.size());
+  std::vector<std::vector<std::array<int, 2>>> divisions(scene.faces.size());
   for (size_t f = 0; f < scene.faces.size(); ++f) {
-    const Face &face = scene.faces[f];
-    auto corner = [&](int k) { return scene.positions[face.vertices[k]]; };
-    auto steps = [&](double length) { return std::max(1, static_cast<int>(std::ceil(length / edge - 1e-9))); };
-    if (face.vertexCount == 4) {
-      int nU = steps(std::max(length(corner(1) - corner(0)), length(corner(2) - corner(3))));
-      int nV = steps(std::max(length(corner(3) - corner(0)), length(corner(2) - corner(1))));
-      divisions[f] = {nU, nV};
-      totalElements += size_t(nU) * nV;
-    } else {
-      int n = steps(std::max({length(corner(1) - corner(0)), length(corner(2) - corner(1)),
-                              length(corner(0) - corner(2))}));
-      divisions[f] = {n, n};
-      totalElements += size_t(n) * n;
+    for (const std::vector<Vec3> &poly : polygons[f]) {
+      auto corner = [&](int k) { return poly[k]; };
+      auto steps = [&](double length) { return std::max(1, static_cast<int>(std::ceil(length / edge - 1e-9))); };
+      if (poly.size() == 4) {
+        int nU = steps(std::max(length(corner(1) - corner(0)), length(corner(2) - corner(3))));
+        int nV = steps(std::max(length(corner(3) - corner(0)), length(corner(2) - corner(1))));
+        divisions[f].push_back({nU, nV});
+        totalElements += size_t(nU) * nV;
+      } else {
+        int n = steps(std::max({length(corner(1) - corner(0)), length(corner(2) - corner(1)),
+                                length(corner(0) - corner(2))}));
+        divisions[f].push_back({n, n});
+        totalElements += size_t(n) * n;
+      }
     }
     if (totalElements > options.maxElements)
       throw InputError(InputLocation{"--mesh-size"},
@@ -187,19 +307,29 @@ RadiosityMesh buildMesh(const Scene &scene, const MeshOptions &options) {
   }
 
   mesh.patchOfFace.assign(scene.faces.size(), -1);
+  mesh.facePatchCount.assign(scene.faces.size(), 0);
+  if (splits) {
+    mesh.faceCuts.resize(scene.faces.size());
+    for (size_t f = 0; f < scene.faces.size(); ++f) mesh.faceCuts[f] = (*splits)[f].cuts;
+  }
   mesh.elements.reserve(totalElements);
-  for (size_t f = 0; f < scene.faces.size(); ++f) {
+  for (size_t f = 0; f < scene.faces.size(); ++f)
+   for (size_t piece = 0; piece < polygons[f].size(); ++piece) {
     const Face &face = scene.faces[f];
+    const std::vector<Vec3> &poly = polygons[f][piece];
     Patch patch;
     patch.face = static_cast<uint32_t>(f);
     patch.material = face.material;
     patch.object = face.object;
-    patch.vertexCount = face.vertexCount;
-    for (int k = 0; k < face.vertexCount; ++k) patch.corners[k] = scene.positions[face.vertices[k]];
+    patch.vertexCount = static_cast<int>(poly.size());
+    for (int k = 0; k < patch.vertexCount; ++k) patch.corners[k] = poly[k];
     patch.normal = scene.faceNormal(face);
-    patch.area = scene.faceArea(face);
-    patch.divisionsU = divisions[f][0];
-    patch.divisionsV = divisions[f][1];
+    patch.area = 0;
+    for (int k = 1; k + 1 < patch.vertexCount; ++k)
+      patch.area += 0.5 * length(cross(poly[k] - poly[0], poly[k + 1] - poly[0]));
+    if (polygons[f].size() == 1 && !(splits && (*splits)[f].split())) patch.area = scene.faceArea(face);
+    patch.divisionsU = divisions[f][piece][0];
+    patch.divisionsV = divisions[f][piece][1];
     patch.firstElement = static_cast<uint32_t>(mesh.elements.size());
     patch.firstNode = static_cast<uint32_t>(mesh.nodes.size());
     const uint32_t patchIndex = static_cast<uint32_t>(mesh.patches.size());
@@ -217,7 +347,7 @@ RadiosityMesh buildMesh(const Scene &scene, const MeshOptions &options) {
       mesh.elements.push_back(e);
     };
 
-    if (face.vertexCount == 4) {
+    if (patch.vertexCount == 4) {
       const int nU = patch.divisionsU, nV = patch.divisionsV;
       for (int j = 0; j <= nV; ++j)
         for (int i = 0; i <= nU; ++i) mesh.nodes.push_back(bilinear(patch.corners, double(i) / nU, double(j) / nV));
@@ -239,9 +369,12 @@ RadiosityMesh buildMesh(const Scene &scene, const MeshOptions &options) {
     patch.elementCount = static_cast<uint32_t>(mesh.elements.size()) - patch.firstElement;
     patch.nodeCount = static_cast<uint32_t>(mesh.nodes.size()) - patch.firstNode;
     mesh.nodePatch.resize(mesh.nodes.size(), patchIndex);
-    mesh.patchOfFace[f] = static_cast<int32_t>(patchIndex);
+    if (mesh.patchOfFace[f] < 0) mesh.patchOfFace[f] = static_cast<int32_t>(patchIndex);
+    ++mesh.facePatchCount[f];
     mesh.patches.push_back(patch);
   }
+  mesh.markNodesOnCuts();
+  mesh.buildPatchLookup();
   return mesh;
 }
 

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "mesh/face_split.h"
 #include "scene/scene.h"
 
 namespace radiant {
@@ -28,6 +29,10 @@ struct MeshOptions {
   double maxEdgeLength = 0;
   /// Refuse meshes above this many elements (a clear error, not an allocation).
   size_t maxElements = 2'000'000;
+  /// One entry per face (mesh/face_split.h): a split face becomes a patch per
+  /// quad or triangle of its visible pieces, and its hidden pieces none.
+  /// nullptr: every face is one patch.
+  const std::vector<FaceSplit> *faceSplits = nullptr;
 };
 
 /// A node of a patch's subdivision tree (hierarchical radiosity): four
@@ -54,6 +59,9 @@ struct Patch {
   Vec3 normal;  ///< front side, unit
   double area = 0;
   int divisionsU = 1, divisionsV = 1;  ///< quads: along corner 0→1 and 0→3; triangles: n and n
+  /// Unit normals of the edges, in the patch's plane, pointing inwards
+  /// (set by buildPatchLookup; what patchAt measures depth with).
+  std::array<Vec3, 4> inwardEdgeNormals{};
   uint32_t firstElement = 0, elementCount = 0;
   uint32_t firstNode = 0, nodeCount = 0;
 };
@@ -78,7 +86,15 @@ struct RadiosityMesh {
   std::vector<Element> elements;
   std::vector<Vec3> nodes;              ///< positions, metres
   std::vector<uint32_t> nodePatch;      ///< the patch each node belongs to
-  std::vector<int32_t> patchOfFace;     ///< Scene::faces index → patch, −1 if none
+  std::vector<int32_t> patchOfFace;     ///< Scene::faces index → its (first) patch, −1 if none
+  /// Patches of each face, consecutive from patchOfFace: 1, or more for a face
+  /// cut where other surfaces meet it (mesh/face_split.h). Empty: all 1.
+  std::vector<uint32_t> facePatchCount;
+  /// Per node: it lies on a cut of its face (where another surface meets
+  /// it), so it is never pooled with a node of another patch there. Empty: none.
+  std::vector<uint8_t> nodeOnCut;
+  /// The cuts of each face (empty when no face is cut); what nodeOnCut is computed from.
+  std::vector<std::vector<CutSegment>> faceCuts;
   std::vector<MeshTreeNode> tree;       ///< subdivision trees of hierarchical patches
   /// Nodes in the middle of a coarser neighbour's edge (adaptive meshes), in
   /// coarse-to-fine order: their value must be the average of the edge's ends,
@@ -97,6 +113,26 @@ struct RadiosityMesh {
   /// a patch), with local coordinates for interpolation. Points slightly
   /// outside (round-off) are clamped to the nearest element.
   MeshLocation locate(uint32_t face, const Vec3 &position) const;
+  /// The patch of face `face` containing `position` (of a cut face's patches
+  /// the one it lies deepest inside), or −1 when the face has none.
+  int32_t patchAt(uint32_t face, const Vec3 &position) const;
+  /// Recomputes nodeOnCut from faceCuts and the nodes.
+  void markNodesOnCuts();
+  /// Builds the lookup patchAt uses on faces with several patches (buildMesh
+  /// does; call it after filling patches and facePatchCount by hand).
+  void buildPatchLookup();
+
+  /// Per face with several patches: a grid over the face's plane listing the
+  /// patches whose bounds meet each cell, so patchAt tests a few, not all.
+  struct PatchGrid {
+    Vec3 origin, axisU, axisV;  ///< the face's plane: origin + u·axisU + v·axisV, unit axes
+    double cellU = 1, cellV = 1;
+    int cellsU = 1, cellsV = 1;
+    std::vector<uint32_t> cellStart;  ///< cellsU·cellsV + 1 offsets into patches
+    std::vector<uint32_t> patches;
+  };
+  std::vector<int32_t> patchGridOfFace;  ///< index into patchGrids, −1 for faces with one patch
+  std::vector<PatchGrid> patchGrids;
   MeshLocation locateInTree(const Patch &patch, const Vec3 &position) const;
   /// Interpolation weights of the element's nodes at a location (sum to 1).
   std::array<double, 4> nodeWeights(const MeshLocation &location) const;

@@ -133,6 +133,7 @@ void rebuildElementsFromTrees(RadiosityMesh &mesh) {
     patch.elementCount = static_cast<uint32_t>(mesh.elements.size()) - patch.firstElement;
     patch.nodeCount = static_cast<uint32_t>(mesh.nodes.size()) - patch.firstNode;
   }
+  mesh.markNodesOnCuts();
 }
 
 RadiosityMesh buildTreeMesh(const Scene &scene, const MeshOptions &options) {

@@ -43,6 +43,7 @@
 #include "radiosity/backprojection.h"
 #include "radiosity/direct_refinement.h"
 #include "radiosity/form_factor.h"
+#include "radiosity/link_estimate.h"
 #include "radiosity/receiver_polynomial.h"
 #include "radiosity/solver.h"
 #include "texture/surface_detail.h"
@@ -51,21 +52,6 @@ namespace radiant {
 
 namespace {
 
-Vec3 pointOn(const MeshTreeNode &n, double u, double v) {
-  const auto &c = n.corners;
-  if (n.vertexCount == 4)
-    return c[0] * ((1 - u) * (1 - v)) + c[1] * (u * (1 - v)) + c[2] * (u * v) + c[3] * ((1 - u) * v);
-  return c[0] * (1 - u - v) + c[1] * u + c[2] * v;
-}
-
-/// A uniform point of a node from a point of the unit square (triangles:
-/// the square-root map, Shirley 1990).
-Vec3 uniformPointOn(const MeshTreeNode &n, double u1, double u2) {
-  if (n.vertexCount == 4) return pointOn(n, u1, u2);
-  const double s = std::sqrt(u1);
-  return pointOn(n, s * (1 - u2), s * u2);
-}
-
 double longestEdge(const MeshTreeNode &n) {
   double longest = 0;
   for (int k = 0; k < n.vertexCount; ++k)
@@ -73,42 +59,9 @@ double longestEdge(const MeshTreeNode &n) {
   return longest;
 }
 
-/// Half-spaces bounding the convex hull of a few points (inward normals):
-/// every plane through three of them that has all the others on one side.
-int convexHull(const Vec3 *points, int count, double tolerance, HalfSpace *out, int capacity) {
-  int planes = 0;
-  for (int i = 0; i < count; ++i)
-    for (int j = i + 1; j < count; ++j)
-      for (int k = j + 1; k < count; ++k) {
-        Vec3 n = cross(points[j] - points[i], points[k] - points[i]);
-        const double len = length(n);
-        if (!(len > 0)) continue;
-        n = n / len;
-        int above = 0, below = 0;
-        for (int m = 0; m < count; ++m) {
-          const double d = dot(points[m] - points[i], n);
-          above += d > tolerance;
-          below += d < -tolerance;
-        }
-        if (above > 0 && below > 0) continue;
-        if (above == 0 && below == 0) continue;  // all points coplanar: no volume
-        if (below > 0) n = -n;
-        if (planes < capacity) out[planes++] = {n, -dot(n, points[i])};
-      }
-  return planes;
-}
-
-struct LinkEstimate {
-  double formFactor = 0;   ///< F(receiver ← source), area mean over the receiver, visibility included
-  /// The coupling as polynomials over the receiver, one per term of the
-  /// source's radiosity polynomial (1, u, v, uv): what the receiver at (u, v)
-  /// gathers from a source whose R is that term, so a link carries
-  /// Σ_j R_j·shape[j] (shape[0]'s mean is formFactor).
-  std::array<ReceiverPolynomial<float>, 4> shape;
-  /// max over cubature points |F_k − shape(x_k)|: what the polynomial misses (visibility included)
-  double spread = 0;
-  double visibleFraction = 1;
-  int rays = 0;
+struct PendingPair {
+  uint32_t receiver, source;
+  bool clearShaft = false;  ///< known unoccluded from a parent pair
 };
 
 struct LinkRecord {
@@ -122,7 +75,7 @@ class ReflectedLightHierarchy {
   ReflectedLightHierarchy(const Scene &scene, const RayTracer &tracer, RadiosityMesh &mesh, DirectLightField &field,
                           const SolverOptions &options, double minimumEdge)
       : scene_(scene), tracer_(tracer), mesh_(mesh), field_(field), options_(options), faces_(scene),
-        minimumEdge_(minimumEdge), arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic) {
+        estimator_(tracer, faces_, options.seed), minimumEdge_(minimumEdge), arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic) {
     const Box3 &b = faces_.sceneBounds();
     scale_ = std::max(1e-9, length(b.hi - b.lo));
     for (uint32_t n = 0; n < mesh_.tree.size(); ++n) {
@@ -144,6 +97,7 @@ class ReflectedLightHierarchy {
     emission_.push_back(material.emission * kPi);
     reflected_.push_back(Bands(0.0));
     sourceShape_.emplace_back();
+    directShape_.emplace_back();
     gathered_.emplace_back();
     irradiance_.emplace_back();
     direct_.push_back(Bands(0.0));
@@ -171,18 +125,18 @@ class ReflectedLightHierarchy {
   void setThreshold(double absolute) { threshold_ = absolute; }
 
   void linkPatches() {
-    std::vector<std::pair<uint32_t, uint32_t>> pending;
+    std::vector<PendingPair> pending;
     for (uint32_t p = 0; p < mesh_.patches.size(); ++p)
       for (uint32_t q = 0; q < mesh_.patches.size(); ++q) {
         const uint32_t a = static_cast<uint32_t>(mesh_.patches[p].treeRoot), b = static_cast<uint32_t>(mesh_.patches[q].treeRoot);
-        if (p != q && reflectance_[a].max() > 0 && facing(a, b)) pending.push_back({a, b});
+        if (p != q && reflectance_[a].max() > 0 && facing(a, b)) pending.push_back({a, b, false});
       }
     refine(std::move(pending));
   }
 
   /// Multigridding: re-examines every link with the current R; returns how many were refined.
   size_t rerefine() {
-    std::vector<std::pair<uint32_t, uint32_t>> pending;
+    std::vector<PendingPair> pending;
     for (size_t l = 0; l < records_.size(); ++l) {
       LinkRecord &link = records_[l];
       if (!link.alive || error(link.receiver, link.source, link.estimate) <= threshold_) continue;
@@ -190,7 +144,7 @@ class ReflectedLightHierarchy {
       link.alive = false;
       auto &incoming = links_[link.receiver];
       incoming.erase(std::find(incoming.begin(), incoming.end(), uint32_t(l)));
-      split(link.receiver, link.source, pending);
+      split(link.receiver, link.source, link.estimate.clearShaft, pending);
     }
     const size_t refined = pending.size();
     refine(std::move(pending));
@@ -243,6 +197,7 @@ class ReflectedLightHierarchy {
 
  private:
   const Vec3 &normalOf(uint32_t n) const { return mesh_.patches[mesh_.tree[n].patch].normal; }
+  LinkEnd end(uint32_t n) const { return {mesh_.tree[n], normalOf(n), mesh_.patches[mesh_.tree[n].patch].face}; }
 
   /// The direct light over a leaf as a polynomial: through its corners'
   /// exact values, shifted so its mean is the Simpson mean (direct_).
@@ -268,7 +223,7 @@ class ReflectedLightHierarchy {
     const MeshTreeNode &t = mesh_.tree[n];
     const bool quad = t.vertexCount == 4;
     if (t.isLeaf()) {
-      ReceiverPolynomial<Bands> r = directShape(n);
+      ReceiverPolynomial<Bands> r = directShape_[n];
       r += irradiance_[n];
       for (auto &c : r.c) c = reflectance_[n] * c;
       sourceShape_[n] = r;
@@ -286,6 +241,7 @@ class ReflectedLightHierarchy {
     const MeshTreeNode &t = mesh_.tree[n];
     if (t.isLeaf()) {
       direct_[n] = field_.nodeAverage(t);
+      directShape_[n] = directShape(n);
       reflected_[n] = reflectance_[n] * direct_[n];
       return;
     }
@@ -350,141 +306,6 @@ class ReflectedLightHierarchy {
     return worst;
   }
 
-  /// True when the shaft between two nodes may hold another face (a face
-  /// other than theirs with area inside the convex hull of their corners).
-  bool shaftMayBeBlocked(uint32_t r, uint32_t s) const {
-    const MeshTreeNode &a = mesh_.tree[r], &b = mesh_.tree[s];
-    Vec3 points[8];
-    int count = 0;
-    for (int k = 0; k < a.vertexCount; ++k) points[count++] = a.corners[k];
-    for (int k = 0; k < b.vertexCount; ++k) points[count++] = b.corners[k];
-    const double tolerance = 1e-9 * scale_;
-    HalfSpace hull[64];
-    const int planes = convexHull(points, count, tolerance, hull, 64);
-    if (planes == 0) return false;
-    thread_local std::vector<uint32_t> candidates;
-    thread_local std::vector<Vec3> polygon, clipped;
-    faces_.facesInConvexRegion(hull, planes, tolerance, candidates);
-    const uint32_t faceA = mesh_.patches[a.patch].face, faceB = mesh_.patches[b.patch].face;
-    for (uint32_t f : candidates) {
-      if (f == faceA || f == faceB) continue;
-      const Face &face = scene_.faces[f];
-      polygon.clear();
-      for (int k = 0; k < face.vertexCount; ++k) polygon.push_back(scene_.positions[face.vertices[k]]);
-      // Clip to the hull shrunk by a hair: a face that only touches it (a
-      // wall meeting both nodes' edges) leaves nothing.
-      for (int h = 0; h < planes && polygon.size() >= 3; ++h) {
-        clipped.clear();
-        for (size_t k = 0; k < polygon.size(); ++k) {
-          const Vec3 &p = polygon[k], &q = polygon[(k + 1) % polygon.size()];
-          const double dp = hull[h].signedDistance(p) - 1e-7 * scale_, dq = hull[h].signedDistance(q) - 1e-7 * scale_;
-          if (dp >= 0) clipped.push_back(p);
-          if ((dp >= 0) != (dq >= 0)) clipped.push_back(p + (q - p) * (dp / (dp - dq)));
-        }
-        std::swap(polygon, clipped);
-      }
-      if (polygon.size() >= 3) {
-        double area = 0;
-        for (size_t k = 1; k + 1 < polygon.size(); ++k) area += length(cross(polygon[k] - polygon[0], polygon[k + 1] - polygon[0]));
-        if (area > 1e-14 * scale_ * scale_) return true;
-      }
-    }
-    return false;
-  }
-
-  /// F(r ← s) at the receiver's cubature points with visibility.
-  LinkEstimate estimate(uint32_t r, uint32_t s) const {
-    LinkEstimate e;
-    const MeshTreeNode &receiver = mesh_.tree[r], &source = mesh_.tree[s];
-    const Vec3 nr = normalOf(r), ns = normalOf(s);
-    const bool quad = receiver.vertexCount == 4;
-    const std::vector<CubaturePoint> &rule = receiverRule(quad);
-    const std::span<const Vec3> sourcePolygon(source.corners.data(), size_t(source.vertexCount));
-    const bool occlusion = shaftMayBeBlocked(r, s);
-    Pcg32 rng(mixBits(options_.seed * 0x9e3779b97f4a7c15ULL + r), mixBits((uint64_t(s) << 1) | 1));
-    const int count = static_cast<int>(rule.size());
-    // The source's strata, dealt to the cubature points in a random order.
-    int strata[9];
-    for (int k = 0; k < count; ++k) strata[k] = k;
-    for (int k = count - 1; k > 0; --k) std::swap(strata[k], strata[static_cast<int>(rng.next() * (k + 1))]);
-    const int side = count == 9 ? 3 : 1;
-    double f[9], visible[9], moment[3][9];
-    double unoccluded = 0, weightVisible = 0, weightAll = 0;
-    const double pieceArea = source.area / count;
-    const bool sourceQuad = source.vertexCount == 4;
-    const std::vector<CubaturePoint> &sourceRule = receiverRule(sourceQuad);
-    int arrived = 0, tested = 0;
-    for (int k = 0; k < count; ++k) {
-      const Vec3 x = pointOn(receiver, rule[k].u, rule[k].v);
-      f[k] = 0;
-      visible[k] = 1;
-      for (int j = 0; j < 3; ++j) moment[j][k] = 0;
-      if (dot(x - source.corners[0], ns) <= 1e-12 * scale_) continue;  // behind the source's front
-      f[k] = formFactorPointToPolygon(x, nr, sourcePolygon);
-      if (!(f[k] > 0)) continue;
-      unoccluded += rule[k].weight * f[k];
-      // Where on the source x's coupling lies: the kernel-weighted means of
-      // the source's u, v and uv over its cubature points (the + a keeps a
-      // near point's weights bounded, as in Wallace et al. 1989). With them a
-      // source whose R varies linearly is gathered to second order.
-      double weightSum = 0, mu = 0, mv = 0, muv = 0;
-      for (const CubaturePoint &q : sourceRule) {
-        const Vec3 y = pointOn(source, q.u, q.v);
-        const Vec3 d = y - x;
-        const double r2 = dot(d, d), dist = std::sqrt(r2);
-        const double cosX = dot(d, nr) / dist, cosY = -dot(d, ns) / dist;
-        if (!(cosX > 0 && cosY > 0)) continue;
-        const double w = q.weight * cosX * cosY / (kPi * r2 + pieceArea);
-        weightSum += w, mu += w * q.u, mv += w * q.v, muv += w * q.u * q.v;
-      }
-      if (weightSum > 0) {
-        moment[0][k] = mu / weightSum, moment[1][k] = mv / weightSum, moment[2][k] = muv / weightSum;
-      } else {  // the cubature points all edge-on: the centre's parameters
-        moment[0][k] = sourceQuad ? 0.5 : 1.0 / 3, moment[1][k] = moment[0][k], moment[2][k] = sourceQuad ? 0.25 : 0;
-      }
-      if (!occlusion) continue;
-      // One ray to a stratified point of the source in front of x's plane,
-      // weighted by the kernel of the piece it stands for: the near parts of
-      // a source dominate its form factor.
-      const double u1 = side == 3 ? (strata[k] % 3 + rng.next()) / 3 : (strata[k] + rng.next()) / count;
-      const double u2 = side == 3 ? (strata[k] / 3 + rng.next()) / 3 : rng.next();
-      Vec3 y = uniformPointOn(source, u1, u2);
-      for (int retry = 0; retry < 8 && dot(y - x, nr) <= 0; ++retry) y = uniformPointOn(source, rng.next(), rng.next());
-      const Vec3 d = y - x;
-      const double r2 = dot(d, d), dist = std::sqrt(r2);
-      const double cosX = dot(d, nr) / dist, cosY = -dot(d, ns) / dist;
-      if (cosX <= 0 || cosY <= 0) continue;
-      const double weight = rule[k].weight * cosX * cosY / (kPi * r2 + pieceArea);
-      ++tested;
-      weightAll += weight;
-      if (tracer_.visible(x, nr, y, ns)) {
-        weightVisible += weight;
-        ++arrived;
-      } else {
-        visible[k] = 0;
-      }
-    }
-    e.rays = tested;
-    e.visibleFraction = tested ? double(arrived) / tested : 1.0;
-    // The unoccluded factor's shape, scaled by the kernel-weighted visibility:
-    // one ray per point is too noisy to shape, and a link whose visibility
-    // varies shows it in the spread below, which refines it.
-    const double visibility = weightAll > 0 ? weightVisible / weightAll : 1.0;
-    double terms[9];
-    ReceiverPolynomial<double> constant;
-    for (int j = 0; j < 4; ++j) {
-      for (int k = 0; k < count; ++k) terms[k] = j == 0 ? f[k] : f[k] * moment[j - 1][k];
-      ReceiverPolynomial<double> p = fitReceiverPolynomial(quad, std::span<const double>(terms, size_t(count)));
-      if (j == 0) constant = p;
-      for (int c = 0; c < 4; ++c) e.shape[j].c[c] = float(p.c[c] * visibility);
-    }
-    if (!sourceQuad) e.shape[3] = {};  // a triangle's R has no uv term
-    e.formFactor = unoccluded * visibility;
-    for (int k = 0; k < count; ++k)
-      e.spread = std::max(e.spread, std::abs(f[k] * visible[k] - visibility * constant.value(rule[k].u, rule[k].v)));
-    return e;
-  }
-
   void splitNode(uint32_t n) {
     if (!mesh_.tree[n].isLeaf()) return;
     splitTreeNode(mesh_, n);
@@ -501,7 +322,7 @@ class ReflectedLightHierarchy {
   }
 
   /// Replaces the pair by pairs with the children of the larger node.
-  void split(uint32_t r, uint32_t s, std::vector<std::pair<uint32_t, uint32_t>> &pending) {
+  void split(uint32_t r, uint32_t s, bool clearShaft, std::vector<PendingPair> &pending) {
     const bool receiverFirst = mesh_.tree[r].area >= mesh_.tree[s].area;
     const bool splitReceiver = canSplit(r) && (receiverFirst || !canSplit(s));
     const uint32_t node = splitReceiver ? r : s;
@@ -509,23 +330,25 @@ class ReflectedLightHierarchy {
     for (int c = 0; c < 4; ++c) {
       const uint32_t child = static_cast<uint32_t>(mesh_.tree[node].children[c]);
       const uint32_t rr = splitReceiver ? child : r, ss = splitReceiver ? s : child;
-      if (facing(rr, ss)) pending.push_back({rr, ss});
+      if (facing(rr, ss)) pending.push_back({rr, ss, clearShaft});
     }
   }
 
-  void refine(std::vector<std::pair<uint32_t, uint32_t>> pending) {
+  void refine(std::vector<PendingPair> pending) {
     while (!pending.empty()) {
       std::vector<LinkEstimate> estimates(pending.size());
       arena_.execute([&] {
-        tbb::parallel_for(size_t(0), pending.size(),
-                          [&](size_t i) { estimates[i] = estimate(pending[i].first, pending[i].second); });
+        tbb::parallel_for(size_t(0), pending.size(), [&](size_t i) {
+          const uint32_t r = pending[i].receiver, s = pending[i].source;
+          estimates[i] = estimator_.estimate(end(r), end(s), (uint64_t(r) << 32) | s, pending[i].clearShaft);
+        });
       });
-      std::vector<std::pair<uint32_t, uint32_t>> next;
+      std::vector<PendingPair> next;
       for (size_t i = 0; i < pending.size(); ++i) {
-        const auto [r, s] = pending[i];
+        const uint32_t r = pending[i].receiver, s = pending[i].source;
         rays_ += estimates[i].rays;
         if (error(r, s, estimates[i]) > threshold_ && (canSplit(r) || canSplit(s))) {
-          split(r, s, next);
+          split(r, s, estimates[i].clearShaft, next);
           continue;
         }
         if (!(estimates[i].formFactor > 0)) continue;
@@ -554,7 +377,10 @@ class ReflectedLightHierarchy {
     for (uint32_t n : newLeaves_)
       for (int c = 0; c < 4; ++c) {
         const uint32_t child = static_cast<uint32_t>(mesh_.tree[n].children[c]);
-        if (mesh_.tree[child].isLeaf()) direct_[child] = field_.nodeAverage(mesh_.tree[child]);
+        if (mesh_.tree[child].isLeaf()) {
+          direct_[child] = field_.nodeAverage(mesh_.tree[child]);
+          directShape_[child] = directShape(child);
+        }
       }
   }
 
@@ -587,12 +413,14 @@ class ReflectedLightHierarchy {
   DirectLightField &field_;
   const SolverOptions &options_;
   FaceTree faces_;
+  LinkEstimator estimator_;
   double minimumEdge_ = 0, threshold_ = 0, scale_ = 1;
   mutable tbb::task_arena arena_;
   // Per tree node.
   std::vector<Bands> reflectance_, emission_, reflected_, direct_;
-  /// R over each node as a polynomial in its parameters (mean: reflected_).
-  std::vector<ReceiverPolynomial<Bands>> sourceShape_;
+  /// R over each node as a polynomial in its parameters (mean: reflected_),
+  /// and at the leaves H_direct's (directShape).
+  std::vector<ReceiverPolynomial<Bands>> sourceShape_, directShape_;
   /// What each node gathered over its own links, and at the leaves all they received, as polynomials.
   std::vector<ReceiverPolynomial<Bands>> gathered_, irradiance_;
   std::vector<std::vector<uint32_t>> links_;  ///< incoming links, indices into records_
@@ -639,6 +467,42 @@ void ReflectedLightHierarchy::writeTo(Solution &s) const {
       s.nodeIndirectIrradiance[element.nodes[k]] += irradiance_[n].value(u, v) * element.area;
       weight[element.nodes[k]] += element.area;
     }
+  }
+  if (std::getenv("NODAL")) {
+    std::vector<int32_t> parent(mesh_.tree.size(), -1), leafOfNode(mesh_.nodes.size(), -1);
+    for (uint32_t n = 0; n < mesh_.tree.size(); ++n)
+      for (int c = 0; c < 4; ++c) if (mesh_.tree[n].children[c] >= 0) parent[mesh_.tree[n].children[c]] = int32_t(n);
+    for (uint32_t n = 0; n < mesh_.tree.size(); ++n) {
+      const int32_t e = mesh_.tree[n].element;
+      if (e < 0) continue;
+      for (int k = 0; k < mesh_.elements[e].vertexCount; ++k) if (leafOfNode[mesh_.elements[e].nodes[k]] < 0) leafOfNode[mesh_.elements[e].nodes[k]] = int32_t(n);
+    }
+    std::vector<Bands> gathered(mesh_.nodes.size(), Bands(0.0));
+    arena_.execute([&] {
+      tbb::parallel_for(size_t(0), mesh_.nodes.size(), [&](size_t v) {
+        if (leafOfNode[v] < 0) return;
+        const Patch &patch = mesh_.patches[mesh_.nodePatch[v]];
+        Vec3 centre; for (int k = 0; k < patch.vertexCount; ++k) centre += patch.corners[k];
+        centre = centre / patch.vertexCount;
+        const Vec3 x = mesh_.nodes[v] + (centre - mesh_.nodes[v]) * 1e-7, nr = patch.normal;
+        Bands h(0.0);
+        for (int32_t a = leafOfNode[v]; a >= 0; a = parent[a])
+          for (uint32_t l : links_[a]) {
+            const LinkRecord &link = records_[l];
+            const MeshTreeNode &source = mesh_.tree[link.source];
+            const Vec3 ns = normalOf(link.source);
+            if (dot(x - source.corners[0], ns) <= 1e-12 * scale_) continue;
+            const double f = formFactorPointToPolygon(x, nr, std::span<const Vec3>(source.corners.data(), size_t(source.vertexCount)));
+            if (!(f > 0)) continue;
+            const std::array<double, 3> m = sourceMoments(x, nr, source, ns);
+            const double u = m[0], w2 = m[1], uv = m[2];
+            const ReceiverPolynomial<Bands> &r = sourceShape_[link.source];
+            h += (r.c[0] + r.c[1] * u + r.c[2] * w2 + r.c[3] * uv) * (f * link.estimate.visibility);
+          }
+        gathered[v] = h;
+      });
+    });
+    for (uint32_t v = 0; v < mesh_.nodes.size(); ++v) if (weight[v] > 0) { s.nodeIndirectIrradiance[v] = gathered[v]; weight[v] = 1; }
   }
   for (uint32_t v = 0; v < mesh_.nodes.size(); ++v) {
     if (weight[v] > 0) s.nodeIndirectIrradiance[v] = s.nodeIndirectIrradiance[v] / weight[v];

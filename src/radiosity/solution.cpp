@@ -68,6 +68,8 @@ void Solution::shareNodesAcrossPatches(std::vector<Bands> &sums, std::vector<dou
   };
   std::unordered_map<Key, std::vector<uint32_t>, KeyHash> at;
   for (uint32_t v = 0; v < mesh.nodes.size(); ++v) {
+    // A node on a cut (the foot of a wall standing there) keeps its own patch's value.
+    if (!mesh.nodeOnCut.empty() && mesh.nodeOnCut[v]) continue;
     const Vec3 &p = mesh.nodes[v];
     at[{std::llround(p.x / cell), std::llround(p.y / cell), std::llround(p.z / cell)}].push_back(v);
   }

@@ -38,7 +38,11 @@ Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOpt
     // It refines the patches' trees itself, from a uniform start.
     if (options.adaptiveRounds > 0)
       throw InputError(InputLocation{"--adaptive-rounds"}, "hierarchical-exact refines by itself");
-    Solution s = initialSolution(scene, buildTreeMesh(scene, meshOptions));
+    // Faces cut where other surfaces meet them, hidden parts left out (mesh/face_split.h).
+    const std::vector<FaceSplit> splits = splitFaces(scene, tracer);
+    MeshOptions cut = meshOptions;
+    cut.faceSplits = &splits;
+    Solution s = initialSolution(scene, buildTreeMesh(scene, cut));
     solveRadiosity(tracer, s, options, progress);
     return s;
   }

@@ -33,7 +33,9 @@ class Sampler {
     const auto &alpha = generators();
     // s·α mod 1 in two steps keeps full precision for large s.
     for (int k = 0; k < kQuasiRandomDimensions; ++k) {
-      double x = offsets.next() + std::fmod(double(sample) * alpha[k], 1.0);
+      // a − ⌊a⌋ is fmod(a, 1) exactly for a ≥ 0 (Sterbenz), at a fraction of its cost.
+      const double a = double(sample) * alpha[k];
+      double x = offsets.next() + (a - std::floor(a));
       point_[k] = x - std::floor(x);
     }
   }

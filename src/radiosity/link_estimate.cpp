@@ -1,0 +1,213 @@
+#include "radiosity/link_estimate.h"
+
+#include <cmath>
+
+#include "radiosity/form_factor.h"
+#include "util/random.h"
+
+namespace radiant {
+
+namespace {
+
+/// Half-spaces bounding the convex hull of a few points (inward normals):
+/// every plane through three of them that has all the others on one side.
+int convexHull(const Vec3 *points, int count, double tolerance, HalfSpace *out, int capacity) {
+  int planes = 0;
+  for (int i = 0; i < count; ++i)
+    for (int j = i + 1; j < count; ++j)
+      for (int k = j + 1; k < count; ++k) {
+        Vec3 n = cross(points[j] - points[i], points[k] - points[i]);
+        const double len = length(n);
+        if (!(len > 0)) continue;
+        n = n / len;
+        int above = 0, below = 0;
+        for (int m = 0; m < count; ++m) {
+          const double d = dot(points[m] - points[i], n);
+          above += d > tolerance;
+          below += d < -tolerance;
+        }
+        if (above > 0 && below > 0) continue;
+        if (above == 0 && below == 0) continue;  // all points coplanar: no volume
+        if (below > 0) n = -n;
+        if (planes < capacity) out[planes++] = {n, -dot(n, points[i])};
+      }
+  return planes;
+}
+
+/// A uniform point of a node from a point of the unit square (triangles:
+/// the square-root map, Shirley 1990).
+Vec3 uniformPointOn(const MeshTreeNode &n, double u1, double u2) {
+  if (n.vertexCount == 4) return pointOn(n, u1, u2);
+  const double s = std::sqrt(u1);
+  return pointOn(n, s * (1 - u2), s * u2);
+}
+
+}  // namespace
+
+/// Where the source moments are taken: 2 × 2 Gauss–Legendre on a quad
+/// (exact for degree 3), the edge midpoints on a triangle (degree 2).
+const std::vector<CubaturePoint> &momentRule(bool quad) {
+  static const std::vector<CubaturePoint> quadRule = [] {
+    const double g[2] = {0.5 - 0.5 / std::sqrt(3.0), 0.5 + 0.5 / std::sqrt(3.0)};
+    std::vector<CubaturePoint> r;
+    for (double u : g)
+      for (double v : g) r.push_back({u, v, 0.25});
+    return r;
+  }();
+  static const std::vector<CubaturePoint> triangleRule = {{0.5, 0, 1.0 / 3}, {0.5, 0.5, 1.0 / 3}, {0, 0.5, 1.0 / 3}};
+  return quad ? quadRule : triangleRule;
+}
+
+Vec3 pointOn(const MeshTreeNode &n, double u, double v) {
+  const auto &c = n.corners;
+  if (n.vertexCount == 4)
+    return c[0] * ((1 - u) * (1 - v)) + c[1] * (u * (1 - v)) + c[2] * (u * v) + c[3] * ((1 - u) * v);
+  return c[0] * (1 - u - v) + c[1] * u + c[2] * v;
+}
+
+
+std::array<double, 3> sourceMoments(const Vec3 &x, const Vec3 &n, const MeshTreeNode &source, const Vec3 &sourceNormal) {
+  // Kernel weights at the source's moment points; the + a keeps a near
+  // point's weights bounded, as in Wallace, Elmquist & Haines 1989.
+  const bool quad = source.vertexCount == 4;
+  const double piece = source.area / 9;
+  double weightSum = 0, mu = 0, mv = 0, muv = 0;
+  for (const CubaturePoint &q : momentRule(quad)) {
+    const Vec3 d = pointOn(source, q.u, q.v) - x;
+    const double r2 = dot(d, d), dist = std::sqrt(r2);
+    const double cosX = dot(d, n) / dist, cosY = -dot(d, sourceNormal) / dist;
+    if (!(cosX > 0 && cosY > 0)) continue;
+    const double w = q.weight * cosX * cosY / (kPi * r2 + piece);
+    weightSum += w, mu += w * q.u, mv += w * q.v, muv += w * q.u * q.v;
+  }
+  if (weightSum > 0) return {mu / weightSum, mv / weightSum, muv / weightSum};
+  return quad ? std::array<double, 3>{0.5, 0.5, 0.25} : std::array<double, 3>{1.0 / 3, 1.0 / 3, 0};
+}
+
+LinkEstimator::LinkEstimator(const RayTracer &tracer, const FaceTree &faces, uint64_t seed)
+    : tracer_(tracer), scene_(tracer.scene()), faces_(faces), seed_(seed) {
+  const Box3 &b = faces_.sceneBounds();
+  scale_ = std::max(1e-9, length(b.hi - b.lo));
+}
+
+bool LinkEstimator::shaftMayBeBlocked(const LinkEnd &receiver, const LinkEnd &source) const {
+    const MeshTreeNode &a = receiver.node, &b = source.node;
+    Vec3 points[8];
+    int count = 0;
+    for (int k = 0; k < a.vertexCount; ++k) points[count++] = a.corners[k];
+    for (int k = 0; k < b.vertexCount; ++k) points[count++] = b.corners[k];
+    const double tolerance = 1e-9 * scale_;
+    HalfSpace hull[64];
+    const int planes = convexHull(points, count, tolerance, hull, 64);
+    if (planes == 0) return false;
+    thread_local std::vector<uint32_t> candidates;
+    thread_local std::vector<Vec3> polygon, clipped;
+    faces_.facesInConvexRegion(hull, planes, tolerance, candidates);
+    const uint32_t faceA = receiver.face, faceB = source.face;
+    for (uint32_t f : candidates) {
+      if (f == faceA || f == faceB) continue;
+      const Face &face = scene_.faces[f];
+      polygon.clear();
+      for (int k = 0; k < face.vertexCount; ++k) polygon.push_back(scene_.positions[face.vertices[k]]);
+      // Clip to the hull shrunk by a hair: a face that only touches it (a
+      // wall meeting both nodes' edges) leaves nothing.
+      for (int h = 0; h < planes && polygon.size() >= 3; ++h) {
+        clipped.clear();
+        for (size_t k = 0; k < polygon.size(); ++k) {
+          const Vec3 &p = polygon[k], &q = polygon[(k + 1) % polygon.size()];
+          const double dp = hull[h].signedDistance(p) - 1e-7 * scale_, dq = hull[h].signedDistance(q) - 1e-7 * scale_;
+          if (dp >= 0) clipped.push_back(p);
+          if ((dp >= 0) != (dq >= 0)) clipped.push_back(p + (q - p) * (dp / (dp - dq)));
+        }
+        std::swap(polygon, clipped);
+      }
+      if (polygon.size() >= 3) {
+        double area = 0;
+        for (size_t k = 1; k + 1 < polygon.size(); ++k) area += length(cross(polygon[k] - polygon[0], polygon[k + 1] - polygon[0]));
+        if (area > 1e-14 * scale_ * scale_) return true;
+      }
+    }
+    return false;
+  }
+
+LinkEstimate LinkEstimator::estimate(const LinkEnd &receiverEnd, const LinkEnd &sourceEnd, uint64_t key,
+                                     bool knownClear) const {
+    LinkEstimate e;
+    const MeshTreeNode &receiver = receiverEnd.node, &source = sourceEnd.node;
+    const Vec3 nr = receiverEnd.normal, ns = sourceEnd.normal;
+    const bool quad = receiver.vertexCount == 4;
+    const std::vector<CubaturePoint> &rule = receiverRule(quad);
+    const std::span<const Vec3> sourcePolygon(source.corners.data(), size_t(source.vertexCount));
+    const bool occlusion = !knownClear && shaftMayBeBlocked(receiverEnd, sourceEnd);
+    e.clearShaft = !occlusion;
+    Pcg32 rng(mixBits(seed_ * 0x9e3779b97f4a7c15ULL + key), mixBits((key >> 17) | 1));
+    const int count = static_cast<int>(rule.size());
+    // The source's strata, dealt to the cubature points in a random order.
+    int strata[9];
+    for (int k = 0; k < count; ++k) strata[k] = k;
+    for (int k = count - 1; k > 0; --k) std::swap(strata[k], strata[static_cast<int>(rng.next() * (k + 1))]);
+    const int side = count == 9 ? 3 : 1;
+    double f[9], visible[9], moment[3][9];
+    double unoccluded = 0, weightVisible = 0, weightAll = 0;
+    const double pieceArea = source.area / count;
+    const bool sourceQuad = source.vertexCount == 4;
+    int arrived = 0, tested = 0;
+    for (int k = 0; k < count; ++k) {
+      const Vec3 x = pointOn(receiver, rule[k].u, rule[k].v);
+      f[k] = 0;
+      visible[k] = 1;
+      for (int j = 0; j < 3; ++j) moment[j][k] = 0;
+      if (dot(x - source.corners[0], ns) <= 1e-12 * scale_) continue;  // behind the source's front
+      f[k] = formFactorPointToPolygon(x, nr, sourcePolygon);
+      if (!(f[k] > 0)) continue;
+      unoccluded += rule[k].weight * f[k];
+      // Where on the source x's coupling lies: with these a source whose R
+      // varies linearly is gathered to second order.
+      const std::array<double, 3> m = sourceMoments(x, nr, source, ns);
+      for (int j = 0; j < 3; ++j) moment[j][k] = m[j];
+      if (!occlusion) continue;
+      // One ray to a stratified point of the source in front of x's plane,
+      // weighted by the kernel of the piece it stands for: the near parts of
+      // a source dominate its form factor.
+      const double u1 = side == 3 ? (strata[k] % 3 + rng.next()) / 3 : (strata[k] + rng.next()) / count;
+      const double u2 = side == 3 ? (strata[k] / 3 + rng.next()) / 3 : rng.next();
+      Vec3 y = uniformPointOn(source, u1, u2);
+      for (int retry = 0; retry < 8 && dot(y - x, nr) <= 0; ++retry) y = uniformPointOn(source, rng.next(), rng.next());
+      const Vec3 d = y - x;
+      const double r2 = dot(d, d), dist = std::sqrt(r2);
+      const double cosX = dot(d, nr) / dist, cosY = -dot(d, ns) / dist;
+      if (cosX <= 0 || cosY <= 0) continue;
+      const double weight = rule[k].weight * cosX * cosY / (kPi * r2 + pieceArea);
+      ++tested;
+      weightAll += weight;
+      if (tracer_.visible(x, nr, y, ns)) {
+        weightVisible += weight;
+        ++arrived;
+      } else {
+        visible[k] = 0;
+      }
+  }
+    e.rays = tested;
+    e.visibleFraction = tested ? double(arrived) / tested : 1.0;
+    // The unoccluded factor's shape, scaled by the kernel-weighted visibility:
+    // one ray per point is too noisy to shape, and a link whose visibility
+    // varies shows it in the spread below, which refines it.
+    const double visibility = weightAll > 0 ? weightVisible / weightAll : 1.0;
+    double terms[9];
+    ReceiverPolynomial<double> constant;
+    for (int j = 0; j < 4; ++j) {
+      for (int k = 0; k < count; ++k) terms[k] = j == 0 ? f[k] : f[k] * moment[j - 1][k];
+      ReceiverPolynomial<double> p = fitReceiverPolynomial(quad, std::span<const double>(terms, size_t(count)));
+      if (j == 0) constant = p;
+      for (int c = 0; c < 4; ++c) e.shape[j].c[c] = float(p.c[c] * visibility);
+    }
+    if (!sourceQuad) e.shape[3] = {};  // a triangle's R has no uv term
+    e.formFactor = unoccluded * visibility;
+    e.visibility = visibility;
+    for (int k = 0; k < count; ++k)
+      e.spread = std::max(e.spread, std::abs(f[k] * visible[k] - visibility * constant.value(rule[k].u, rule[k].v)));
+    return e;
+  }
+
+
+}  // namespace radiant
