@@ -106,7 +106,7 @@ Solution solveScene(const Scene &scene, const RayTracer &tracer, const Radiosity
   solverOptions.threads = threads;
   if (o.solver.importance) {
     // "auto" is settled by the patch count, one patch per face.
-    const std::string resolved = resolveSolverName(o.solver.solver, scene.faces.size());
+    const std::string resolved = resolveSolverName(o.solver.solver, scene.faces.size(), true);
     if (resolved != "hierarchical")
       throw InputError(InputLocation{"--importance"},
                        fmt::format("applies only to --solver hierarchical; --solver {} runs {} on {} patches",

@@ -147,6 +147,9 @@ RadiosityMesh buildMesh(const Scene &scene, const MeshOptions &options);
 /// Like buildMesh, but each patch is a tree split four-way until every leaf
 /// is no longer than the uniform mesh's longest element edge.
 RadiosityMesh buildTreeMesh(const Scene &scene, const MeshOptions &options);
+/// Makes every patch the root of a one-node tree (its elements are then
+/// rebuilt from the trees by rebuildElementsFromTrees).
+void makePatchTrees(RadiosityMesh &mesh);
 /// Splits the leaves whose element error estimate exceeds `threshold`, worst
 /// first, while the element count stays within `maxElements`; rebuilds the
 /// elements, nodes and T-vertices. Returns how many elements were split.

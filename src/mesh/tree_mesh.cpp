@@ -136,15 +136,7 @@ void rebuildElementsFromTrees(RadiosityMesh &mesh) {
   mesh.markNodesOnCuts();
 }
 
-RadiosityMesh buildTreeMesh(const Scene &scene, const MeshOptions &options) {
-  // The uniform mesh's patches (and its size checks), then trees split
-  // until every leaf's longest edge is at most the element size.
-  RadiosityMesh mesh = buildMesh(scene, options);
-  double edge = 0;
-  for (const Element &e : mesh.elements) {
-    std::vector<Vec3> poly = mesh.polygon(static_cast<uint32_t>(&e - mesh.elements.data()));
-    for (size_t k = 0; k < poly.size(); ++k) edge = std::max(edge, length(poly[(k + 1) % poly.size()] - poly[k]));
-  }
+void makePatchTrees(RadiosityMesh &mesh) {
   mesh.tree.clear();
   for (uint32_t p = 0; p < mesh.patches.size(); ++p) {
     Patch &patch = mesh.patches[p];
@@ -157,6 +149,18 @@ RadiosityMesh buildTreeMesh(const Scene &scene, const MeshOptions &options) {
     patch.divisionsU = patch.divisionsV = 1;
     mesh.tree.push_back(root);
   }
+}
+
+RadiosityMesh buildTreeMesh(const Scene &scene, const MeshOptions &options) {
+  // The uniform mesh's patches (and its size checks), then trees split
+  // until every leaf's longest edge is at most the element size.
+  RadiosityMesh mesh = buildMesh(scene, options);
+  double edge = 0;
+  for (const Element &e : mesh.elements) {
+    std::vector<Vec3> poly = mesh.polygon(static_cast<uint32_t>(&e - mesh.elements.data()));
+    for (size_t k = 0; k < poly.size(); ++k) edge = std::max(edge, length(poly[(k + 1) % poly.size()] - poly[k]));
+  }
+  makePatchTrees(mesh);
   size_t leaves = mesh.patches.size();
   for (size_t n = 0; n < mesh.tree.size(); ++n) {  // grows while we split
     const MeshTreeNode &node = mesh.tree[n];

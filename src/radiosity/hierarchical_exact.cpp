@@ -544,7 +544,12 @@ void solveHierarchicalExact(const RayTracer &tracer, Solution &s, const SolverOp
   const auto start = std::chrono::steady_clock::now();
   const Scene &scene = tracer.scene();
   RadiosityMesh &mesh = s.mesh;
-  if (mesh.tree.empty()) throw std::logic_error("hierarchical-exact needs a tree mesh (buildTreeMesh)");
+  // A uniform mesh (a caller's, not meshAndSolve's): its patches become the
+  // trees' roots, and the refinement below makes the elements again.
+  if (mesh.tree.empty()) {
+    makePatchTrees(mesh);
+    rebuildElementsFromTrees(mesh);
+  }
 
   // 1. The direct light, exact, and the trees refined for it.
   DirectIrradiance direct(scene);

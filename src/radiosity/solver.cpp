@@ -26,15 +26,16 @@ const std::vector<SolverInfo> &solverRegistry() {
   return table;
 }
 
-std::string resolveSolverName(const std::string &name, size_t patches) {
+std::string resolveSolverName(const std::string &name, size_t patches, bool importance) {
   constexpr size_t kAutoHierarchicalPatches = 2000;
   if (name != "auto") return name;
-  return patches <= kAutoHierarchicalPatches ? "hierarchical" : "stochastic";
+  if (importance && patches <= kAutoHierarchicalPatches) return "hierarchical";
+  return patches <= kAutoHierarchicalPatches ? "hierarchical-exact" : "stochastic";
 }
 
 Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOptions &meshOptions,
                       const SolverOptions &options, const SolverProgressCallback &progress) {
-  if (resolveSolverName(options.solver, scene.faces.size()) == "hierarchical-exact") {
+  if (resolveSolverName(options.solver, scene.faces.size(), options.importance) == "hierarchical-exact") {
     // It refines the patches' trees itself, from a uniform start.
     if (options.adaptiveRounds > 0)
       throw InputError(InputLocation{"--adaptive-rounds"}, "hierarchical-exact refines by itself");
@@ -53,7 +54,7 @@ Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOpt
   }
   RadiosityMesh mesh = buildTreeMesh(scene, meshOptions);
   SolverOptions round = options;
-  round.solver = resolveSolverName(options.solver, mesh.patches.size());
+  round.solver = resolveSolverName(options.solver, mesh.patches.size(), options.importance);
   if (round.solver == "hierarchical")
     throw InputError(InputLocation{"--adaptive-rounds"},
                      "the hierarchical solver refines by itself; adaptive rounds are for --solver gauss-seidel, "
@@ -82,7 +83,7 @@ void solveRadiosity(const RayTracer &tracer, Solution &solution, const SolverOpt
   // "auto": hierarchical radiosity links every pair of input patches first,
   // which is cheap for a room of tens of patches and hopeless for 10⁵ of them;
   // beyond a few thousand patches the stochastic solver takes over.
-  std::string name = resolveSolverName(options.solver, solution.mesh.patches.size());
+  std::string name = resolveSolverName(options.solver, solution.mesh.patches.size(), options.importance);
   const SolverInfo *chosen = nullptr;
   std::string names = "auto";
   for (const SolverInfo &info : solverRegistry()) {

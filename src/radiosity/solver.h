@@ -21,8 +21,8 @@ struct ImportanceView {
 };
 
 struct SolverOptions {
-  /// A name from solverRegistry(), or "auto": hierarchical for up to 2000
-  /// input patches, stochastic beyond.
+  /// A name from solverRegistry(), or "auto": hierarchical-exact for up to
+  /// 2000 input faces, stochastic beyond.
   std::string solver = "auto";
   /// Gauss–Seidel and hierarchical: max change of B in a sweep over the
   /// largest reflected radiosity B − E; progressive: unshot power over
@@ -52,7 +52,7 @@ struct SolverOptions {
   /// …down to leaves of this edge, metres (0: 1/256 of the scene's extent);
   double directMinimumEdge = 0;
   /// a link is refined while its estimated error exceeds this fraction…
-  double linkError = 0.01;
+  double linkError = 0.003;
   /// …and its nodes' edges are at least twice this, metres (0: 1/64 of the extent).
   double linkMinimumEdge = 0;
   /// Hierarchical, --importance: refine for `importanceView` only (Smits,
@@ -94,8 +94,10 @@ const std::vector<SolverInfo> &solverRegistry();
 void solveRadiosity(const RayTracer &tracer, Solution &solution, const SolverOptions &options,
                     const SolverProgressCallback &progress = {});
 
-/// "auto" resolved for a mesh of `patches` input patches; other names unchanged.
-std::string resolveSolverName(const std::string &name, size_t patches);
+/// "auto" resolved for a mesh of `patches` input patches; other names
+/// unchanged. With `importance` (--importance), "auto" picks the solver that
+/// refines for a view: hierarchical.
+std::string resolveSolverName(const std::string &name, size_t patches, bool importance = false);
 
 /// Meshes the scene and solves it. With options.adaptiveRounds > 0 the mesh is
 /// a tree mesh, and each round splits the elements whose error estimate
