@@ -108,14 +108,16 @@ double DirectIrradiance::unoccludedFormFactor(const Vec3 &x, const Vec3 &n, size
   return formFactorPointToPolygon(x, n, std::span<const Vec3>(e.corners.data(), size_t(e.vertexCount)));
 }
 
-double DirectIrradiance::visibleFormFactor(const Vec3 &x, const Vec3 &n, size_t emitter) const {
-  const EmitterPolygon &e = emitters_[emitter];
-  const double heightOfX = dot(x - e.corners[0], e.normal);
-  if (heightOfX <= 1e-12 * scale_) return 0;  // behind the emitting side (or in its plane)
+double visibleFormFactor(const Scene &scene, const FaceTree *tree, const std::vector<uint32_t> *occluders,
+                         const Vec3 &x, const Vec3 &n, std::span<const Vec3> polygon, const Vec3 &polygonNormal,
+                         int64_t skipFace, double scale) {
+  const Vec3 origin = polygon[0];
+  const double heightOfX = dot(x - origin, polygonNormal);
+  if (heightOfX <= 1e-12 * scale) return 0;  // behind the emitting side (or in its plane)
   thread_local Scratch s;
 
-  // The part of the emitter in front of x's tangent plane: the pyramid's base.
-  clipToFrontHalfSpace(x, n, std::span<const Vec3>(e.corners.data(), size_t(e.vertexCount)), s.base);
+  // The part of the polygon in front of x's tangent plane: the pyramid's base.
+  clipToFrontHalfSpace(x, n, polygon, s.base);
   if (s.base.size() < 3) return 0;
   Vec3 baseCentre;
   for (const Vec3 &v : s.base) baseCentre += v;
@@ -134,16 +136,16 @@ double DirectIrradiance::visibleFormFactor(const Vec3 &x, const Vec3 &n, size_t 
     if (dot(normal, baseCentre - x) < 0) normal = -normal;
     pyramid[planes++] = {normal, -dot(normal, x)};
   }
-  pyramid[planes++] = {e.normal, -dot(e.normal, e.corners[0])};
-  const double tolerance = 1e-9 * scale_;
-  faces_.facesInConvexRegion(pyramid, planes, tolerance, s.candidates);
+  pyramid[planes++] = {polygonNormal, -dot(polygonNormal, origin)};
+  const double tolerance = 1e-9 * scale;
+  if (!occluders) tree->facesInConvexRegion(pyramid, planes, tolerance, s.candidates);
+  const std::vector<uint32_t> &candidates = occluders ? *occluders : s.candidates;
 
   const double unoccluded = formFactorPointToPolygon(x, n, s.base);
-  if (s.candidates.empty() || !(unoccluded > 0)) return unoccluded;
+  if (candidates.empty() || !(unoccluded > 0)) return unoccluded;
 
   // The base in the emitter plane's 2-D frame, counter-clockwise.
-  const Frame frame = Frame::fromNormal(e.normal);
-  const Vec3 origin = e.corners[0];
+  const Frame frame = Frame::fromNormal(polygonNormal);
   auto to2 = [&](const Vec3 &p) { return Point2{dot(p - origin, frame.tangent), dot(p - origin, frame.bitangent)}; };
   s.pieces.clear();
   s.pieces.emplace_back();
@@ -154,15 +156,15 @@ double DirectIrradiance::visibleFormFactor(const Vec3 &x, const Vec3 &n, size_t 
   const double baseSize = std::sqrt(baseArea);
 
   bool occluded = false;
-  for (uint32_t f : s.candidates) {
-    if (f == e.face) continue;
-    const Face &face = scene_.faces[f];
-    const Vec3 faceNormal = scene_.faceNormal(face);
+  for (uint32_t f : candidates) {
+    if (int64_t(f) == skipFace) continue;
+    const Face &face = scene.faces[f];
+    const Vec3 faceNormal = scene.faceNormal(face);
     // A face whose plane passes through x (x's own face, a coplanar
     // neighbour, a wall standing on x's edge) projects to a line: no area.
-    if (std::abs(dot(x - scene_.positions[face.vertices[0]], faceNormal)) <= tolerance) continue;
+    if (std::abs(dot(x - scene.positions[face.vertices[0]], faceNormal)) <= tolerance) continue;
     s.clipped.clear();
-    for (int k = 0; k < face.vertexCount; ++k) s.clipped.push_back(scene_.positions[face.vertices[k]]);
+    for (int k = 0; k < face.vertexCount; ++k) s.clipped.push_back(scene.positions[face.vertices[k]]);
     for (int h = 0; h < planes && s.clipped.size() >= 3; ++h) {
       const bool emitterPlane = h == planes - 1;
       clipToHalfSpace(s.clipped, pyramid[h], emitterPlane ? tolerance : 0.0, s.swap);
@@ -173,7 +175,7 @@ double DirectIrradiance::visibleFormFactor(const Vec3 &x, const Vec3 &n, size_t 
     // h above it (x is at heightOfX) lands at x + (p − x)·heightOfX/(heightOfX − h).
     s.projected.clear();
     for (const Vec3 &p : s.clipped) {
-      const double drop = heightOfX - dot(p - origin, e.normal);
+      const double drop = heightOfX - dot(p - origin, polygonNormal);
       if (!(drop > 1e-15 * heightOfX)) continue;  // at the apex: already excluded by the plane test
       s.projected.push_back(to2(x + (p - x) * (heightOfX / drop)));
     }
@@ -213,6 +215,13 @@ double DirectIrradiance::visibleFormFactor(const Vec3 &x, const Vec3 &n, size_t 
     visible += formFactorPointToPolygon(x, n, s.lifted);
   }
   return std::min(visible, unoccluded);
+}
+
+double DirectIrradiance::visibleFormFactor(const Vec3 &x, const Vec3 &n, size_t emitter) const {
+  const EmitterPolygon &e = emitters_[emitter];
+  return radiant::visibleFormFactor(scene_, &faces_, nullptr, x, n,
+                                    std::span<const Vec3>(e.corners.data(), size_t(e.vertexCount)), e.normal, e.face,
+                                    scale_);
 }
 
 Bands DirectIrradiance::irradiance(const Vec3 &x, const Vec3 &n) const {

@@ -29,6 +29,18 @@
 
 namespace radiant {
 
+/// F(x → the part of the convex polygon `polygon` (front normal
+/// `polygonNormal`) that x, with normal n, sees), exact: the faces that may
+/// lie between are `*occluders` when given (any superset will do: a link's
+/// candidates), else found in `tree`. `skipFace`: a face never counted as an
+/// occluder (the polygon's own), −1 for none. `scale`: the scene's size,
+/// metres, which sets the tolerances. A face whose plane passes through x
+/// (x's own, a wall standing on x's edge) blocks nothing: evaluate a point on
+/// such a line a hair inside its face.
+double visibleFormFactor(const Scene &scene, const FaceTree *tree, const std::vector<uint32_t> *occluders,
+                         const Vec3 &x, const Vec3 &n, std::span<const Vec3> polygon, const Vec3 &polygonNormal,
+                         int64_t skipFace, double scale);
+
 struct EmitterPolygon {
   uint32_t face = 0;
   uint32_t material = 0;

@@ -75,7 +75,7 @@ class ReflectedLightHierarchy {
   ReflectedLightHierarchy(const Scene &scene, const RayTracer &tracer, RadiosityMesh &mesh, DirectLightField &field,
                           const SolverOptions &options, double minimumEdge)
       : scene_(scene), tracer_(tracer), mesh_(mesh), field_(field), options_(options), faces_(scene),
-        estimator_(tracer, faces_, options.seed), minimumEdge_(minimumEdge), arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic) {
+        estimator_(scene, faces_), minimumEdge_(minimumEdge), arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic) {
     const Box3 &b = faces_.sceneBounds();
     scale_ = std::max(1e-9, length(b.hi - b.lo));
     for (uint32_t n = 0; n < mesh_.tree.size(); ++n) {
@@ -340,7 +340,7 @@ class ReflectedLightHierarchy {
       arena_.execute([&] {
         tbb::parallel_for(size_t(0), pending.size(), [&](size_t i) {
           const uint32_t r = pending[i].receiver, s = pending[i].source;
-          estimates[i] = estimator_.estimate(end(r), end(s), (uint64_t(r) << 32) | s, pending[i].clearShaft);
+          estimates[i] = estimator_.estimate(end(r), end(s), pending[i].clearShaft);
         });
       });
       std::vector<PendingPair> next;

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
+#include "radiosity/backprojection.h"
 #include "radiosity/form_factor.h"
-#include "util/random.h"
 
 namespace radiant {
 
@@ -32,14 +32,6 @@ int convexHull(const Vec3 *points, int count, double tolerance, HalfSpace *out, 
         if (planes < capacity) out[planes++] = {n, -dot(n, points[i])};
       }
   return planes;
-}
-
-/// A uniform point of a node from a point of the unit square (triangles:
-/// the square-root map, Shirley 1990).
-Vec3 uniformPointOn(const MeshTreeNode &n, double u1, double u2) {
-  if (n.vertexCount == 4) return pointOn(n, u1, u2);
-  const double s = std::sqrt(u1);
-  return pointOn(n, s * (1 - u2), s * u2);
 }
 
 }  // namespace
@@ -84,130 +76,97 @@ std::array<double, 3> sourceMoments(const Vec3 &x, const Vec3 &n, const MeshTree
   return quad ? std::array<double, 3>{0.5, 0.5, 0.25} : std::array<double, 3>{1.0 / 3, 1.0 / 3, 0};
 }
 
-LinkEstimator::LinkEstimator(const RayTracer &tracer, const FaceTree &faces, uint64_t seed)
-    : tracer_(tracer), scene_(tracer.scene()), faces_(faces), seed_(seed) {
+LinkEstimator::LinkEstimator(const Scene &scene, const FaceTree &faces) : scene_(scene), faces_(faces) {
   const Box3 &b = faces_.sceneBounds();
   scale_ = std::max(1e-9, length(b.hi - b.lo));
 }
 
-bool LinkEstimator::shaftMayBeBlocked(const LinkEnd &receiver, const LinkEnd &source) const {
-    const MeshTreeNode &a = receiver.node, &b = source.node;
-    Vec3 points[8];
-    int count = 0;
-    for (int k = 0; k < a.vertexCount; ++k) points[count++] = a.corners[k];
-    for (int k = 0; k < b.vertexCount; ++k) points[count++] = b.corners[k];
-    const double tolerance = 1e-9 * scale_;
-    HalfSpace hull[64];
-    const int planes = convexHull(points, count, tolerance, hull, 64);
-    if (planes == 0) return false;
-    thread_local std::vector<uint32_t> candidates;
-    thread_local std::vector<Vec3> polygon, clipped;
-    faces_.facesInConvexRegion(hull, planes, tolerance, candidates);
-    const uint32_t faceA = receiver.face, faceB = source.face;
-    for (uint32_t f : candidates) {
-      if (f == faceA || f == faceB) continue;
-      const Face &face = scene_.faces[f];
-      polygon.clear();
-      for (int k = 0; k < face.vertexCount; ++k) polygon.push_back(scene_.positions[face.vertices[k]]);
-      // Clip to the hull shrunk by a hair: a face that only touches it (a
-      // wall meeting both nodes' edges) leaves nothing.
-      for (int h = 0; h < planes && polygon.size() >= 3; ++h) {
-        clipped.clear();
-        for (size_t k = 0; k < polygon.size(); ++k) {
-          const Vec3 &p = polygon[k], &q = polygon[(k + 1) % polygon.size()];
-          const double dp = hull[h].signedDistance(p) - 1e-7 * scale_, dq = hull[h].signedDistance(q) - 1e-7 * scale_;
-          if (dp >= 0) clipped.push_back(p);
-          if ((dp >= 0) != (dq >= 0)) clipped.push_back(p + (q - p) * (dp / (dp - dq)));
-        }
-        std::swap(polygon, clipped);
+void LinkEstimator::shaftOccluders(const LinkEnd &receiver, const LinkEnd &source, std::vector<uint32_t> &out) const {
+  out.clear();
+  const MeshTreeNode &a = receiver.node, &b = source.node;
+  Vec3 points[8];
+  int count = 0;
+  for (int k = 0; k < a.vertexCount; ++k) points[count++] = a.corners[k];
+  for (int k = 0; k < b.vertexCount; ++k) points[count++] = b.corners[k];
+  const double tolerance = 1e-9 * scale_;
+  HalfSpace hull[64];
+  const int planes = convexHull(points, count, tolerance, hull, 64);
+  if (planes == 0) return;
+  thread_local std::vector<uint32_t> candidates;
+  thread_local std::vector<Vec3> polygon, clipped;
+  faces_.facesInConvexRegion(hull, planes, tolerance, candidates);
+  for (uint32_t f : candidates) {
+    if (f == receiver.face || f == source.face) continue;
+    const Face &face = scene_.faces[f];
+    polygon.clear();
+    for (int k = 0; k < face.vertexCount; ++k) polygon.push_back(scene_.positions[face.vertices[k]]);
+    // Clip to the hull shrunk by a hair: a face that only touches it (a
+    // wall meeting both nodes' edges) leaves nothing.
+    for (int h = 0; h < planes && polygon.size() >= 3; ++h) {
+      clipped.clear();
+      for (size_t k = 0; k < polygon.size(); ++k) {
+        const Vec3 &p = polygon[k], &q = polygon[(k + 1) % polygon.size()];
+        const double dp = hull[h].signedDistance(p) - 1e-7 * scale_, dq = hull[h].signedDistance(q) - 1e-7 * scale_;
+        if (dp >= 0) clipped.push_back(p);
+        if ((dp >= 0) != (dq >= 0)) clipped.push_back(p + (q - p) * (dp / (dp - dq)));
       }
-      if (polygon.size() >= 3) {
-        double area = 0;
-        for (size_t k = 1; k + 1 < polygon.size(); ++k) area += length(cross(polygon[k] - polygon[0], polygon[k + 1] - polygon[0]));
-        if (area > 1e-14 * scale_ * scale_) return true;
-      }
+      std::swap(polygon, clipped);
     }
-    return false;
+    if (polygon.size() < 3) continue;
+    double area = 0;
+    for (size_t k = 1; k + 1 < polygon.size(); ++k) area += length(cross(polygon[k] - polygon[0], polygon[k + 1] - polygon[0]));
+    if (area > 1e-14 * scale_ * scale_) out.push_back(f);
   }
+}
 
-LinkEstimate LinkEstimator::estimate(const LinkEnd &receiverEnd, const LinkEnd &sourceEnd, uint64_t key,
-                                     bool knownClear) const {
-    LinkEstimate e;
-    const MeshTreeNode &receiver = receiverEnd.node, &source = sourceEnd.node;
-    const Vec3 nr = receiverEnd.normal, ns = sourceEnd.normal;
-    const bool quad = receiver.vertexCount == 4;
-    const std::vector<CubaturePoint> &rule = receiverRule(quad);
-    const std::span<const Vec3> sourcePolygon(source.corners.data(), size_t(source.vertexCount));
-    const bool occlusion = !knownClear && shaftMayBeBlocked(receiverEnd, sourceEnd);
-    e.clearShaft = !occlusion;
-    Pcg32 rng(mixBits(seed_ * 0x9e3779b97f4a7c15ULL + key), mixBits((key >> 17) | 1));
-    const int count = static_cast<int>(rule.size());
-    // The source's strata, dealt to the cubature points in a random order.
-    int strata[9];
-    for (int k = 0; k < count; ++k) strata[k] = k;
-    for (int k = count - 1; k > 0; --k) std::swap(strata[k], strata[static_cast<int>(rng.next() * (k + 1))]);
-    const int side = count == 9 ? 3 : 1;
-    double f[9], visible[9], moment[3][9];
-    double unoccluded = 0, weightVisible = 0, weightAll = 0;
-    const double pieceArea = source.area / count;
-    const bool sourceQuad = source.vertexCount == 4;
-    int arrived = 0, tested = 0;
-    for (int k = 0; k < count; ++k) {
-      const Vec3 x = pointOn(receiver, rule[k].u, rule[k].v);
-      f[k] = 0;
-      visible[k] = 1;
-      for (int j = 0; j < 3; ++j) moment[j][k] = 0;
-      if (dot(x - source.corners[0], ns) <= 1e-12 * scale_) continue;  // behind the source's front
-      f[k] = formFactorPointToPolygon(x, nr, sourcePolygon);
-      if (!(f[k] > 0)) continue;
-      unoccluded += rule[k].weight * f[k];
-      // Where on the source x's coupling lies: with these a source whose R
-      // varies linearly is gathered to second order.
-      const std::array<double, 3> m = sourceMoments(x, nr, source, ns);
-      for (int j = 0; j < 3; ++j) moment[j][k] = m[j];
-      if (!occlusion) continue;
-      // One ray to a stratified point of the source in front of x's plane,
-      // weighted by the kernel of the piece it stands for: the near parts of
-      // a source dominate its form factor.
-      const double u1 = side == 3 ? (strata[k] % 3 + rng.next()) / 3 : (strata[k] + rng.next()) / count;
-      const double u2 = side == 3 ? (strata[k] / 3 + rng.next()) / 3 : rng.next();
-      Vec3 y = uniformPointOn(source, u1, u2);
-      for (int retry = 0; retry < 8 && dot(y - x, nr) <= 0; ++retry) y = uniformPointOn(source, rng.next(), rng.next());
-      const Vec3 d = y - x;
-      const double r2 = dot(d, d), dist = std::sqrt(r2);
-      const double cosX = dot(d, nr) / dist, cosY = -dot(d, ns) / dist;
-      if (cosX <= 0 || cosY <= 0) continue;
-      const double weight = rule[k].weight * cosX * cosY / (kPi * r2 + pieceArea);
-      ++tested;
-      weightAll += weight;
-      if (tracer_.visible(x, nr, y, ns)) {
-        weightVisible += weight;
-        ++arrived;
-      } else {
-        visible[k] = 0;
-      }
+LinkEstimate LinkEstimator::estimate(const LinkEnd &receiverEnd, const LinkEnd &sourceEnd, bool knownClear) const {
+  LinkEstimate e;
+  const MeshTreeNode &receiver = receiverEnd.node, &source = sourceEnd.node;
+  const Vec3 nr = receiverEnd.normal, ns = sourceEnd.normal;
+  const bool quad = receiver.vertexCount == 4, sourceQuad = source.vertexCount == 4;
+  const std::vector<CubaturePoint> &rule = receiverRule(quad);
+  const std::span<const Vec3> sourcePolygon(source.corners.data(), size_t(source.vertexCount));
+  thread_local std::vector<uint32_t> occluders;
+  if (knownClear) occluders.clear();
+  else shaftOccluders(receiverEnd, sourceEnd, occluders);
+  e.clearShaft = occluders.empty();
+  const int count = static_cast<int>(rule.size());
+  double f[9], moment[3][9];
+  double unoccluded = 0, visible = 0;
+  for (int k = 0; k < count; ++k) {
+    const Vec3 x = pointOn(receiver, rule[k].u, rule[k].v);
+    f[k] = 0;
+    for (int j = 0; j < 3; ++j) moment[j][k] = 0;
+    if (dot(x - source.corners[0], ns) <= 1e-12 * scale_) continue;  // behind the source's front
+    const double open = formFactorPointToPolygon(x, nr, sourcePolygon);
+    if (!(open > 0)) continue;
+    unoccluded += rule[k].weight * open;
+    // The part of the source x sees, exactly, past the faces in the shaft
+    // (backprojection.h): no shadow ray's noise, and no bias from a link
+    // whose few rays all happened to agree.
+    f[k] = occluders.empty() ? open
+                             : visibleFormFactor(scene_, nullptr, &occluders, x, nr, sourcePolygon, ns, -1, scale_);
+    if (!occluders.empty()) ++e.rays;
+    visible += rule[k].weight * f[k];
+    // Where on the source x's coupling lies: with these a source whose R
+    // varies linearly is gathered to second order.
+    const std::array<double, 3> m = sourceMoments(x, nr, source, ns);
+    for (int j = 0; j < 3; ++j) moment[j][k] = m[j];
   }
-    e.rays = tested;
-    e.visibleFraction = tested ? double(arrived) / tested : 1.0;
-    // The unoccluded factor's shape, scaled by the kernel-weighted visibility:
-    // one ray per point is too noisy to shape, and a link whose visibility
-    // varies shows it in the spread below, which refines it.
-    const double visibility = weightAll > 0 ? weightVisible / weightAll : 1.0;
-    double terms[9];
-    ReceiverPolynomial<double> constant;
-    for (int j = 0; j < 4; ++j) {
-      for (int k = 0; k < count; ++k) terms[k] = j == 0 ? f[k] : f[k] * moment[j - 1][k];
-      ReceiverPolynomial<double> p = fitReceiverPolynomial(quad, std::span<const double>(terms, size_t(count)));
-      if (j == 0) constant = p;
-      for (int c = 0; c < 4; ++c) e.shape[j].c[c] = float(p.c[c] * visibility);
-    }
-    if (!sourceQuad) e.shape[3] = {};  // a triangle's R has no uv term
-    e.formFactor = unoccluded * visibility;
-    e.visibility = visibility;
-    for (int k = 0; k < count; ++k)
-      e.spread = std::max(e.spread, std::abs(f[k] * visible[k] - visibility * constant.value(rule[k].u, rule[k].v)));
-    return e;
+  double terms[9];
+  ReceiverPolynomial<double> constant;
+  for (int j = 0; j < 4; ++j) {
+    for (int k = 0; k < count; ++k) terms[k] = j == 0 ? f[k] : f[k] * moment[j - 1][k];
+    const ReceiverPolynomial<double> p = fitReceiverPolynomial(quad, std::span<const double>(terms, size_t(count)));
+    if (j == 0) constant = p;
+    for (int c = 0; c < 4; ++c) e.shape[j].c[c] = float(p.c[c]);
   }
-
+  if (!sourceQuad) e.shape[3] = {};  // a triangle's R has no uv term
+  e.formFactor = visible;
+  e.visibility = unoccluded > 0 ? visible / unoccluded : 1.0;
+  e.visibleFraction = e.visibility;
+  for (int k = 0; k < count; ++k) e.spread = std::max(e.spread, std::abs(f[k] - constant.value(rule[k].u, rule[k].v)));
+  return e;
+}
 
 }  // namespace radiant

@@ -22,6 +22,7 @@
 // transport only and shadow rays stop at glass (issue: multi-pass method).
 #include <optional>
 
+#include "radiosity/backprojection.h"
 #include "render/sampling.h"
 #include "render/secondary_sources.h"
 #include "render/bump_gather.h"
@@ -49,11 +50,16 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
     bump.reflectedOnly = true;
     bumps_.emplace(tracer, s, bump);
     if (bumps_->empty()) bumps_.reset();
+    // Direct light exact per pixel (backprojection) where there are few
+    // enough emitting faces for its cost, one pass over them per sample.
+    exactDirect_.emplace(tracer.scene());
+    if (exactDirect_->empty() || exactDirect_->emitters().size() > kMaxExactEmitters) exactDirect_.reset();
   }
 
  protected:
   Bands reflected(const VisiblePoint &x, Sampler &rng) const override {
-    Bands L = directLight(x, rng);
+    Bands L = exactDirectApplies(x) ? x.reflectance * exactDirect_->irradiance(x.hit.position, x.hit.geometricNormal) * kInvPi
+                                    : directLight(x, rng);
     if (sources_) L += secondaryLight(x, rng);
     Bands indirect = solution_.interpolate(remainingIndirect_, x.location) * kInvPi;
     if (x.textured) indirect *= x.textureFactor;  // eq. 9.11 on what is read from the solution
@@ -65,6 +71,16 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
   }
 
  private:
+  static constexpr size_t kMaxExactEmitters = 64;
+
+  /// The exact direct light is ρ/π times the exact irradiance: for a
+  /// Lambertian point whose shading normal is its geometric one (a bump or
+  /// smooth normal tilts the cosine away from what the contour integral takes).
+  bool exactDirectApplies(const VisiblePoint &x) const {
+    return exactDirect_ && x.material->kind == MaterialKind::Lambertian &&
+           dot(x.hit.shadingNormal, x.hit.geometricNormal) > 0.999999;
+  }
+
   /// Light reflected by the selected secondary sources, by two strategies
   /// combined with the power heuristic (Veach 1997 ch. 9): a point on a
   /// source (good far away) and a cosine-distributed ray (good close by,
@@ -107,6 +123,7 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
   std::optional<SecondarySources> sources_;
   std::vector<Bands> remainingIndirect_;  ///< node values of indirect − removed
   std::optional<BumpGather> bumps_;       ///< bump-mapped patches only
+  std::optional<DirectIrradiance> exactDirect_;  ///< scenes with at most kMaxExactEmitters emitting faces
 };
 
 }  // namespace
