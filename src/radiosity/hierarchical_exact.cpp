@@ -323,6 +323,8 @@ class ReflectedLightHierarchy {
 
   /// Replaces the pair by pairs with the children of the larger node.
   void split(uint32_t r, uint32_t s, bool clearShaft, std::vector<PendingPair> &pending) {
+    // The larger of the two (RenderPark's rule; splitting by which term of
+    // the error dominates made more links and a worse image).
     const bool receiverFirst = mesh_.tree[r].area >= mesh_.tree[s].area;
     const bool splitReceiver = canSplit(r) && (receiverFirst || !canSplit(s));
     const uint32_t node = splitReceiver ? r : s;
@@ -367,12 +369,13 @@ class ReflectedLightHierarchy {
   void initialiseNewLeaves() {
     std::vector<std::pair<uint32_t, Vec3>> points;
     std::vector<Vec3> nodePoints;
-    for (uint32_t n = 0; n < mesh_.tree.size(); ++n) {
-      if (!mesh_.tree[n].isLeaf()) continue;
-      DirectLightField::testPoints(mesh_.tree[n], nodePoints);
-      for (const Vec3 &p : nodePoints)
-        if (!field_.has(mesh_.tree[n].patch, p)) points.push_back({mesh_.tree[n].patch, p});
-    }
+    for (uint32_t n : newLeaves_)
+      for (int c = 0; c < 4; ++c) {
+        const MeshTreeNode &child = mesh_.tree[mesh_.tree[n].children[c]];
+        if (!child.isLeaf()) continue;
+        DirectLightField::testPoints(child, nodePoints);
+        for (const Vec3 &p : nodePoints) points.push_back({child.patch, p});
+      }
     field_.evaluate(mesh_, points, options_.threads);
     for (uint32_t n : newLeaves_)
       for (int c = 0; c < 4; ++c) {
@@ -468,42 +471,6 @@ void ReflectedLightHierarchy::writeTo(Solution &s) const {
       weight[element.nodes[k]] += element.area;
     }
   }
-  if (std::getenv("NODAL")) {
-    std::vector<int32_t> parent(mesh_.tree.size(), -1), leafOfNode(mesh_.nodes.size(), -1);
-    for (uint32_t n = 0; n < mesh_.tree.size(); ++n)
-      for (int c = 0; c < 4; ++c) if (mesh_.tree[n].children[c] >= 0) parent[mesh_.tree[n].children[c]] = int32_t(n);
-    for (uint32_t n = 0; n < mesh_.tree.size(); ++n) {
-      const int32_t e = mesh_.tree[n].element;
-      if (e < 0) continue;
-      for (int k = 0; k < mesh_.elements[e].vertexCount; ++k) if (leafOfNode[mesh_.elements[e].nodes[k]] < 0) leafOfNode[mesh_.elements[e].nodes[k]] = int32_t(n);
-    }
-    std::vector<Bands> gathered(mesh_.nodes.size(), Bands(0.0));
-    arena_.execute([&] {
-      tbb::parallel_for(size_t(0), mesh_.nodes.size(), [&](size_t v) {
-        if (leafOfNode[v] < 0) return;
-        const Patch &patch = mesh_.patches[mesh_.nodePatch[v]];
-        Vec3 centre; for (int k = 0; k < patch.vertexCount; ++k) centre += patch.corners[k];
-        centre = centre / patch.vertexCount;
-        const Vec3 x = mesh_.nodes[v] + (centre - mesh_.nodes[v]) * 1e-7, nr = patch.normal;
-        Bands h(0.0);
-        for (int32_t a = leafOfNode[v]; a >= 0; a = parent[a])
-          for (uint32_t l : links_[a]) {
-            const LinkRecord &link = records_[l];
-            const MeshTreeNode &source = mesh_.tree[link.source];
-            const Vec3 ns = normalOf(link.source);
-            if (dot(x - source.corners[0], ns) <= 1e-12 * scale_) continue;
-            const double f = formFactorPointToPolygon(x, nr, std::span<const Vec3>(source.corners.data(), size_t(source.vertexCount)));
-            if (!(f > 0)) continue;
-            const std::array<double, 3> m = sourceMoments(x, nr, source, ns);
-            const double u = m[0], w2 = m[1], uv = m[2];
-            const ReceiverPolynomial<Bands> &r = sourceShape_[link.source];
-            h += (r.c[0] + r.c[1] * u + r.c[2] * w2 + r.c[3] * uv) * (f * link.estimate.visibility);
-          }
-        gathered[v] = h;
-      });
-    });
-    for (uint32_t v = 0; v < mesh_.nodes.size(); ++v) if (weight[v] > 0) { s.nodeIndirectIrradiance[v] = gathered[v]; weight[v] = 1; }
-  }
   for (uint32_t v = 0; v < mesh_.nodes.size(); ++v) {
     if (weight[v] > 0) s.nodeIndirectIrradiance[v] = s.nodeIndirectIrradiance[v] / weight[v];
     // A polynomial extrapolated to a corner may undershoot a little where the light falls off.
@@ -573,6 +540,14 @@ void solveHierarchicalExact(const RayTracer &tracer, Solution &s, const SolverOp
   const double firstBounce = meanFirstBounce(mesh, field, patchReflectance, options.threads);
   refinement.tolerance = options.directTolerance * firstBounce;
   refineForDirectLight(mesh, patchReflectance, field, refinement);
+  const bool timing = std::getenv("RADIANT_TIMING") != nullptr;
+  auto lap = [&, last = start](const char *what) mutable {
+    if (!timing) return;
+    const auto now = std::chrono::steady_clock::now();
+    std::fprintf(stderr, "  %-28s %.3f s\n", what, std::chrono::duration<double>(now - last).count());
+    last = now;
+  };
+  lap("direct light and its mesh");
 
   // 2. The reflected light by hierarchical radiosity on the same trees.
   const double minimumEdge = options.linkMinimumEdge > 0 ? options.linkMinimumEdge : extent / 64;
@@ -580,17 +555,22 @@ void solveHierarchicalExact(const RayTracer &tracer, Solution &s, const SolverOp
   hierarchy.initialiseFromDirectLight();
   hierarchy.setThreshold(options.linkError * firstBounce);
   hierarchy.linkPatches();
+  lap("linking");
   const int maxSweeps = options.maxIterations > 0 ? options.maxIterations : 1000;
   int total = 0;
   double residual = 0;
   for (int round = 0; round < std::max(1, options.refinementRounds); ++round) {
     if (round > 0 && hierarchy.rerefine() == 0) break;
+    lap("re-linking");
     hierarchy.solve(options.tolerance, maxSweeps, residual, progress, total, start);
+    lap("solving");
   }
   s.stats.iterations = total;
   s.stats.residual = residual;
   s.stats.formFactorRays = hierarchy.rays();
   hierarchy.writeTo(s);
+  lap("writing the solution");
+  if (timing) std::fprintf(stderr, "  links %zu, sweeps %d\n", hierarchy.linkCount(), total);
 }
 
 }  // namespace radiant

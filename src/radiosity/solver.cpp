@@ -40,7 +40,11 @@ Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOpt
     if (options.adaptiveRounds > 0)
       throw InputError(InputLocation{"--adaptive-rounds"}, "hierarchical-exact refines by itself");
     // Faces cut where other surfaces meet them, hidden parts left out (mesh/face_split.h).
+    const auto splitStart = std::chrono::steady_clock::now();
     const std::vector<FaceSplit> splits = splitFaces(scene, tracer);
+    if (std::getenv("RADIANT_TIMING"))
+      std::fprintf(stderr, "  %-28s %.3f s\n", "cutting faces",
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - splitStart).count());
     MeshOptions cut = meshOptions;
     cut.faceSplits = &splits;
     Solution s = initialSolution(scene, buildTreeMesh(scene, cut));
