@@ -64,6 +64,10 @@ void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &o) {
                  "Split elements whose nodes differ from them by more than this fraction of their radiosity")
       ->default_val(0.1)
       ->check(CLI::Range(0.0, 100.0));
+  std::string levels;
+  for (const QualityLevel &level : qualityLevels()) levels += fmt::format("\n  {:<13} {}", level.name, level.summary);
+  app.add_option("--quality", o.quality, "hierarchical-exact (the default solver): accuracy against time:" + levels)
+      ->default_val("normal");
   app.add_option("--rays-per-element", o.solver.raysPerElement,
                  "Stochastic: rays of the first iteration per element (noise falls as 1/sqrt)")
       ->default_val(64)
@@ -75,7 +79,7 @@ void rejectUnusedRadiosityOptions(const CLI::App &app, bool solving, const std::
   const char *all[] = {"--solver",      "--mesh-size",           "--max-elements",   "--tolerance",
                        "--max-iterations", "--ff-samples",    "--form-factor",      "--hemicube-resolution",
                        "--link-threshold", "--rays-per-element", "--adaptive-rounds", "--adaptive-threshold",
-                       "--importance"};
+                       "--importance",     "--quality"};
   for (const char *name : all) {
     if (app.get_option(name)->count() == 0) continue;
     if (!solving) throw InputError(InputLocation{name}, "has no effect here: " + reason);
@@ -86,8 +90,10 @@ void rejectUnusedRadiosityOptions(const CLI::App &app, bool solving, const std::
         throw InputError(InputLocation{name}, std::string("applies only to --solver ") + solver);
     };
     if (flag == "--form-factor" || flag == "--hemicube-resolution") only("progressive", false);
-    if (flag == "--link-threshold" || flag == "--importance") only("hierarchical", true);
+    if (flag == "--link-threshold") only("hierarchical", false);
+    if (flag == "--importance") only("hierarchical", true);
     if (flag == "--rays-per-element") only("stochastic", true);
+    if (flag == "--quality") only("hierarchical-exact", true);
     if ((flag == "--adaptive-rounds" || flag == "--adaptive-threshold") && options.solver.solver == "hierarchical")
       throw InputError(InputLocation{name}, "the hierarchical solver refines by itself; use --solver gauss-seidel, "
                                             "progressive or stochastic");
@@ -102,6 +108,7 @@ Solution solveScene(const Scene &scene, const RayTracer &tracer, const Radiosity
   if (o.meshSize) meshOptions.maxEdgeLength = *o.meshSize * scene.metresPerUnit;
   meshOptions.maxElements = o.solver.maxElements;
   SolverOptions solverOptions = o.solver;
+  applyQuality(solverOptions, o.quality);
   solverOptions.seed = seed;
   solverOptions.threads = threads;
   if (o.solver.importance) {

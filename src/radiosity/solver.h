@@ -88,6 +88,19 @@ struct SolverInfo {
 /// The table of solvers (radiosity/solver.cpp).
 const std::vector<SolverInfo> &solverRegistry();
 
+/// hierarchical-exact's accuracy presets (--quality): how far the links are
+/// refined and how closely the mesh follows the direct light, chosen by
+/// measurement on the Cornell box (docs/radiosity.md, "Choosing --quality").
+struct QualityLevel {
+  const char *name;
+  double linkError, directTolerance;
+  const char *summary;
+};
+const std::vector<QualityLevel> &qualityLevels();
+/// Sets options.linkError and options.directTolerance from the named preset;
+/// throws InputError (naming --quality) for an unknown name.
+void applyQuality(SolverOptions &options, const std::string &name);
+
 /// Builds nothing: solves in place on an initialSolution(). Throws InputError
 /// for an unknown solver name. Fills stats (energy balance, time) and the
 /// nodal values and error estimates.
