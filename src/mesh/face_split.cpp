@@ -143,13 +143,10 @@ void splitPieces(std::vector<std::vector<Vec3>> &pieces, const CutSegment &cut, 
   pieces = std::move(result);
 }
 
-/// True when almost every direction from the piece's centre meets the back of a face.
-bool hidden(const RayTracer &tracer, const std::vector<Vec3> &piece, const Vec3 &n, const FaceSplitOptions &options,
-            uint64_t seed) {
-  const Vec3 x = polygonCentroid(piece);
+/// The cosine-weighted fraction of rays from x (normal n) that meet the back of a face.
+double enclosedFraction(const RayTracer &tracer, const Vec3 &x, const Vec3 &n, int rays, Pcg32 &rng) {
   const Frame frame = Frame::fromNormal(n);
-  const int side = std::max(1, static_cast<int>(std::lround(std::sqrt(double(options.hiddenRays)))));
-  Pcg32 rng(mixBits(seed), 0x5eed);
+  const int side = std::max(1, static_cast<int>(std::lround(std::sqrt(double(rays)))));
   int enclosed = 0;
   for (int i = 0; i < side; ++i)
     for (int j = 0; j < side; ++j) {
@@ -160,7 +157,23 @@ bool hidden(const RayTracer &tracer, const std::vector<Vec3> &piece, const Vec3 
       Hit hit;
       if (tracer.intersect(tracer.spawnRay(x, n, d), hit) && dot(d, hit.geometricNormal) > 0) ++enclosed;
     }
-  return enclosed >= options.hiddenFraction * side * side;
+  return double(enclosed) / (side * side);
+}
+
+/// True when, from its centre and from points two thirds of the way to each
+/// corner, almost every direction meets the back of a face: the piece is
+/// inside a closed object or under a panel lying on it. One point is not
+/// enough: the centre of a ceiling's piece may be right above a lamp.
+bool hidden(const RayTracer &tracer, const std::vector<Vec3> &piece, const Vec3 &n, const FaceSplitOptions &options,
+            uint64_t seed) {
+  const Vec3 centre = polygonCentroid(piece);
+  Pcg32 rng(mixBits(seed), 0x5eed);
+  if (enclosedFraction(tracer, centre, n, options.hiddenRays, rng) < options.hiddenFraction) return false;
+  for (const Vec3 &corner : piece)
+    if (enclosedFraction(tracer, centre + (corner - centre) * (2.0 / 3), n, options.hiddenRays, rng) <
+        options.hiddenFraction)
+      return false;
+  return true;
 }
 
 }  // namespace

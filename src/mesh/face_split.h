@@ -13,9 +13,9 @@
 //   - the outlines of faces lying on it, within a small gap, parallel (a
 //     light fitted just below a ceiling, a rug on a floor),
 // into convex pieces (each cut's line splits the pieces it passes through),
-// and a piece is hidden when almost every direction of its front hemisphere
-// meets the back of a face: the inside of a closed object, the back of a
-// panel lying on it. Hidden pieces become no patch. The mesher keeps the
+// and a piece is hidden when, from several points of it, almost every
+// direction of its front hemisphere meets the back of a face: the inside of a
+// closed object, the back of a panel lying on it. Hidden pieces become no patch. The mesher keeps the
 // nodes on a cut apart (RadiosityMesh::nodeOnCut): radiosity is never
 // interpolated across the foot of a wall.
 #pragma once
@@ -44,9 +44,10 @@ struct FaceSplit {
 struct FaceSplitOptions {
   /// A face lying within this distance of another's plane, parallel and
   /// overlapping it, cuts it along its outline; relative to the scene's extent.
-  double coplanarGap = 1e-3;
-  /// A piece is hidden when at least this (cosine-weighted) fraction of
-  /// rays from it meets the back of a face.
+  double coplanarGap = 1e-2;
+  /// A piece is hidden when, from its centre and from points towards each of
+  /// its corners, at least this (cosine-weighted) fraction of rays meets the
+  /// back of a face.
   double hiddenFraction = 0.9;
   int hiddenRays = 64;  ///< per piece, stratified over the cosine-weighted hemisphere
 };
