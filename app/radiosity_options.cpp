@@ -94,6 +94,10 @@ void rejectUnusedRadiosityOptions(const CLI::App &app, bool solving, const std::
     if (flag == "--importance") only("hierarchical", true);
     if (flag == "--rays-per-element") only("stochastic", true);
     if (flag == "--quality") only("hierarchical-exact", true);
+    if (flag == "--ff-samples" && (options.solver.solver == "auto" || options.solver.solver == "hierarchical-exact" ||
+                                   options.solver.solver == "stochastic"))
+      throw InputError(InputLocation{name}, "applies only to --solver gauss-seidel, progressive or hierarchical "
+                                            "(hierarchical-exact computes visibility exactly, stochastic by its rays)");
     if ((flag == "--adaptive-rounds" || flag == "--adaptive-threshold") && options.solver.solver == "hierarchical")
       throw InputError(InputLocation{name}, "the hierarchical solver refines by itself; use --solver gauss-seidel, "
                                             "progressive or stochastic");

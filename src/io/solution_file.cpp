@@ -193,7 +193,7 @@ void putSolution(Writer &w, const Solution &s) {
     for (const Vec3 &c : t.corners) w.put(c);
     w.put(t.area), w.put(s.treeRadiosity[n]);
   }
-  for (const RadiosityMesh::TVertex &t : m.tVertices) w.put(t.node), w.put(t.edgeStart), w.put(t.edgeEnd);
+  for (const RadiosityMesh::TVertex &t : m.tVertices) w.put(t.node), w.put(t.edgeStart), w.put(t.edgeEnd), w.put(t.t);
   for (const Link &l : s.links) {
     w.put(l.receiver), w.put(l.source), w.put(l.formFactor), w.put(l.visibleFraction);
     w.put(uint8_t(l.visibility)), w.put(l.carriedPower);
@@ -333,8 +333,12 @@ Solution getSolution(Reader &r, const Scene &scene) {
     for (Vec3 &c : t.corners) c = r.vec3();
     t.area = r.get<double>(), s.treeRadiosity[n] = r.bands();
   }
-  m.tVertices.resize(r.count(tVertices, 3 * 4, "T-vertices"));
-  for (RadiosityMesh::TVertex &t : m.tVertices) t.node = r.get<uint32_t>(), t.edgeStart = r.get<uint32_t>(), t.edgeEnd = r.get<uint32_t>();
+  m.tVertices.resize(r.count(tVertices, 4 * 4, "T-vertices"));
+  for (RadiosityMesh::TVertex &t : m.tVertices) {
+    t.node = r.get<uint32_t>(), t.edgeStart = r.get<uint32_t>(), t.edgeEnd = r.get<uint32_t>();
+    t.t = r.get<float>();
+    if (!(t.t > 0 && t.t < 1)) r.fail("a T-vertex does not lie inside its edge");
+  }
   s.links.resize(r.count(links, 4 * 4 + 1 + 4, "links"));
   for (Link &l : s.links) {
     l.receiver = r.get<uint32_t>(), l.source = r.get<uint32_t>();

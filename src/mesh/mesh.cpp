@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <unordered_map>
 
 #include "util/error.h"
 
@@ -142,6 +143,84 @@ void RadiosityMesh::buildPatchLookup() {
     patchGridOfFace[f] = static_cast<int32_t>(patchGrids.size());
     patchGrids.push_back(std::move(g));
   }
+}
+
+void RadiosityMesh::addCrossPatchTVertices() {
+  if (patches.size() < 2 || elements.empty()) return;
+  // Element edges on their patch's boundary, binned on a grid by their boxes.
+  struct Edge {
+    uint32_t start, end, patch;
+    double length;
+  };
+  std::vector<Edge> edges;
+  for (const Element &e : elements) {
+    const Patch &p = patches[e.patch];
+    for (int k = 0; k < e.vertexCount; ++k) {
+      const uint32_t a = e.nodes[k], b = e.nodes[(k + 1) % e.vertexCount];
+      // On the boundary: both ends on one edge line of the patch's polygon.
+      for (int v = 0; v < p.vertexCount; ++v) {
+        const Vec3 &c0 = p.corners[v], &c1 = p.corners[(v + 1) % p.vertexCount];
+        const Vec3 dir = c1 - c0;
+        const double l2 = dot(dir, dir), tol = 1e-9 * std::sqrt(l2);
+        auto off = [&](const Vec3 &x) { return length(cross(x - c0, dir)) / std::sqrt(l2); };
+        if (l2 > 0 && off(nodes[a]) <= tol && off(nodes[b]) <= tol) {
+          edges.push_back({a, b, e.patch, length(nodes[b] - nodes[a])});
+          break;
+        }
+      }
+    }
+  }
+  if (edges.empty()) return;
+  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
+  double mean = 0;
+  for (const Vec3 &x : nodes)
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], x[k]), hi[k] = std::max(hi[k], x[k]);
+  for (const Edge &e : edges) mean += e.length;
+  const double cell = std::max(mean / double(edges.size()), 1e-9);
+  auto key = [&](const Vec3 &x) {
+    return std::array<int64_t, 3>{std::llround(std::floor((x.x - lo.x) / cell)), std::llround(std::floor((x.y - lo.y) / cell)),
+                                  std::llround(std::floor((x.z - lo.z) / cell))};
+  };
+  struct KeyHash {
+    size_t operator()(const std::array<int64_t, 3> &k) const {
+      return std::hash<int64_t>()(k[0] * 73856093 ^ k[1] * 19349663 ^ k[2] * 83492791);
+    }
+  };
+  std::unordered_map<std::array<int64_t, 3>, std::vector<uint32_t>, KeyHash> grid;
+  for (uint32_t i = 0; i < edges.size(); ++i) {
+    const Vec3 &a = nodes[edges[i].start], &b = nodes[edges[i].end];
+    const auto ka = key(a), kb = key(b);
+    for (int64_t x = std::min(ka[0], kb[0]); x <= std::max(ka[0], kb[0]); ++x)
+      for (int64_t y = std::min(ka[1], kb[1]); y <= std::max(ka[1], kb[1]); ++y)
+        for (int64_t z = std::min(ka[2], kb[2]); z <= std::max(ka[2], kb[2]); ++z) grid[{x, y, z}].push_back(i);
+  }
+  constexpr double kCos2Degrees = 0.99939;
+  std::vector<std::pair<double, TVertex>> found;
+  for (uint32_t v = 0; v < nodes.size(); ++v) {
+    if (!nodeOnCut.empty() && nodeOnCut[v]) continue;
+    const Patch &pv = patches[nodePatch[v]];
+    auto it = grid.find(key(nodes[v]));
+    if (it == grid.end()) continue;
+    for (uint32_t i : it->second) {
+      const Edge &e = edges[i];
+      if (e.patch == nodePatch[v]) continue;
+      const Patch &pe = patches[e.patch];
+      if (pe.material != pv.material || dot(pe.normal, pv.normal) <= kCos2Degrees) continue;
+      const Vec3 &a = nodes[e.start], &b = nodes[e.end];
+      const Vec3 d = b - a;
+      const double t = dot(nodes[v] - a, d) / (e.length * e.length);
+      if (!(t > 1e-6 && t < 1 - 1e-6)) continue;
+      if (length(nodes[v] - (a + d * t)) > 1e-7 * e.length) continue;
+      if ((!nodeOnCut.empty() && (nodeOnCut[e.start] || nodeOnCut[e.end]))) continue;
+      found.push_back({e.length, {v, e.start, e.end, float(t)}});
+      break;
+    }
+  }
+  for (const TVertex &t : tVertices) found.push_back({length(nodes[t.edgeEnd] - nodes[t.edgeStart]), t});
+  // Coarse to fine: an edge's ends are final before a node inside it is set from them.
+  std::stable_sort(found.begin(), found.end(), [](const auto &a, const auto &b) { return a.first > b.first; });
+  tVertices.clear();
+  for (const auto &[length, t] : found) tVertices.push_back(t);
 }
 
 void RadiosityMesh::markNodesOnCuts() {
@@ -374,6 +453,7 @@ RadiosityMesh buildMesh(const Scene &scene, const MeshOptions &options) {
     mesh.patches.push_back(patch);
   }
   mesh.markNodesOnCuts();
+  mesh.addCrossPatchTVertices();
   mesh.buildPatchLookup();
   return mesh;
 }

@@ -96,11 +96,14 @@ struct RadiosityMesh {
   /// The cuts of each face (empty when no face is cut); what nodeOnCut is computed from.
   std::vector<std::vector<CutSegment>> faceCuts;
   std::vector<MeshTreeNode> tree;       ///< subdivision trees of hierarchical patches
-  /// Nodes in the middle of a coarser neighbour's edge (adaptive meshes), in
-  /// coarse-to-fine order: their value must be the average of the edge's ends,
-  /// or interpolation would crack there.
+  /// Nodes inside a coarser neighbour's edge, in coarse-to-fine order: their
+  /// value must be the edge's interpolation between its ends, (1 − t)·start +
+  /// t·end, or interpolation would crack there. Within a patch's tree t is ½
+  /// (an edge's midpoint); across patches (the pieces of a cut face, the
+  /// faces of one smooth surface) any t in (0, 1).
   struct TVertex {
     uint32_t node, edgeStart, edgeEnd;
+    float t = 0.5f;
   };
   std::vector<TVertex> tVertices;
 
@@ -118,6 +121,11 @@ struct RadiosityMesh {
   int32_t patchAt(uint32_t face, const Vec3 &position) const;
   /// Recomputes nodeOnCut from faceCuts and the nodes.
   void markNodesOnCuts();
+  /// Adds the T-vertices across patches: a node of one patch strictly inside
+  /// a boundary edge of an element of another patch of the same smooth
+  /// surface (same material, normals within 2°), not on a cut. Sorts all
+  /// T-vertices coarse to fine. Called by the mesh builders.
+  void addCrossPatchTVertices();
   /// Builds the lookup patchAt uses on faces with several patches (buildMesh
   /// does; call it after filling patches and facePatchCount by hand).
   void buildPatchLookup();

@@ -122,7 +122,7 @@ void rebuildElementsFromTrees(RadiosityMesh &mesh) {
       Vec3 m = (a + b) * 0.5;
       auto it = nodeAt.find(keyOf(m));
       if (it == nodeAt.end()) return;
-      mesh.tVertices.push_back({it->second, nodeAt.at(keyOf(a)), nodeAt.at(keyOf(b))});
+      mesh.tVertices.push_back({it->second, nodeAt.at(keyOf(a)), nodeAt.at(keyOf(b)), 0.5f});
       splitEdge(a, m);
       splitEdge(m, b);
     };
@@ -134,6 +134,7 @@ void rebuildElementsFromTrees(RadiosityMesh &mesh) {
     patch.nodeCount = static_cast<uint32_t>(mesh.nodes.size()) - patch.firstNode;
   }
   mesh.markNodesOnCuts();
+  mesh.addCrossPatchTVertices();
 }
 
 void makePatchTrees(RadiosityMesh &mesh) {

@@ -110,7 +110,8 @@ double DirectIrradiance::unoccludedFormFactor(const Vec3 &x, const Vec3 &n, size
 
 double visibleFormFactor(const Scene &scene, const FaceTree *tree, const std::vector<uint32_t> *occluders,
                          const Vec3 &x, const Vec3 &n, std::span<const Vec3> polygon, const Vec3 &polygonNormal,
-                         int64_t skipFace, double scale) {
+                         int64_t skipFace, double scale, double *unoccludedOut) {
+  if (unoccludedOut) *unoccludedOut = 0;
   const Vec3 origin = polygon[0];
   const double heightOfX = dot(x - origin, polygonNormal);
   if (heightOfX <= 1e-12 * scale) return 0;  // behind the emitting side (or in its plane)
@@ -142,6 +143,7 @@ double visibleFormFactor(const Scene &scene, const FaceTree *tree, const std::ve
   const std::vector<uint32_t> &candidates = occluders ? *occluders : s.candidates;
 
   const double unoccluded = formFactorPointToPolygon(x, n, s.base);
+  if (unoccludedOut) *unoccludedOut = unoccluded;
   if (candidates.empty() || !(unoccluded > 0)) return unoccluded;
 
   // The base in the emitter plane's 2-D frame, counter-clockwise.

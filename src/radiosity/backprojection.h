@@ -36,10 +36,11 @@ namespace radiant {
 /// occluder (the polygon's own), −1 for none. `scale`: the scene's size,
 /// metres, which sets the tolerances. A face whose plane passes through x
 /// (x's own, a wall standing on x's edge) blocks nothing: evaluate a point on
-/// such a line a hair inside its face.
+/// such a line a hair inside its face. `unoccluded`, when given, receives
+/// F(x → polygon) as if nothing were in between.
 double visibleFormFactor(const Scene &scene, const FaceTree *tree, const std::vector<uint32_t> *occluders,
                          const Vec3 &x, const Vec3 &n, std::span<const Vec3> polygon, const Vec3 &polygonNormal,
-                         int64_t skipFace, double scale);
+                         int64_t skipFace, double scale, double *unoccluded = nullptr);
 
 struct EmitterPolygon {
   uint32_t face = 0;

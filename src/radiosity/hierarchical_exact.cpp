@@ -15,22 +15,24 @@
 // 2. H_reflected, the light reflected at least once, is smooth and is
 //    carried by hierarchical radiosity (Hanrahan, Salzman & Aupperle 1991)
 //    over links between nodes of the same trees, gathering the sources'
-//    reflected radiosity R = B − E. Its refinement oracle bounds the error
-//    a link makes rather than the light it carries (Bekaert & Willems 1996,
-//    "Error control for radiosity"; RenderPark's Galerkin radiosity): the
-//    spread of the point-to-source form factor (visibility included) over
-//    the receiver's cubature points times the source's R, plus the form
-//    factor times the variation of R over the source's children. A link
-//    whose estimated error exceeds the threshold is replaced by links from
-//    the children of the larger of its two nodes. Visibility: a link whose
-//    shaft (the convex hull of its two polygons) holds no other face is
-//    exactly unoccluded and casts no ray; otherwise each cubature point casts
-//    one ray to a stratified point of the source, weighted by the kernel.
+//    reflected radiosity R = B − E. A link's form factor is exact at each of
+//    the receiver's cubature points, visibility included (backprojection
+//    over the faces in the link's shaft: radiosity/link_estimate.h), and is
+//    kept as polynomials over the receiver, one per term of the source's R,
+//    itself a polynomial (radiosity/receiver_polynomial.h): what a leaf
+//    receives from a coarse link, and what a source sends from its bright and
+//    dark parts, are right to second order. The refinement oracle bounds the
+//    error a link makes rather than the light it carries (Bekaert & Willems
+//    1996, "Error control for radiosity"; RenderPark's Galerkin radiosity):
+//    how far the point form factors stray from their polynomial times the
+//    source's R, plus the form factor times how far the source's children
+//    stray from its polynomial. A link whose error exceeds the threshold is
+//    replaced by links from the children of the larger of its two nodes.
 //
 // Refinement runs breadth-first: every pending pair's form factor is
 // estimated in parallel, then the decisions are applied in order, so the
 // solution does not depend on the thread count. Then gather (each node sums
-// F·R over its links, in parallel) and push–pull (per patch, in parallel)
+// its links' polynomials, in parallel) and push–pull (per patch, in parallel)
 // until R settles; then the links are re-examined with the solved R
 // (multigridding) and the system solved again.
 #include <tbb/parallel_for.h>
@@ -64,9 +66,13 @@ struct PendingPair {
   bool clearShaft = false;  ///< known unoccluded from a parent pair
 };
 
+/// A link as the hierarchy keeps it: 84 bytes with its index in the
+/// receiver's list (the form factor is shape[0]'s mean over the receiver).
 struct LinkRecord {
   uint32_t receiver, source;
-  LinkEstimate estimate;
+  std::array<ReceiverPolynomial<float>, 4> shape;
+  float spread = 0;
+  bool clearShaft = false;
   bool alive = true;
 };
 
@@ -139,12 +145,12 @@ class ReflectedLightHierarchy {
     std::vector<PendingPair> pending;
     for (size_t l = 0; l < records_.size(); ++l) {
       LinkRecord &link = records_[l];
-      if (!link.alive || error(link.receiver, link.source, link.estimate) <= threshold_) continue;
+      if (!link.alive || error(link.receiver, link.source, formFactorOf(link), link.spread) <= threshold_) continue;
       if (!canSplit(link.receiver) && !canSplit(link.source)) continue;
       link.alive = false;
       auto &incoming = links_[link.receiver];
       incoming.erase(std::find(incoming.begin(), incoming.end(), uint32_t(l)));
-      split(link.receiver, link.source, link.estimate.clearShaft, pending);
+      split(link.receiver, link.source, link.clearShaft, pending);
     }
     const size_t refined = pending.size();
     refine(std::move(pending));
@@ -165,7 +171,7 @@ class ReflectedLightHierarchy {
             const LinkRecord &link = records_[l];
             const ReceiverPolynomial<Bands> &r = sourceShape_[link.source];
             for (int j = 0; j < 4; ++j)
-              for (int k = 0; k < 4; ++k) g.c[k] += r.c[j] * double(link.estimate.shape[j].c[k]);
+              for (int k = 0; k < 4; ++k) g.c[k] += r.c[j] * double(link.shape[j].c[k]);
           }
           gathered_[n] = g;
         });
@@ -197,6 +203,9 @@ class ReflectedLightHierarchy {
 
  private:
   const Vec3 &normalOf(uint32_t n) const { return mesh_.patches[mesh_.tree[n].patch].normal; }
+  double formFactorOf(const LinkRecord &l) const {
+    return l.shape[0].mean(mesh_.tree[l.receiver].vertexCount == 4);
+  }
   LinkEnd end(uint32_t n) const { return {mesh_.tree[n], normalOf(n), mesh_.patches[mesh_.tree[n].patch].face}; }
 
   /// The direct light over a leaf as a polynomial: through its corners'
@@ -299,8 +308,8 @@ class ReflectedLightHierarchy {
 
   /// The oracle: the error in the reflected radiosity of the receiver that
   /// the link would make, W·m⁻² (max band).
-  double error(uint32_t r, uint32_t s, const LinkEstimate &e) const {
-    const Bands spread = reflected_[s] * e.spread + variation(s) * e.formFactor;
+  double error(uint32_t r, uint32_t s, double formFactor, double spreadOfF) const {
+    const Bands spread = reflected_[s] * spreadOfF + variation(s) * formFactor;
     double worst = 0;
     for (int b = 0; b < kBandCount; ++b) worst = std::max(worst, reflectance_[r][b] * spread[b]);
     return worst;
@@ -349,13 +358,13 @@ class ReflectedLightHierarchy {
       for (size_t i = 0; i < pending.size(); ++i) {
         const uint32_t r = pending[i].receiver, s = pending[i].source;
         rays_ += estimates[i].rays;
-        if (error(r, s, estimates[i]) > threshold_ && (canSplit(r) || canSplit(s))) {
+        if (error(r, s, estimates[i].formFactor, estimates[i].spread) > threshold_ && (canSplit(r) || canSplit(s))) {
           split(r, s, estimates[i].clearShaft, next);
           continue;
         }
         if (!(estimates[i].formFactor > 0)) continue;
         links_[r].push_back(static_cast<uint32_t>(records_.size()));
-        records_.push_back({r, s, estimates[i], true});
+        records_.push_back({r, s, estimates[i].shape, float(estimates[i].spread), estimates[i].clearShaft, true});
       }
       pending = std::move(next);
     }

@@ -66,10 +66,10 @@ std::array<double, 3> sourceMoments(const Vec3 &x, const Vec3 &n, const MeshTree
   double weightSum = 0, mu = 0, mv = 0, muv = 0;
   for (const CubaturePoint &q : momentRule(quad)) {
     const Vec3 d = pointOn(source, q.u, q.v) - x;
-    const double r2 = dot(d, d), dist = std::sqrt(r2);
-    const double cosX = dot(d, n) / dist, cosY = -dot(d, sourceNormal) / dist;
-    if (!(cosX > 0 && cosY > 0)) continue;
-    const double w = q.weight * cosX * cosY / (kPi * r2 + piece);
+    // cosθ_x cosθ_y = (d·n)(−d·n_s)/r²: no square root needed.
+    const double r2 = dot(d, d), towards = dot(d, n), from = -dot(d, sourceNormal);
+    if (!(towards > 0 && from > 0)) continue;
+    const double w = q.weight * towards * from / (r2 * (kPi * r2 + piece));
     weightSum += w, mu += w * q.u, mv += w * q.v, muv += w * q.u * q.v;
   }
   if (weightSum > 0) return {mu / weightSum, mv / weightSum, muv / weightSum};
@@ -132,21 +132,23 @@ LinkEstimate LinkEstimator::estimate(const LinkEnd &receiverEnd, const LinkEnd &
   e.clearShaft = occluders.empty();
   const int count = static_cast<int>(rule.size());
   double f[9], moment[3][9];
-  double unoccluded = 0, visible = 0;
+  double visible = 0;
   for (int k = 0; k < count; ++k) {
     const Vec3 x = pointOn(receiver, rule[k].u, rule[k].v);
     f[k] = 0;
     for (int j = 0; j < 3; ++j) moment[j][k] = 0;
     if (dot(x - source.corners[0], ns) <= 1e-12 * scale_) continue;  // behind the source's front
-    const double open = formFactorPointToPolygon(x, nr, sourcePolygon);
-    if (!(open > 0)) continue;
-    unoccluded += rule[k].weight * open;
     // The part of the source x sees, exactly, past the faces in the shaft
     // (backprojection.h): no shadow ray's noise, and no bias from a link
     // whose few rays all happened to agree.
-    f[k] = occluders.empty() ? open
-                             : visibleFormFactor(scene_, nullptr, &occluders, x, nr, sourcePolygon, ns, -1, scale_);
-    if (!occluders.empty()) ++e.rays;
+    double open = 0;
+    if (occluders.empty()) {
+      open = f[k] = formFactorPointToPolygon(x, nr, sourcePolygon);
+    } else {
+      f[k] = visibleFormFactor(scene_, nullptr, &occluders, x, nr, sourcePolygon, ns, -1, scale_, &open);
+      ++e.rays;
+    }
+    if (!(open > 0)) continue;
     visible += rule[k].weight * f[k];
     // Where on the source x's coupling lies: with these a source whose R
     // varies linearly is gathered to second order.
@@ -163,8 +165,6 @@ LinkEstimate LinkEstimator::estimate(const LinkEnd &receiverEnd, const LinkEnd &
   }
   if (!sourceQuad) e.shape[3] = {};  // a triangle's R has no uv term
   e.formFactor = visible;
-  e.visibility = unoccluded > 0 ? visible / unoccluded : 1.0;
-  e.visibleFraction = e.visibility;
   for (int k = 0; k < count; ++k) e.spread = std::max(e.spread, std::abs(f[k] - constant.value(rule[k].u, rule[k].v)));
   return e;
 }

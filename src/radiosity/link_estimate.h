@@ -37,9 +37,7 @@ struct LinkEstimate {
   std::array<ReceiverPolynomial<float>, 4> shape;
   /// max over cubature points |F_k − shape(x_k)|: what the polynomial misses (visibility included)
   double spread = 0;
-  double visibleFraction = 1;  ///< = visibility (kept for the Link record)
-  double visibility = 1;       ///< formFactor over the unoccluded one
-  int rays = 0;                ///< backprojections (cubature points with faces in the shaft)
+  int rays = 0;  ///< backprojections (cubature points with faces in the shaft)
   /// The convex hull of the two nodes holds no other face: nothing can block
   /// between them, nor between any of their children.
   bool clearShaft = false;

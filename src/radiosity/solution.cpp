@@ -117,7 +117,7 @@ std::vector<Bands> Solution::nodeValues(const std::vector<Bands> &perElement) co
 
 void Solution::applyTVertices(std::vector<Bands> &values) const {
   for (const RadiosityMesh::TVertex &t : mesh.tVertices)
-    values[t.node] = (values[t.edgeStart] + values[t.edgeEnd]) * 0.5;
+    values[t.node] = values[t.edgeStart] * (1.0 - t.t) + values[t.edgeEnd] * double(t.t);
 }
 
 void Solution::updateNodesAndErrors() {
