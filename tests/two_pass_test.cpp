@@ -164,7 +164,10 @@ TEST(TwoPass, ReichertCountsTheFrontPartOfACutElement) {
 TEST(TwoPass, ShirleyAddsTheInterpolatedIndirectToTheExactDirect) {
   ExactCube cube;
   Estimate e = estimateRay(*cube.renderer("shirley"), kRayToFloorCentre, 100000);
-  EXPECT_NEAR(e.mean, (kDirectAtFloorCentre + kIndirectOfTheFloorElement) / kPi, 4 * e.standardError);
+  // The direct term is exact now (backprojection: no noise), so the
+  // reference constants' six digits set the tolerance.
+  const double expected = (kDirectAtFloorCentre + kIndirectOfTheFloorElement) / kPi;
+  EXPECT_NEAR(e.mean, expected, 4 * e.standardError + 5e-6 * expected);
 }
 
 TEST(TwoPass, KokRemovesExactlyWhatItSamplesFromTheSecondarySources) {
@@ -413,7 +416,10 @@ TEST(TwoPass, ShirleyAndKokDoNotCountUnshotEmissionTwice) {
   options.solution = &solution;
   for (const char *method : {"shirley", "kok"}) {
     Estimate e = imageMean(renderFilm(scene, tracer, method, options, 16, 64));
-    EXPECT_NEAR(e.mean, expected, 4 * e.standardError + 1e-9) << method;
+    // The ambient term is exact for the mean, not point by point: after one
+    // shot the interpolated indirect strays ~10⁻⁴ from uniform, which the
+    // sampled direct light's noise used to hide and the exact one does not.
+    EXPECT_NEAR(e.mean, expected, 4 * e.standardError + 1e-3 * expected) << method;
     // Adding the whole ambient would show ρ·Le·(1 − share already shot) too much: far outside.
     EXPECT_GT(rho * 0.9, 10 * (4 * e.standardError)) << method;
   }

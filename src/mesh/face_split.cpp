@@ -180,7 +180,16 @@ bool hidden(const RayTracer &tracer, const std::vector<Vec3> &piece, const Vec3 
 
 std::vector<std::vector<Vec3>> convexToPatches(const std::vector<Vec3> &polygon) {
   std::vector<std::vector<Vec3>> out;
-  std::vector<Vec3> rest = polygon;
+  // Vertices on a straight edge (collinear with their neighbours) first: they
+  // would make triangles of no area.
+  std::vector<Vec3> rest;
+  double size = 0;
+  for (const Vec3 &v : polygon) size = std::max(size, length(v - polygon[0]));
+  for (size_t k = 0; k < polygon.size(); ++k) {
+    const Vec3 &prev = polygon[(k + polygon.size() - 1) % polygon.size()], &next = polygon[(k + 1) % polygon.size()];
+    if (length(cross(polygon[k] - prev, next - polygon[k])) > 1e-12 * size * size) rest.push_back(polygon[k]);
+  }
+  if (rest.size() < 3) return out;
   while (rest.size() > 4) {
     size_t best = 0;
     double shortest = INFINITY;

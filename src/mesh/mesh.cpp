@@ -225,14 +225,21 @@ void RadiosityMesh::addCrossPatchTVertices() {
 
 void RadiosityMesh::markNodesOnCuts() {
   nodeOnCut.assign(nodes.size(), 0);
-  if (faceCuts.empty()) return;
+  if (faceCuts.empty() || nodes.empty()) return;
+  // Within a millionth of the mesh's size of a cut: the cuts stop a hair short
+  // of the face's edges (face_split.cpp clips them inwards by 10⁻⁷ of the
+  // scene), and the nodes at their ends must count too.
+  Vec3 lo = nodes[0], hi = nodes[0];
+  for (const Vec3 &x : nodes)
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], x[k]), hi[k] = std::max(hi[k], x[k]);
+  const double tolerance = 1e-6 * std::max(length(hi - lo), 1e-12);
   for (size_t v = 0; v < nodes.size(); ++v) {
     const std::vector<CutSegment> &cuts = faceCuts[patches[nodePatch[v]].face];
     for (const CutSegment &c : cuts) {
       const Vec3 d = c.b - c.a;
       const double l2 = dot(d, d);
       const double t = l2 > 0 ? std::clamp(dot(nodes[v] - c.a, d) / l2, 0.0, 1.0) : 0.0;
-      if (length(nodes[v] - (c.a + d * t)) <= 1e-7 * std::sqrt(l2)) {
+      if (length(nodes[v] - (c.a + d * t)) <= tolerance) {
         nodeOnCut[v] = 1;
         break;
       }

@@ -135,7 +135,7 @@ class ReflectedLightHierarchy {
     for (uint32_t p = 0; p < mesh_.patches.size(); ++p)
       for (uint32_t q = 0; q < mesh_.patches.size(); ++q) {
         const uint32_t a = static_cast<uint32_t>(mesh_.patches[p].treeRoot), b = static_cast<uint32_t>(mesh_.patches[q].treeRoot);
-        if (p != q && reflectance_[a].max() > 0 && facing(a, b)) pending.push_back({a, b, false});
+        if (p != q && facing(a, b)) pending.push_back({a, b, false});
       }
     refine(std::move(pending));
   }
@@ -310,8 +310,12 @@ class ReflectedLightHierarchy {
   /// the link would make, W·m⁻² (max band).
   double error(uint32_t r, uint32_t s, double formFactor, double spreadOfF) const {
     const Bands spread = reflected_[s] * spreadOfF + variation(s) * formFactor;
+    // The irradiance of a black receiver matters too (what it absorbs, the
+    // illuminance it reports): weigh it as a dark grey one, not by 0.
+    constexpr double kLeastReflectance = 0.05;
     double worst = 0;
-    for (int b = 0; b < kBandCount; ++b) worst = std::max(worst, reflectance_[r][b] * spread[b]);
+    for (int b = 0; b < kBandCount; ++b)
+      worst = std::max(worst, std::max(reflectance_[r][b], kLeastReflectance) * spread[b]);
     return worst;
   }
 
@@ -355,6 +359,7 @@ class ReflectedLightHierarchy {
         });
       });
       std::vector<PendingPair> next;
+      std::vector<size_t> kept;
       for (size_t i = 0; i < pending.size(); ++i) {
         const uint32_t r = pending[i].receiver, s = pending[i].source;
         rays_ += estimates[i].rays;
@@ -362,7 +367,17 @@ class ReflectedLightHierarchy {
           split(r, s, estimates[i].clearShaft, next);
           continue;
         }
-        if (!(estimates[i].formFactor > 0)) continue;
+        if (estimates[i].formFactor > 0) kept.push_back(i);
+      }
+      // Only the links kept need the source's terms of their shape.
+      arena_.execute([&] {
+        tbb::parallel_for(size_t(0), kept.size(), [&](size_t k) {
+          const size_t i = kept[k];
+          estimator_.completeShape(end(pending[i].receiver), end(pending[i].source), estimates[i]);
+        });
+      });
+      for (size_t i : kept) {
+        const uint32_t r = pending[i].receiver, s = pending[i].source;
         links_[r].push_back(static_cast<uint32_t>(records_.size()));
         records_.push_back({r, s, estimates[i].shape, float(estimates[i].spread), estimates[i].clearShaft, true});
       }

@@ -123,7 +123,7 @@ LinkEstimate LinkEstimator::estimate(const LinkEnd &receiverEnd, const LinkEnd &
   LinkEstimate e;
   const MeshTreeNode &receiver = receiverEnd.node, &source = sourceEnd.node;
   const Vec3 nr = receiverEnd.normal, ns = sourceEnd.normal;
-  const bool quad = receiver.vertexCount == 4, sourceQuad = source.vertexCount == 4;
+  const bool quad = receiver.vertexCount == 4;
   const std::vector<CubaturePoint> &rule = receiverRule(quad);
   const std::span<const Vec3> sourcePolygon(source.corners.data(), size_t(source.vertexCount));
   thread_local std::vector<uint32_t> occluders;
@@ -131,42 +131,53 @@ LinkEstimate LinkEstimator::estimate(const LinkEnd &receiverEnd, const LinkEnd &
   else shaftOccluders(receiverEnd, sourceEnd, occluders);
   e.clearShaft = occluders.empty();
   const int count = static_cast<int>(rule.size());
-  double f[9], moment[3][9];
   double visible = 0;
   for (int k = 0; k < count; ++k) {
     const Vec3 x = pointOn(receiver, rule[k].u, rule[k].v);
-    f[k] = 0;
-    for (int j = 0; j < 3; ++j) moment[j][k] = 0;
+    e.pointFactors[k] = 0;
     if (dot(x - source.corners[0], ns) <= 1e-12 * scale_) continue;  // behind the source's front
     // The part of the source x sees, exactly, past the faces in the shaft
     // (backprojection.h): no shadow ray's noise, and no bias from a link
     // whose few rays all happened to agree.
-    double open = 0;
+    double f;
     if (occluders.empty()) {
-      open = f[k] = formFactorPointToPolygon(x, nr, sourcePolygon);
+      f = formFactorPointToPolygon(x, nr, sourcePolygon);
     } else {
-      f[k] = visibleFormFactor(scene_, nullptr, &occluders, x, nr, sourcePolygon, ns, -1, scale_, &open);
+      f = visibleFormFactor(scene_, nullptr, &occluders, x, nr, sourcePolygon, ns, -1, scale_);
       ++e.rays;
     }
-    if (!(open > 0)) continue;
-    visible += rule[k].weight * f[k];
-    // Where on the source x's coupling lies: with these a source whose R
-    // varies linearly is gathered to second order.
-    const std::array<double, 3> m = sourceMoments(x, nr, source, ns);
-    for (int j = 0; j < 3; ++j) moment[j][k] = m[j];
+    e.pointFactors[k] = f;
+    visible += rule[k].weight * f;
   }
-  double terms[9];
-  ReceiverPolynomial<double> constant;
-  for (int j = 0; j < 4; ++j) {
-    for (int k = 0; k < count; ++k) terms[k] = j == 0 ? f[k] : f[k] * moment[j - 1][k];
-    const ReceiverPolynomial<double> p = fitReceiverPolynomial(quad, std::span<const double>(terms, size_t(count)));
-    if (j == 0) constant = p;
+  const ReceiverPolynomial<double> constant =
+      fitReceiverPolynomial(quad, std::span<const double>(e.pointFactors.data(), size_t(count)));
+  for (int c = 0; c < 4; ++c) e.shape[0].c[c] = float(constant.c[c]);
+  e.formFactor = visible;
+  for (int k = 0; k < count; ++k)
+    e.spread = std::max(e.spread, std::abs(e.pointFactors[k] - constant.value(rule[k].u, rule[k].v)));
+  return e;
+}
+
+void LinkEstimator::completeShape(const LinkEnd &receiverEnd, const LinkEnd &sourceEnd, LinkEstimate &e) const {
+  const MeshTreeNode &receiver = receiverEnd.node, &source = sourceEnd.node;
+  const bool quad = receiver.vertexCount == 4;
+  const std::vector<CubaturePoint> &rule = receiverRule(quad);
+  const int count = static_cast<int>(rule.size());
+  // Where on the source each point's coupling lies: with these a source
+  // whose R varies linearly is gathered to second order.
+  double terms[3][9];
+  for (int k = 0; k < count; ++k) {
+    std::array<double, 3> m{0, 0, 0};
+    if (e.pointFactors[k] > 0)
+      m = sourceMoments(pointOn(receiver, rule[k].u, rule[k].v), receiverEnd.normal, source, sourceEnd.normal);
+    for (int j = 0; j < 3; ++j) terms[j][k] = e.pointFactors[k] * m[j];
+  }
+  for (int j = 1; j < 4; ++j) {
+    const ReceiverPolynomial<double> p =
+        fitReceiverPolynomial(quad, std::span<const double>(terms[j - 1], size_t(count)));
     for (int c = 0; c < 4; ++c) e.shape[j].c[c] = float(p.c[c]);
   }
-  if (!sourceQuad) e.shape[3] = {};  // a triangle's R has no uv term
-  e.formFactor = visible;
-  for (int k = 0; k < count; ++k) e.spread = std::max(e.spread, std::abs(f[k] - constant.value(rule[k].u, rule[k].v)));
-  return e;
+  if (source.vertexCount != 4) e.shape[3] = {};  // a triangle's R has no uv term
 }
 
 }  // namespace radiant

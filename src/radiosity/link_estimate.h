@@ -38,6 +38,8 @@ struct LinkEstimate {
   /// max over cubature points |F_k − shape(x_k)|: what the polynomial misses (visibility included)
   double spread = 0;
   int rays = 0;  ///< backprojections (cubature points with faces in the shaft)
+  /// F(x_k → the visible part of the source) at the receiver's cubature points.
+  std::array<double, 9> pointFactors{};
   /// The convex hull of the two nodes holds no other face: nothing can block
   /// between them, nor between any of their children.
   bool clearShaft = false;
@@ -56,9 +58,12 @@ class LinkEstimator {
   /// `faces` must be built over `scene`.
   LinkEstimator(const Scene &scene, const FaceTree &faces);
 
-  /// F(receiver ← source), deterministic. `knownClear`: a parent pair's
+  /// F(receiver ← source), deterministic: its form factor, spread and
+  /// shape[0] (what the refinement decides by). `knownClear`: a parent pair's
   /// shaft was clear, so this one is too.
   LinkEstimate estimate(const LinkEnd &receiver, const LinkEnd &source, bool knownClear) const;
+  /// The rest of the shape (the source's u, v, uv terms), for a link that is kept.
+  void completeShape(const LinkEnd &receiver, const LinkEnd &source, LinkEstimate &estimate) const;
   /// The faces with area inside the convex hull of the two nodes' corners,
   /// other than the nodes' own faces: all that may stand between them.
   void shaftOccluders(const LinkEnd &receiver, const LinkEnd &source, std::vector<uint32_t> &out) const;
