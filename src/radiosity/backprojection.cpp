@@ -110,7 +110,7 @@ double DirectIrradiance::unoccludedFormFactor(const Vec3 &x, const Vec3 &n, size
 
 double visibleFormFactor(const Scene &scene, const FaceTree *tree, const std::vector<uint32_t> *occluders,
                          const Vec3 &x, const Vec3 &n, std::span<const Vec3> polygon, const Vec3 &polygonNormal,
-                         int64_t skipFace, double scale, double *unoccludedOut) {
+                         int64_t skipFace, double scale, double *unoccludedOut, size_t maxOccluders) {
   if (unoccludedOut) *unoccludedOut = 0;
   const Vec3 origin = polygon[0];
   const double heightOfX = dot(x - origin, polygonNormal);
@@ -145,6 +145,7 @@ double visibleFormFactor(const Scene &scene, const FaceTree *tree, const std::ve
   const double unoccluded = formFactorPointToPolygon(x, n, s.base);
   if (unoccludedOut) *unoccludedOut = unoccluded;
   if (candidates.empty() || !(unoccluded > 0)) return unoccluded;
+  if (candidates.size() > maxOccluders) return -1;  // too many to subtract: the caller samples instead
 
   // The base in the emitter plane's 2-D frame, counter-clockwise.
   const Frame frame = Frame::fromNormal(polygonNormal);
@@ -224,6 +225,19 @@ double DirectIrradiance::visibleFormFactor(const Vec3 &x, const Vec3 &n, size_t 
   return radiant::visibleFormFactor(scene_, &faces_, nullptr, x, n,
                                     std::span<const Vec3>(e.corners.data(), size_t(e.vertexCount)), e.normal, e.face,
                                     scale_);
+}
+
+bool DirectIrradiance::irradianceWithin(const Vec3 &x, const Vec3 &n, size_t maxOccluders, Bands &out) const {
+  out = Bands(0.0);
+  for (size_t k = 0; k < emitters_.size(); ++k) {
+    const EmitterPolygon &e = emitters_[k];
+    const double f = radiant::visibleFormFactor(scene_, &faces_, nullptr, x, n,
+                                                std::span<const Vec3>(e.corners.data(), size_t(e.vertexCount)), e.normal,
+                                                e.face, scale_, nullptr, maxOccluders);
+    if (f < 0) return false;
+    if (f > 0) out += scene_.materials[e.material].emission * (kPi * f);
+  }
+  return true;
 }
 
 Bands DirectIrradiance::irradiance(const Vec3 &x, const Vec3 &n) const {

@@ -21,6 +21,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "raytrace/face_tree.h"
@@ -37,10 +38,13 @@ namespace radiant {
 /// metres, which sets the tolerances. A face whose plane passes through x
 /// (x's own, a wall standing on x's edge) blocks nothing: evaluate a point on
 /// such a line a hair inside its face. `unoccluded`, when given, receives
-/// F(x → polygon) as if nothing were in between.
+/// F(x → polygon) as if nothing were in between. With more than
+/// `maxOccluders` faces in the shaft it gives up and returns −1 (the cost of
+/// subtracting grows with them: a tessellated model between x and a light).
 double visibleFormFactor(const Scene &scene, const FaceTree *tree, const std::vector<uint32_t> *occluders,
                          const Vec3 &x, const Vec3 &n, std::span<const Vec3> polygon, const Vec3 &polygonNormal,
-                         int64_t skipFace, double scale, double *unoccluded = nullptr);
+                         int64_t skipFace, double scale, double *unoccluded = nullptr,
+                         size_t maxOccluders = SIZE_MAX);
 
 struct EmitterPolygon {
   uint32_t face = 0;
@@ -64,6 +68,9 @@ class DirectIrradiance {
   /// Irradiance at x (unit normal n) arriving straight from the emitters'
   /// fronts, W·m⁻² per band: Σ π L_e F(x → visible part).
   Bands irradiance(const Vec3 &x, const Vec3 &n) const;
+  /// The same when no emitter's shaft holds more than `maxOccluders` faces
+  /// (then true, and `out` is set); false otherwise, for the caller to sample.
+  bool irradianceWithin(const Vec3 &x, const Vec3 &n, size_t maxOccluders, Bands &out) const;
   /// F(x → the part of emitter `emitter` that x sees), exact.
   double visibleFormFactor(const Vec3 &x, const Vec3 &n, size_t emitter) const;
   /// F(x → emitter) as if nothing were in between (Lambert's contour integral).

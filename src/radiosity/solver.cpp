@@ -77,7 +77,14 @@ Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOpt
     return s;
   }
   if (options.adaptiveRounds <= 0) {
-    Solution s = initialSolution(scene, buildMesh(scene, meshOptions));
+    // The large-scene solver meshes the cut faces too (no leaks, nothing hidden meshed).
+    std::vector<FaceSplit> splits;
+    MeshOptions uniform = meshOptions;
+    if (resolveSolverName(options.solver, scene.faces.size(), options.importance) == "stochastic") {
+      splits = splitFaces(scene, tracer);
+      uniform.faceSplits = &splits;
+    }
+    Solution s = initialSolution(scene, buildMesh(scene, uniform));
     solveRadiosity(tracer, s, options, progress);
     return s;
   }

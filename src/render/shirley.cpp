@@ -58,8 +58,11 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
 
  protected:
   Bands reflected(const VisiblePoint &x, Sampler &rng) const override {
-    Bands L = exactDirectApplies(x) ? x.reflectance * exactDirect_->irradiance(x.hit.position, x.hit.geometricNormal) * kInvPi
-                                    : directLight(x, rng);
+    Bands exact;
+    Bands L = exactDirectApplies(x) &&
+                      exactDirect_->irradianceWithin(x.hit.position, x.hit.geometricNormal, kMaxExactOccluders, exact)
+                  ? x.reflectance * exact * kInvPi
+                  : directLight(x, rng);
     if (sources_) L += secondaryLight(x, rng);
     Bands indirect = solution_.interpolate(remainingIndirect_, x.location) * kInvPi;
     if (x.textured) indirect *= x.textureFactor;  // eq. 9.11 on what is read from the solution
@@ -72,6 +75,9 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
 
  private:
   static constexpr size_t kMaxExactEmitters = 64;
+  /// More faces than this in a point's shaft to a light (a tessellated model
+  /// in the way): the shadow ray is cheaper than subtracting them all.
+  static constexpr size_t kMaxExactOccluders = 32;
 
   /// The exact direct light is ρ/π times the exact irradiance: for a
   /// Lambertian point whose shading normal is its geometric one (a bump or
