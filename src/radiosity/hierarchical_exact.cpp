@@ -29,7 +29,7 @@
 //    stray from its polynomial. A link whose error exceeds the threshold is
 //    replaced by links from the children of the larger of its two nodes.
 //
-// Refinement runs breadth-first: every pending pair's form factor is
+// Refinement runs in batches: every pending pair's form factor in a batch is
 // estimated in parallel, then the decisions are applied in order, so the
 // solution does not depend on the thread count. Then gather (each node sums
 // its links' polynomials, in parallel) and push–pull (per patch, in parallel)
@@ -39,6 +39,7 @@
 #include <tbb/task_arena.h>
 
 #include <atomic>
+#include <deque>
 #include <chrono>
 #include <cmath>
 
@@ -66,11 +67,11 @@ struct PendingPair {
   bool clearShaft = false;  ///< known unoccluded from a parent pair
 };
 
-/// A link as the hierarchy keeps it: 84 bytes with its index in the
+/// A link as the hierarchy keeps it: 68 bytes with its index in the
 /// receiver's list (the form factor is shape[0]'s mean over the receiver).
 struct LinkRecord {
   uint32_t receiver, source;
-  std::array<ReceiverPolynomial<float>, 4> shape;
+  std::array<ReceiverPolynomial<float>, 3> shape;
   float spread = 0;
   bool clearShaft = false;
   bool alive = true;
@@ -170,7 +171,7 @@ class ReflectedLightHierarchy {
           for (uint32_t l : links_[n]) {
             const LinkRecord &link = records_[l];
             const ReceiverPolynomial<Bands> &r = sourceShape_[link.source];
-            for (int j = 0; j < 4; ++j)
+            for (int j = 0; j < 3; ++j)
               for (int k = 0; k < 4; ++k) g.c[k] += r.c[j] * double(link.shape[j].c[k]);
           }
           gathered_[n] = g;
@@ -350,21 +351,28 @@ class ReflectedLightHierarchy {
   }
 
   void refine(std::vector<PendingPair> pending) {
+    // In batches from the back of the queue, so that the estimates held at
+    // once (about 250 bytes each) stay bounded however many pairs wait.
+    constexpr size_t kBatch = size_t(1) << 15;
+    std::vector<LinkEstimate> estimates;
+    std::vector<PendingPair> batch;
+    std::vector<size_t> kept;
     while (!pending.empty()) {
-      std::vector<LinkEstimate> estimates(pending.size());
+      const size_t count = std::min(kBatch, pending.size());
+      batch.assign(pending.end() - static_cast<std::ptrdiff_t>(count), pending.end());
+      pending.resize(pending.size() - count);
+      estimates.assign(count, LinkEstimate{});
       arena_.execute([&] {
-        tbb::parallel_for(size_t(0), pending.size(), [&](size_t i) {
-          const uint32_t r = pending[i].receiver, s = pending[i].source;
-          estimates[i] = estimator_.estimate(end(r), end(s), pending[i].clearShaft);
+        tbb::parallel_for(size_t(0), count, [&](size_t i) {
+          estimates[i] = estimator_.estimate(end(batch[i].receiver), end(batch[i].source), batch[i].clearShaft);
         });
       });
-      std::vector<PendingPair> next;
-      std::vector<size_t> kept;
-      for (size_t i = 0; i < pending.size(); ++i) {
-        const uint32_t r = pending[i].receiver, s = pending[i].source;
+      kept.clear();
+      for (size_t i = 0; i < count; ++i) {
+        const uint32_t r = batch[i].receiver, s = batch[i].source;
         rays_ += estimates[i].rays;
         if (error(r, s, estimates[i].formFactor, estimates[i].spread) > threshold_ && (canSplit(r) || canSplit(s))) {
-          split(r, s, estimates[i].clearShaft, next);
+          split(r, s, estimates[i].clearShaft, pending);
           continue;
         }
         if (estimates[i].formFactor > 0) kept.push_back(i);
@@ -373,15 +381,14 @@ class ReflectedLightHierarchy {
       arena_.execute([&] {
         tbb::parallel_for(size_t(0), kept.size(), [&](size_t k) {
           const size_t i = kept[k];
-          estimator_.completeShape(end(pending[i].receiver), end(pending[i].source), estimates[i]);
+          estimator_.completeShape(end(batch[i].receiver), end(batch[i].source), estimates[i]);
         });
       });
       for (size_t i : kept) {
-        const uint32_t r = pending[i].receiver, s = pending[i].source;
+        const uint32_t r = batch[i].receiver, s = batch[i].source;
         links_[r].push_back(static_cast<uint32_t>(records_.size()));
         records_.push_back({r, s, estimates[i].shape, float(estimates[i].spread), estimates[i].clearShaft, true});
       }
-      pending = std::move(next);
     }
     // New leaves need the direct light at their test points, and their R.
     if (!newLeaves_.empty()) {
@@ -451,7 +458,9 @@ class ReflectedLightHierarchy {
   /// What each node gathered over its own links, and at the leaves all they received, as polynomials.
   std::vector<ReceiverPolynomial<Bands>> gathered_, irradiance_;
   std::vector<std::vector<uint32_t>> links_;  ///< incoming links, indices into records_
-  std::vector<LinkRecord> records_;
+  /// A deque, not a vector: growing it never copies it, so its peak memory
+  /// is what it holds (a vector's doubling held 3× its links for a moment).
+  std::deque<LinkRecord> records_;
   std::vector<uint32_t> newLeaves_;  ///< split since the direct light was last read
   size_t leaves_ = 0;
   size_t rays_ = 0;

@@ -58,22 +58,22 @@ Vec3 pointOn(const MeshTreeNode &n, double u, double v) {
 }
 
 
-std::array<double, 3> sourceMoments(const Vec3 &x, const Vec3 &n, const MeshTreeNode &source, const Vec3 &sourceNormal) {
+std::array<double, 2> sourceMoments(const Vec3 &x, const Vec3 &n, const MeshTreeNode &source, const Vec3 &sourceNormal) {
   // Kernel weights at the source's moment points; the + a keeps a near
   // point's weights bounded, as in Wallace, Elmquist & Haines 1989.
   const bool quad = source.vertexCount == 4;
   const double piece = source.area / 9;
-  double weightSum = 0, mu = 0, mv = 0, muv = 0;
+  double weightSum = 0, mu = 0, mv = 0;
   for (const CubaturePoint &q : momentRule(quad)) {
     const Vec3 d = pointOn(source, q.u, q.v) - x;
     // cosθ_x cosθ_y = (d·n)(−d·n_s)/r²: no square root needed.
     const double r2 = dot(d, d), towards = dot(d, n), from = -dot(d, sourceNormal);
     if (!(towards > 0 && from > 0)) continue;
     const double w = q.weight * towards * from / (r2 * (kPi * r2 + piece));
-    weightSum += w, mu += w * q.u, mv += w * q.v, muv += w * q.u * q.v;
+    weightSum += w, mu += w * q.u, mv += w * q.v;
   }
-  if (weightSum > 0) return {mu / weightSum, mv / weightSum, muv / weightSum};
-  return quad ? std::array<double, 3>{0.5, 0.5, 0.25} : std::array<double, 3>{1.0 / 3, 1.0 / 3, 0};
+  if (weightSum > 0) return {mu / weightSum, mv / weightSum};
+  return quad ? std::array<double, 2>{0.5, 0.5} : std::array<double, 2>{1.0 / 3, 1.0 / 3};
 }
 
 LinkEstimator::LinkEstimator(const Scene &scene, const FaceTree &faces) : scene_(scene), faces_(faces) {
@@ -165,19 +165,18 @@ void LinkEstimator::completeShape(const LinkEnd &receiverEnd, const LinkEnd &sou
   const int count = static_cast<int>(rule.size());
   // Where on the source each point's coupling lies: with these a source
   // whose R varies linearly is gathered to second order.
-  double terms[3][9];
+  double terms[2][9];
   for (int k = 0; k < count; ++k) {
-    std::array<double, 3> m{0, 0, 0};
+    std::array<double, 2> m{0, 0};
     if (e.pointFactors[k] > 0)
       m = sourceMoments(pointOn(receiver, rule[k].u, rule[k].v), receiverEnd.normal, source, sourceEnd.normal);
-    for (int j = 0; j < 3; ++j) terms[j][k] = e.pointFactors[k] * m[j];
+    for (int j = 0; j < 2; ++j) terms[j][k] = e.pointFactors[k] * m[j];
   }
-  for (int j = 1; j < 4; ++j) {
+  for (int j = 1; j < 3; ++j) {
     const ReceiverPolynomial<double> p =
         fitReceiverPolynomial(quad, std::span<const double>(terms[j - 1], size_t(count)));
     for (int c = 0; c < 4; ++c) e.shape[j].c[c] = float(p.c[c]);
   }
-  if (source.vertexCount != 4) e.shape[3] = {};  // a triangle's R has no uv term
 }
 
 }  // namespace radiant
