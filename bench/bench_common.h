@@ -2,11 +2,31 @@
 // `[scene.json] [--FLAG VALUE]` and the load average they record.
 #pragma once
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 namespace radiant::bench {
+
+inline double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+inline double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+/// A reference image's variance file: NAME.var.EXT beside NAME.EXT.
+inline std::string variancePathFor(const std::string &referencePath) {
+  std::filesystem::path p(referencePath);
+  return (p.parent_path() / (p.stem().string() + ".var" + p.extension().string())).string();
+}
 
 inline double loadAverage() {
   double load[1] = {-1};

@@ -76,6 +76,9 @@
 #include "util/error.h"
 
 using namespace radiant;
+using radiant::bench::median;
+using radiant::bench::secondsSince;
+using radiant::bench::variancePathFor;
 
 namespace {
 
@@ -173,21 +176,6 @@ InputLocation where(const std::string &flagOrFile) {
   InputLocation location;
   location.file = flagOrFile;
   return location;
-}
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-std::string variancePathFor(const std::string &referencePath) {
-  std::filesystem::path p(referencePath);
-  return (p.parent_path() / (p.stem().string() + ".var" + p.extension().string())).string();
 }
 
 /// The pixels measured, each with the object its centre ray hits.

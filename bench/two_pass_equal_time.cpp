@@ -56,27 +56,15 @@
 #include "util/error.h"
 
 using namespace radiant;
+using radiant::bench::median;
+using radiant::bench::secondsSince;
+using radiant::bench::variancePathFor;
 
 namespace {
 
 constexpr int kSize = 256;                    // pixels, both sides
 constexpr uint64_t kReferenceSeed = 1000003;  // not one of the test seeds 1..repeats
 const char *const kAllMethods = "path,interpolate,rushmeier,shirley,kok,reichert";
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-std::string variancePathFor(const std::string &referencePath) {
-  std::filesystem::path p(referencePath);
-  return (p.parent_path() / (p.stem().string() + ".var" + p.extension().string())).string();
-}
 
 struct Measurement {
   double solveSeconds = 0, totalSeconds = 0, spp = 0, rmse = 0, biasPercent = 0;
