@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "radiosity/form_factor.h"
+#include "raytrace/ray_tracer.h"
+#include "render/sampling.h"
 
 namespace radiant {
 
@@ -102,6 +104,41 @@ DirectIrradiance::DirectIrradiance(const Scene &scene) : scene_(scene), faces_(s
   }
 }
 
+DirectIrradiance::DirectIrradiance(const Scene &scene, const RayTracer &tracer, size_t maxExactOccluders)
+    : DirectIrradiance(scene) {
+  tracer_ = &tracer;
+  maxExactOccluders_ = maxExactOccluders;
+}
+
+double DirectIrradiance::sampledFormFactor(const Vec3 &x, const Vec3 &n, size_t emitter) const {
+  const EmitterPolygon &e = emitters_[emitter];
+  const double unoccluded = unoccludedFormFactor(x, n, emitter);
+  if (!(unoccluded > 0) || !tracer_) return unoccluded;
+  constexpr int k = kSampledVisibilityGrid;
+  double all = 0, seen = 0;
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b < k; ++b) {
+      const double u = (a + 0.5) / k, v = (b + 0.5) / k;
+      Vec3 y;
+      if (e.vertexCount == 4) {
+        y = e.corners[0] * ((1 - u) * (1 - v)) + e.corners[1] * (u * (1 - v)) + e.corners[2] * (u * v) +
+            e.corners[3] * ((1 - u) * v);
+      } else {
+        double b1, b2;
+        sampleUniformTriangle(u, v, b1, b2);
+        y = e.corners[0] * (1 - b1 - b2) + e.corners[1] * b1 + e.corners[2] * b2;
+      }
+      const Vec3 d = y - x;
+      const double r2 = dot(d, d), towards = dot(d, n), from = -dot(d, e.normal);
+      // Only the part in front of x's plane: that is all the exact factor covers.
+      if (!(towards > 0 && from > 0)) continue;
+      const double w = towards * from / (r2 * r2);
+      all += w;
+      if (tracer_->visible(x, n, y, e.normal)) seen += w;
+    }
+  return all > 0 ? unoccluded * (seen / all) : 0.0;
+}
+
 double DirectIrradiance::unoccludedFormFactor(const Vec3 &x, const Vec3 &n, size_t emitter) const {
   const EmitterPolygon &e = emitters_[emitter];
   if (dot(x - e.corners[0], e.normal) <= 1e-12 * scale_) return 0;  // behind the emitting side
@@ -139,7 +176,7 @@ double visibleFormFactor(const Scene &scene, const FaceTree *tree, const std::ve
   }
   pyramid[planes++] = {polygonNormal, -dot(polygonNormal, origin)};
   const double tolerance = 1e-9 * scale;
-  if (!occluders) tree->facesInConvexRegion(pyramid, planes, tolerance, s.candidates);
+  if (!occluders) tree->facesInConvexRegion(pyramid, planes, tolerance, s.candidates, maxOccluders);
   const std::vector<uint32_t> &candidates = occluders ? *occluders : s.candidates;
 
   const double unoccluded = formFactorPointToPolygon(x, n, s.base);
@@ -243,8 +280,12 @@ bool DirectIrradiance::irradianceWithin(const Vec3 &x, const Vec3 &n, size_t max
 Bands DirectIrradiance::irradiance(const Vec3 &x, const Vec3 &n) const {
   Bands h(0.0);
   for (size_t k = 0; k < emitters_.size(); ++k) {
-    const Bands &radiance = scene_.materials[emitters_[k].material].emission;
-    const double f = visibleFormFactor(x, n, k);
+    const EmitterPolygon &e = emitters_[k];
+    const Bands &radiance = scene_.materials[e.material].emission;
+    double f = radiant::visibleFormFactor(scene_, &faces_, nullptr, x, n,
+                                          std::span<const Vec3>(e.corners.data(), size_t(e.vertexCount)), e.normal,
+                                          e.face, scale_, nullptr, tracer_ ? maxExactOccluders_ : SIZE_MAX);
+    if (f < 0) f = sampledFormFactor(x, n, k);
     if (f > 0) h += radiance * (kPi * f);
   }
   return h;

@@ -55,12 +55,21 @@ struct EmitterPolygon {
   double area = 0;
 };
 
+class RayTracer;
+
 class DirectIrradiance {
  public:
   /// Every face of an emitting material is an emitter; every face occludes.
   /// The scene must outlive this object; its materials are read at each
   /// query, so a spectral pass's emission (applySpectralPass) is honoured.
   explicit DirectIrradiance(const Scene &scene);
+  /// The same, but where an emitter's shaft from the point holds more than
+  /// `maxExactOccluders` faces (a tessellated model between the point and
+  /// the light), irradiance() samples the emitter's visibility with shadow
+  /// rays through `tracer` (sampledFormFactor) instead of subtracting them
+  /// all: the cost of backprojection grows with the pieces the subtractions
+  /// leave, which 10⁴ small triangles multiply beyond use.
+  DirectIrradiance(const Scene &scene, const RayTracer &tracer, size_t maxExactOccluders);
 
   bool empty() const { return emitters_.empty(); }
   const std::vector<EmitterPolygon> &emitters() const { return emitters_; }
@@ -75,9 +84,20 @@ class DirectIrradiance {
   double visibleFormFactor(const Vec3 &x, const Vec3 &n, size_t emitter) const;
   /// F(x → emitter) as if nothing were in between (Lambert's contour integral).
   double unoccludedFormFactor(const Vec3 &x, const Vec3 &n, size_t emitter) const;
+  /// F(x → emitter) with visibility sampled: the exact unoccluded factor
+  /// times the kernel-weighted fraction of a fixed k × k grid of points on
+  /// the emitter (cell centres; kSampledVisibilityGrid) that x sees past
+  /// everything. The grid is the same for every x, so the estimate has no
+  /// noise: it is a deterministic function of x that steps by about 1/k² of
+  /// the light where an occluder's edge crosses one of its rays, and the
+  /// mesh refinement is not chasing random differences. Needs the tracer.
+  double sampledFormFactor(const Vec3 &x, const Vec3 &n, size_t emitter) const;
+  static constexpr int kSampledVisibilityGrid = 8;
 
  private:
   const Scene &scene_;
+  const RayTracer *tracer_ = nullptr;  ///< for sampledFormFactor; none: always exact
+  size_t maxExactOccluders_ = SIZE_MAX;
   FaceTree faces_;
   std::vector<EmitterPolygon> emitters_;
   double scale_ = 1;  ///< the scene's size, metres: sets the tolerances

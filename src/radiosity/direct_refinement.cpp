@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 
@@ -57,9 +58,23 @@ void DirectLightField::evaluate(const RadiosityMesh &mesh, const std::vector<std
   for (size_t i = 0; i < missing.size(); ++i) values_[keyOf(missing[i].first, missing[i].second)] = results[i];
 }
 
-void DirectLightField::testPoints(const MeshTreeNode &node, std::vector<Vec3> &out) {
+namespace {
+double longestEdgeOf(const MeshTreeNode &node) {
+  double longest = 0;
+  for (int k = 0; k < node.vertexCount; ++k)
+    longest = std::max(longest, length(node.corners[(k + 1) % node.vertexCount] - node.corners[k]));
+  return longest;
+}
+}  // namespace
+
+bool DirectLightField::cornersOnly(const MeshTreeNode &node) const {
+  return smallestSplit_ > 0 && longestEdgeOf(node) < 2 * smallestSplit_;
+}
+
+void DirectLightField::testPoints(const MeshTreeNode &node, std::vector<Vec3> &out, bool cornersOnly) {
   out.clear();
   for (int k = 0; k < node.vertexCount; ++k) out.push_back(node.corners[k]);
+  if (cornersOnly) return;
   const auto children = childCorners(node);
   if (node.vertexCount == 4) {
     // Children (0,0), (1,0), (1,1), (0,1): child 0 holds m01, the centre, m30; child 2 m12, m23.
@@ -77,8 +92,12 @@ void DirectLightField::testPoints(const MeshTreeNode &node, std::vector<Vec3> &o
 
 Bands DirectLightField::nodeAverage(const MeshTreeNode &node) const {
   thread_local std::vector<Vec3> p;
-  testPoints(node, p);
   Bands sum(0.0);
+  if (cornersOnly(node)) {
+    for (int k = 0; k < node.vertexCount; ++k) sum += at(node.patch, node.corners[k]);
+    return sum / double(node.vertexCount);
+  }
+  testPoints(node, p);
   if (node.vertexCount == 4) {
     for (int k = 0; k < 4; ++k) sum += at(node.patch, p[k]) + at(node.patch, p[4 + k]) * 4.0;
     sum += at(node.patch, p[8]) * 16.0;
@@ -122,26 +141,21 @@ size_t refineForDirectLight(RadiosityMesh &mesh, const std::vector<Bands> &patch
     ++leaves;
     if (patchReflectance[mesh.tree[n].patch].max() > 0) candidates.push_back(n);
   }
-  auto longestEdge = [](const MeshTreeNode &node) {
-    double longest = 0;
-    for (int k = 0; k < node.vertexCount; ++k)
-      longest = std::max(longest, length(node.corners[(k + 1) % node.vertexCount] - node.corners[k]));
-    return longest;
-  };
+  field.setSmallestSplit(options.minimumEdge);
   size_t split = 0;
   std::vector<std::pair<uint32_t, Vec3>> points;
   std::vector<Vec3> nodePoints;
   while (!candidates.empty()) {
     points.clear();
     for (uint32_t n : candidates) {
-      DirectLightField::testPoints(mesh.tree[n], nodePoints);
+      field.testPointsOf(mesh.tree[n], nodePoints);
       for (const Vec3 &p : nodePoints) points.push_back({mesh.tree[n].patch, p});
     }
     field.evaluate(mesh, points, options.threads);
     std::vector<uint32_t> next;
     for (uint32_t n : candidates) {
       const MeshTreeNode &node = mesh.tree[n];
-      if (longestEdge(node) < 2 * options.minimumEdge) continue;
+      if (field.cornersOnly(node)) continue;  // too small to split
       if (field.interpolationError(node, patchReflectance[node.patch]) <= options.tolerance) continue;
       if (leaves + 3 > options.maxElements) break;
       splitTreeNode(mesh, n);

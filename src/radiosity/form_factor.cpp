@@ -151,6 +151,22 @@ double formFactorPointToPolygon(const Vec3 &p, const Vec3 &n, std::span<const Ve
   return std::abs(sum) / (2 * kPi);
 }
 
+Vec3 vectorFormFactor(const Vec3 &p, std::span<const Vec3> polygon) {
+  Vec3 sum, centroid;
+  for (size_t k = 0; k < polygon.size(); ++k) {
+    const Vec3 r0 = polygon[k] - p, r1 = polygon[(k + 1) % polygon.size()] - p;
+    const Vec3 c = cross(r0, r1);
+    const double cn = length(c);
+    centroid += polygon[k];
+    if (!(cn > 0)) continue;
+    sum += c * (std::atan2(cn, dot(r0, r1)) / cn);
+  }
+  sum = sum / (2 * kPi);
+  // The sign follows the winding as seen from p: turn it towards the polygon.
+  if (dot(sum, centroid / double(polygon.size()) - p) < 0) sum = -sum;
+  return sum;
+}
+
 double formFactorRayCast(const RayTracer &tracer, const Vec3 &p, const Vec3 &n, std::span<const Vec3> source,
                          const Vec3 &sourceNormal, int samples, Pcg32 &rng, double &visibleFraction) {
   visibleFraction = 0;

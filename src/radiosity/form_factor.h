@@ -29,6 +29,15 @@ void clipToFrontHalfSpace(const Vec3 &p, const Vec3 &n, std::span<const Vec3> po
 /// independent of the polygon's winding; `polygon` has 3 or more vertices.
 double formFactorPointToPolygon(const Vec3 &p, const Vec3 &n, std::span<const Vec3> polygon);
 
+/// The vector form factor of a polygon at p (Lambert; Arvo 1994's vector
+/// irradiance per unit radiosity): Γ = (1/2π) Σ_k β_k û_k, û_k the unit
+/// normal of the plane through p and edge k, oriented towards the polygon.
+/// For every unit normal n that has the whole polygon in front of it,
+/// F(dA(p, n) → polygon) = n·Γ: the form factor is linear in the receiver's
+/// normal. A cluster of small surfaces near a polygon takes its light per
+/// surface from this one vector.
+Vec3 vectorFormFactor(const Vec3 &p, std::span<const Vec3> polygon);
+
 /// Ray-cast F(dA → source) after Wallace, Elmquist & Haines 1989 (REFERENCE
 /// §2.3): the source polygon (planar, 3 or 4 vertices, front normal
 /// `sourceNormal`) is split into `samples` pieces of equal area (stratified),

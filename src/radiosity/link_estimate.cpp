@@ -4,6 +4,7 @@
 
 #include "radiosity/backprojection.h"
 #include "radiosity/form_factor.h"
+#include "raytrace/ray_tracer.h"
 
 namespace radiant {
 
@@ -76,12 +77,14 @@ std::array<double, 2> sourceMoments(const Vec3 &x, const Vec3 &n, const MeshTree
   return quad ? std::array<double, 2>{0.5, 0.5} : std::array<double, 2>{1.0 / 3, 1.0 / 3};
 }
 
-LinkEstimator::LinkEstimator(const Scene &scene, const FaceTree &faces) : scene_(scene), faces_(faces) {
+LinkEstimator::LinkEstimator(const Scene &scene, const FaceTree &faces, const RayTracer *tracer)
+    : scene_(scene), faces_(faces), tracer_(tracer) {
   const Box3 &b = faces_.sceneBounds();
   scale_ = std::max(1e-9, length(b.hi - b.lo));
 }
 
-void LinkEstimator::shaftOccluders(const LinkEnd &receiver, const LinkEnd &source, std::vector<uint32_t> &out) const {
+bool LinkEstimator::shaftOccluders(const LinkEnd &receiver, const LinkEnd &source, std::vector<uint32_t> &out,
+                                   size_t limit) const {
   out.clear();
   const MeshTreeNode &a = receiver.node, &b = source.node;
   Vec3 points[8];
@@ -91,10 +94,12 @@ void LinkEstimator::shaftOccluders(const LinkEnd &receiver, const LinkEnd &sourc
   const double tolerance = 1e-9 * scale_;
   HalfSpace hull[64];
   const int planes = convexHull(points, count, tolerance, hull, 64);
-  if (planes == 0) return;
+  if (planes == 0) return true;
   thread_local std::vector<uint32_t> candidates;
   thread_local std::vector<Vec3> polygon, clipped;
-  faces_.facesInConvexRegion(hull, planes, tolerance, candidates);
+  // The two nodes' own faces may be among them: allow for them in the limit.
+  faces_.facesInConvexRegion(hull, planes, tolerance, candidates, limit == SIZE_MAX ? limit : limit + 2);
+  if (limit != SIZE_MAX && candidates.size() > limit + 2) return false;
   for (uint32_t f : candidates) {
     if (f == receiver.face || f == source.face) continue;
     const Face &face = scene_.faces[f];
@@ -117,6 +122,34 @@ void LinkEstimator::shaftOccluders(const LinkEnd &receiver, const LinkEnd &sourc
     for (size_t k = 1; k + 1 < polygon.size(); ++k) area += length(cross(polygon[k] - polygon[0], polygon[k + 1] - polygon[0]));
     if (area > 1e-14 * scale_ * scale_) out.push_back(f);
   }
+  return out.size() <= limit;
+}
+
+double LinkEstimator::sampledVisibility(const Vec3 &x, const Vec3 &n, const LinkEnd &source, double &uncertainty) const {
+  const MeshTreeNode &s = source.node;
+  constexpr int k = kVisibilityGrid;
+  double all = 0, seen = 0;
+  int rays = 0, visible = 0;
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b < k; ++b) {
+      // Cell centres of the source's parameters (a triangle's through the square's fold).
+      double u = (a + 0.5) / k, v = (b + 0.5) / k;
+      if (s.vertexCount == 3 && u + v > 1) u = 1 - u, v = 1 - v;
+      const Vec3 y = pointOn(s, u, v), d = y - x;
+      const double r2 = dot(d, d), towards = dot(d, n), from = -dot(d, source.normal);
+      if (!(towards > 0 && from > 0)) continue;
+      const double w = towards * from / (r2 * r2);
+      all += w;
+      ++rays;
+      if (tracer_->visible(x, n, y, source.normal)) seen += w, ++visible;
+    }
+  if (!(all > 0)) {
+    uncertainty = 0;
+    return 0;
+  }
+  const double fraction = seen / all;
+  uncertainty = visible > 0 && visible < rays ? std::min(fraction, 1 - fraction) : 0.5 / rays;
+  return fraction;
 }
 
 LinkEstimate LinkEstimator::estimate(const LinkEnd &receiverEnd, const LinkEnd &sourceEnd, bool knownClear) const {
@@ -127,9 +160,11 @@ LinkEstimate LinkEstimator::estimate(const LinkEnd &receiverEnd, const LinkEnd &
   const std::vector<CubaturePoint> &rule = receiverRule(quad);
   const std::span<const Vec3> sourcePolygon(source.corners.data(), size_t(source.vertexCount));
   thread_local std::vector<uint32_t> occluders;
+  bool sampled = false;
   if (knownClear) occluders.clear();
-  else shaftOccluders(receiverEnd, sourceEnd, occluders);
-  e.clearShaft = occluders.empty();
+  else sampled = !shaftOccluders(receiverEnd, sourceEnd, occluders, tracer_ ? kMaxExactOccluders : SIZE_MAX);
+  e.clearShaft = !sampled && occluders.empty();
+  double uncertainty = 0;
   const int count = static_cast<int>(rule.size());
   double visible = 0;
   for (int k = 0; k < count; ++k) {
@@ -140,7 +175,13 @@ LinkEstimate LinkEstimator::estimate(const LinkEnd &receiverEnd, const LinkEnd &
     // (backprojection.h): no shadow ray's noise, and no bias from a link
     // whose few rays all happened to agree.
     double f;
-    if (occluders.empty()) {
+    if (sampled) {
+      double u = 0;
+      const double unoccluded = formFactorPointToPolygon(x, nr, sourcePolygon);
+      f = unoccluded > 0 ? unoccluded * sampledVisibility(x, nr, sourceEnd, u) : 0.0;
+      uncertainty = std::max(uncertainty, unoccluded * u);
+      e.rays += kVisibilityGrid * kVisibilityGrid;
+    } else if (occluders.empty()) {
       f = formFactorPointToPolygon(x, nr, sourcePolygon);
     } else {
       f = visibleFormFactor(scene_, nullptr, &occluders, x, nr, sourcePolygon, ns, -1, scale_);
@@ -155,6 +196,7 @@ LinkEstimate LinkEstimator::estimate(const LinkEnd &receiverEnd, const LinkEnd &
   e.formFactor = visible;
   for (int k = 0; k < count; ++k)
     e.spread = std::max(e.spread, std::abs(e.pointFactors[k] - constant.value(rule[k].u, rule[k].v)));
+  e.spread += uncertainty;
   return e;
 }
 

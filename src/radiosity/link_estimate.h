@@ -19,6 +19,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "mesh/mesh.h"
@@ -55,10 +56,21 @@ struct LinkEnd {
   uint32_t face;
 };
 
+class RayTracer;
+
 class LinkEstimator {
  public:
-  /// `faces` must be built over `scene`.
-  LinkEstimator(const Scene &scene, const FaceTree &faces);
+  /// `faces` must be built over `scene`. With `tracer`, a link whose shaft
+  /// holds more than kMaxExactOccluders faces (a tessellated model between
+  /// the two nodes) has its visibility sampled instead of subtracted: at
+  /// each cubature point, the exact unoccluded factor times the
+  /// kernel-weighted fraction of a fixed grid of kVisibilityGrid² points on
+  /// the source that the point sees; `spread` then also holds how far those
+  /// rays could be off, so the oracle refines such links until they carry
+  /// little.
+  LinkEstimator(const Scene &scene, const FaceTree &faces, const RayTracer *tracer = nullptr);
+  static constexpr size_t kMaxExactOccluders = 48;
+  static constexpr int kVisibilityGrid = 4;
 
   /// F(receiver ← source), deterministic: its form factor, spread and
   /// shape[0] (what the refinement decides by). `knownClear`: a parent pair's
@@ -68,11 +80,18 @@ class LinkEstimator {
   void completeShape(const LinkEnd &receiver, const LinkEnd &source, LinkEstimate &estimate) const;
   /// The faces with area inside the convex hull of the two nodes' corners,
   /// other than the nodes' own faces: all that may stand between them.
-  void shaftOccluders(const LinkEnd &receiver, const LinkEnd &source, std::vector<uint32_t> &out) const;
+  /// False (and `out` incomplete) when the hull holds more than `limit` faces.
+  bool shaftOccluders(const LinkEnd &receiver, const LinkEnd &source, std::vector<uint32_t> &out,
+                      size_t limit = SIZE_MAX) const;
 
  private:
+  /// The kernel-weighted fraction of the source's grid points x sees, and
+  /// how far that may be off.
+  double sampledVisibility(const Vec3 &x, const Vec3 &n, const LinkEnd &source, double &uncertainty) const;
+
   const Scene &scene_;
   const FaceTree &faces_;
+  const RayTracer *tracer_ = nullptr;
   double scale_ = 1;
 };
 

@@ -54,7 +54,7 @@ int32_t FaceTree::build(uint32_t first, uint32_t count, const std::vector<Vec3> 
 }
 
 template <typename Reject>
-void FaceTree::collect(const Reject &reject, std::vector<uint32_t> &out) const {
+void FaceTree::collect(const Reject &reject, std::vector<uint32_t> &out, size_t limit) const {
   out.clear();
   if (nodes_.empty()) return;
   int32_t stack[64];
@@ -66,6 +66,7 @@ void FaceTree::collect(const Reject &reject, std::vector<uint32_t> &out) const {
     if (node.left < 0) {
       for (uint32_t i = node.first; i < node.first + node.count; ++i)
         if (!reject(faceBounds_[faces_[i]])) out.push_back(faces_[i]);
+      if (out.size() > limit) return;
       continue;
     }
     stack[top++] = node.left;
@@ -74,15 +75,15 @@ void FaceTree::collect(const Reject &reject, std::vector<uint32_t> &out) const {
   std::sort(out.begin(), out.end());
 }
 
-void FaceTree::facesInConvexRegion(const HalfSpace *halfSpaces, int count, double margin,
-                                   std::vector<uint32_t> &out) const {
+void FaceTree::facesInConvexRegion(const HalfSpace *halfSpaces, int count, double margin, std::vector<uint32_t> &out,
+                                   size_t limit) const {
   collect(
       [&](const Box3 &b) {
         for (int k = 0; k < count; ++k)
           if (halfSpaces[k].excludes(b, margin)) return true;
         return false;
       },
-      out);
+      out, limit);
 }
 
 void FaceTree::facesOverlapping(const Box3 &box, double margin, std::vector<uint32_t> &out) const {

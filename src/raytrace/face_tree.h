@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "scene/scene.h"
@@ -52,8 +53,12 @@ class FaceTree {
 
   /// Faces whose bounding box is not excluded by any of the half-spaces (a
   /// convex region, conservatively: a face listed may still miss it), in
-  /// increasing index order. `margin` widens every half-space, metres.
-  void facesInConvexRegion(const HalfSpace *halfSpaces, int count, double margin, std::vector<uint32_t> &out) const;
+  /// increasing index order. `margin` widens every half-space, metres. With
+  /// more than `limit` such faces it stops early: `out` then holds limit + 1
+  /// of them, in no particular order (a caller that gives up past a count
+  /// need not walk a shaft full of a tessellated model).
+  void facesInConvexRegion(const HalfSpace *halfSpaces, int count, double margin, std::vector<uint32_t> &out,
+                           size_t limit = SIZE_MAX) const;
   /// Faces whose bounding box overlaps `box` widened by `margin`, in increasing index order.
   void facesOverlapping(const Box3 &box, double margin, std::vector<uint32_t> &out) const;
 
@@ -67,7 +72,7 @@ class FaceTree {
     int32_t left = -1, right = -1;  ///< inner node: children
   };
   template <typename Reject>
-  void collect(const Reject &reject, std::vector<uint32_t> &out) const;
+  void collect(const Reject &reject, std::vector<uint32_t> &out, size_t limit = SIZE_MAX) const;
   int32_t build(uint32_t first, uint32_t count, const std::vector<Vec3> &centres);
 
   std::vector<Box3> faceBounds_;

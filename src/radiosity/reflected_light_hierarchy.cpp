@@ -1,0 +1,662 @@
+// ReflectedLightHierarchy: the tree nodes' part, the refinement and the
+// solve. The clusters' part is in reflected_light_clusters.cpp; what the
+// whole does is in reflected_light_hierarchy.h.
+#include "radiosity/reflected_light_hierarchy.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+
+#include "texture/surface_detail.h"
+
+namespace radiant {
+
+namespace {
+
+/// A leaf's gathered polynomial, restricted from a coarse link whose kernel
+/// falls steeply over its receiver (a surface close to a cluster), can dip
+/// below 0 at one end; irradiance cannot.
+Bands nonNegative(Bands b) {
+  for (int k = 0; k < kBandCount; ++k) b[k] = std::max(0.0, b[k]);
+  return b;
+}
+
+double longestEdge(const MeshTreeNode &n) {
+  double longest = 0;
+  for (int k = 0; k < n.vertexCount; ++k)
+    longest = std::max(longest, length(n.corners[(k + 1) % n.vertexCount] - n.corners[k]));
+  return longest;
+}
+
+}  // namespace
+
+ReflectedLightHierarchy::ReflectedLightHierarchy(const Scene &scene, const RayTracer &tracer, RadiosityMesh &mesh,
+                                                 DirectLightField &field, const SolverOptions &options,
+                                                 double minimumEdge)
+    : scene_(scene), tracer_(tracer), mesh_(mesh), field_(field), options_(options), faces_(scene),
+      estimator_(scene, faces_, &tracer), clusters_(buildClusterTree(mesh)), minimumEdge_(minimumEdge),
+      arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic) {
+  for (uint32_t n = 0; n < mesh_.tree.size(); ++n) {
+    addNodeData(n);
+    leaves_ += mesh_.tree[n].isLeaf();
+  }
+  initialiseClusters();
+}
+
+void ReflectedLightHierarchy::addNodeData(uint32_t n) {
+  const MeshTreeNode &t = mesh_.tree[n];
+  const Patch &patch = mesh_.patches[t.patch];
+  const Material &material = scene_.materials[patch.material];
+  Bands rho = material.kind == MaterialKind::Lambertian || material.kind == MaterialKind::Glossy ? material.diffuse
+                                                                                                  : Bands(0.0);
+  if (material.diffuseTextureIndex >= 0 && rho.max() > 0)
+    rho = averageDiffuse(scene_, patch.face, std::span<const Vec3>(t.corners.data(), size_t(t.vertexCount)));
+  reflectance_.push_back(rho);
+  emission_.push_back(material.emission * kPi);
+  reflected_.push_back(Bands(0.0));
+  sourceShape_.emplace_back();
+  directShape_.emplace_back();
+  gathered_.emplace_back();
+  irradiance_.emplace_back();
+  direct_.push_back(Bands(0.0));
+  links_.emplace_back();
+}
+
+void ReflectedLightHierarchy::initialiseFromDirectLight() {
+  std::vector<std::pair<uint32_t, Vec3>> points;
+  std::vector<Vec3> nodePoints;
+  for (uint32_t n = 0; n < mesh_.tree.size(); ++n) {
+    if (!mesh_.tree[n].isLeaf()) continue;
+    field_.testPointsOf(mesh_.tree[n], nodePoints);
+    for (const Vec3 &p : nodePoints) points.push_back({mesh_.tree[n].patch, p});
+  }
+  field_.evaluate(mesh_, points, options_.threads);
+  // The first linking judges links by the sources' R, which is not known
+  // yet. ρ·H_direct alone leaves every shadowed source at 0, and a link
+  // from it passes whatever its error; so start from the ambient estimate
+  // of the reflected light too (Cohen, Chen, Wallace & Greenberg 1988):
+  // the first bounce's area mean R₁ spread evenly and reflected again and
+  // again, H_ambient = R₁ / (1 − ρ̄), ρ̄ the area-mean reflectance.
+  Bands firstBounce(0.0), reflectance(0.0);
+  double area = 0;
+  for (uint32_t p = 0; p < mesh_.patches.size(); ++p) {
+    const uint32_t root = static_cast<uint32_t>(mesh_.patches[p].treeRoot);
+    pullDirect(root);
+    firstBounce += reflected_[root] * mesh_.tree[root].area;
+    reflectance += reflectance_[root] * mesh_.tree[root].area;
+    area += mesh_.tree[root].area;
+  }
+  ReceiverPolynomial<Bands> ambient;
+  if (area > 0)
+    for (int b = 0; b < kBandCount; ++b)
+      ambient.c[0][b] = firstBounce[b] / area / (1 - std::min(reflectance[b] / area, 0.95));
+  for (uint32_t p = 0; p < mesh_.patches.size(); ++p) {
+    double change = 0, largest = 0;
+    pushPull(static_cast<uint32_t>(mesh_.patches[p].treeRoot), ambient, change, largest);
+    pullShapes(static_cast<uint32_t>(mesh_.patches[p].treeRoot));
+  }
+  pullClusters();
+}
+
+void ReflectedLightHierarchy::link() {
+  if (clusters_.clusters.empty()) return;
+  refine({{clusterId(0), clusterId(0), false}});
+  // The ambient estimate only guided the refinement: the solve starts from
+  // the direct light alone, so that a closed room no light reaches stays
+  // exactly 0 (from any positive start, the sweeps would only shrink it).
+  for (uint32_t p = 0; p < mesh_.patches.size(); ++p) {
+    double change = 0, largest = 0;
+    pushPull(static_cast<uint32_t>(mesh_.patches[p].treeRoot), ReceiverPolynomial<Bands>(), change, largest);
+    pullShapes(static_cast<uint32_t>(mesh_.patches[p].treeRoot));
+  }
+  pullClusters();
+  if (std::getenv("RADIANT_DEBUG")) {
+    size_t tt = 0, tc = 0, ct = 0, cc = 0, bigPatchReceivers = 0, smallSmall = 0;
+    for (const LinkRecord &l : records_) {
+      tt += l.alive;
+      bigPatchReceivers += l.alive && mesh_.patches[mesh_.tree[l.receiver].patch].area > 0.01;
+      smallSmall += l.alive && mesh_.patches[mesh_.tree[l.receiver].patch].area <= 0.01 &&
+                    mesh_.patches[mesh_.tree[l.source].patch].area <= 0.01;
+    }
+    std::fprintf(stderr, "small<-small tree links %zu\n", smallSmall);
+    for (const ClusterLinkRecord &l : clusterRecords_) {
+      if (!l.alive) continue;
+      if (isCluster(l.receiver)) (isCluster(l.source) ? cc : ct)++;
+      else tc++;
+    }
+    std::fprintf(stderr, "links: tree<-tree %zu (receiver on a patch > 0.01 m2: %zu), tree<-cluster %zu, cluster<-tree %zu, cluster<-cluster %zu\n",
+                 tt, bigPatchReceivers, tc, ct, cc);
+    std::fprintf(stderr, "estimates: tree %zu, cluster %zu; cluster splits by geometry %zu, visibility %zu, harmonics %zu\n",
+                 debugTreeEstimates_, debugClusterEstimates_, debugSplitGeometry_, debugSplitVisibility_, debugSplitHarmonics_);
+    debugCheckClusterLinks();
+    std::fprintf(stderr, "dropped %zu invisible cluster links, unoccluded F x receiver area %.4g m2; %zu with a zero kernel, %zu self links of the smallest clusters\n", debugDropped_, debugDroppedPower_, debugZeroKernel_, debugSelfDropped_);
+    debugUnitGather();
+  }
+}
+
+size_t ReflectedLightHierarchy::rerefine() {
+  std::vector<PendingPair> pending;
+  size_t refined = 0;
+  for (size_t l = 0; l < records_.size(); ++l) {
+    LinkRecord &link = records_[l];
+    if (!link.alive || error(link.receiver, link.source, formFactorOf(link), link.spread) <= threshold_) continue;
+    if (!canSplit(link.receiver) && !canSplit(link.source)) continue;
+    link.alive = false;
+    auto &incoming = links_[link.receiver];
+    incoming.erase(std::find(incoming.begin(), incoming.end(), uint32_t(l)));
+    splitPair(link.receiver, link.source, link.clearShaft, pending);
+  }
+  for (size_t l = 0; l < clusterRecords_.size(); ++l) {
+    ClusterLinkRecord &link = clusterRecords_[l];
+    if (!link.alive || clusterLinkError(link) <= threshold_) continue;
+    if (!canSplitEnd(link.receiver) && !canSplitEnd(link.source)) continue;
+    link.alive = false;
+    auto &incoming = isCluster(link.receiver) ? clusterLinks_[clusterIndex(link.receiver)] : links_[link.receiver];
+    const uint32_t tagged = isCluster(link.receiver) ? uint32_t(l) : uint32_t(l) | kClusterBit;
+    incoming.erase(std::find(incoming.begin(), incoming.end(), tagged));
+    splitPair(link.receiver, link.source, false, pending);
+  }
+  refined = pending.size();
+  refine(std::move(pending));
+  return refined;
+}
+
+void ReflectedLightHierarchy::gatherTreeNode(uint32_t n) {
+  ReceiverPolynomial<Bands> g;
+  for (uint32_t l : links_[n]) {
+    if (isCluster(l)) {
+      const ClusterLinkRecord &link = clusterRecords_[clusterIndex(l)];
+      const Bands i = link.nearField ? meanReflected(link.source) : intensity(link.source, link.directionVector());
+      for (int k = 0; k < 4; ++k) g.c[k] += i * double(link.kernel.c[k]);
+      continue;
+    }
+    const LinkRecord &link = records_[l];
+    const ReceiverPolynomial<Bands> &r = sourceShape_[link.source];
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 4; ++k) g.c[k] += r.c[j] * double(link.shape[j].c[k]);
+  }
+  gathered_[n] = g;
+}
+
+int ReflectedLightHierarchy::solve(double tolerance, int maxSweeps, double &residual,
+                                   const SolverProgressCallback &progress, int &total,
+                                   std::chrono::steady_clock::time_point start) {
+  int sweeps = 0;
+  const uint32_t nodes = static_cast<uint32_t>(mesh_.tree.size());
+  const uint32_t clusterCount = static_cast<uint32_t>(clusters_.clusters.size());
+  std::vector<double> change(mesh_.patches.size()), largest(mesh_.patches.size());
+  while (sweeps < maxSweeps) {
+    arena_.execute([&] {
+      tbb::parallel_for(uint32_t(0), nodes, [&](uint32_t n) { gatherTreeNode(n); });
+      tbb::parallel_for(uint32_t(0), clusterCount, [&](uint32_t c) { gatherCluster(c); });
+      pushClusters();
+      tbb::parallel_for(size_t(0), mesh_.patches.size(), [&](size_t p) {
+        change[p] = largest[p] = 0;
+        ReceiverPolynomial<Bands> down;
+        down.c[0] = patchClusterIrradiance_[p];
+        pushPull(static_cast<uint32_t>(mesh_.patches[p].treeRoot), down, change[p], largest[p]);
+        pullShapes(static_cast<uint32_t>(mesh_.patches[p].treeRoot));
+      });
+    });
+    pullClusters();
+    ++sweeps;
+    ++total;
+    double c = *std::max_element(change.begin(), change.end()), m = *std::max_element(largest.begin(), largest.end());
+    residual = m > 0 ? c / m : 0;
+    if (progress)
+      progress({total, residual, tolerance, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+    if (residual < tolerance) break;
+  }
+  return sweeps;
+}
+
+size_t ReflectedLightHierarchy::linkCount() const {
+  size_t n = 0;
+  for (const LinkRecord &l : records_) n += l.alive;
+  return n + clusterLinkCount();
+}
+
+size_t ReflectedLightHierarchy::clusterLinkCount() const {
+  size_t n = 0;
+  for (const ClusterLinkRecord &l : clusterRecords_) n += l.alive;
+  return n;
+}
+
+ReceiverPolynomial<Bands> ReflectedLightHierarchy::directShape(uint32_t n) const {
+  // Through the leaf's corners' exact values, shifted so its mean is the Simpson mean (direct_).
+  const MeshTreeNode &t = mesh_.tree[n];
+  const bool quad = t.vertexCount == 4;
+  ReceiverPolynomial<Bands> p;
+  const Bands &h0 = field_.at(t.patch, t.corners[0]), &h1 = field_.at(t.patch, t.corners[1]),
+              &h2 = field_.at(t.patch, t.corners[2]);
+  if (quad) {
+    const Bands &h3 = field_.at(t.patch, t.corners[3]);
+    p.c = {h0, h1 - h0, h3 - h0, h2 - h1 - h3 + h0};
+  } else {
+    p.c = {h0, h1 - h0, h2 - h0, Bands(0.0)};
+  }
+  p.c[0] += direct_[n] - p.mean(quad);
+  return p;
+}
+
+void ReflectedLightHierarchy::pullShapes(uint32_t n) {
+  // R over every node as a polynomial: at a leaf ρ(H_direct + H_reflected)
+  // from its own shapes, above from the children's means (fitChildMeans).
+  const MeshTreeNode &t = mesh_.tree[n];
+  const bool quad = t.vertexCount == 4;
+  if (t.isLeaf()) {
+    ReceiverPolynomial<Bands> r = directShape_[n];
+    r += irradiance_[n];
+    for (auto &c : r.c) c = reflectance_[n] * c;
+    sourceShape_[n] = r;
+    return;
+  }
+  std::array<Bands, 4> means;
+  for (int c = 0; c < 4; ++c) {
+    pullShapes(static_cast<uint32_t>(t.children[c]));
+    means[c] = reflected_[t.children[c]];
+  }
+  sourceShape_[n] = fitChildMeans(quad, means);
+}
+
+void ReflectedLightHierarchy::pullDirect(uint32_t n) {
+  const MeshTreeNode &t = mesh_.tree[n];
+  if (t.isLeaf()) {
+    direct_[n] = field_.nodeAverage(t);
+    directShape_[n] = directShape(n);
+    reflected_[n] = reflectance_[n] * direct_[n];
+    return;
+  }
+  Bands d(0.0), r(0.0);
+  for (int c = 0; c < 4; ++c) {
+    const uint32_t child = static_cast<uint32_t>(t.children[c]);
+    pullDirect(child);
+    const double w = mesh_.tree[child].area / t.area;
+    d += direct_[child] * w;
+    r += reflected_[child] * w;
+  }
+  direct_[n] = d;
+  reflected_[n] = r;
+}
+
+bool ReflectedLightHierarchy::facing(uint32_t a, uint32_t b) const {
+  // Some part of b lies in front of a's plane and some part of a in front of b's.
+  auto anyInFront = [&](uint32_t of, uint32_t plane) {
+    const MeshTreeNode &o = mesh_.tree[of], &p = mesh_.tree[plane];
+    const Vec3 n = normalOf(plane);
+    const double tolerance = 1e-9 * std::sqrt(p.area);
+    for (int k = 0; k < o.vertexCount; ++k)
+      if (dot(o.corners[k] - p.corners[0], n) > tolerance) return true;
+    return false;
+  };
+  return anyInFront(b, a) && anyInFront(a, b);
+}
+
+bool ReflectedLightHierarchy::canSplit(uint32_t n) const {
+  return longestEdge(mesh_.tree[n]) >= 2 * minimumEdge_ && leaves_ + 3 <= options_.maxElements;
+}
+
+double ReflectedLightHierarchy::sizeOf(uint32_t id) const {
+  if (isCluster(id)) {
+    const Box3 &b = clusters_.clusters[clusterIndex(id)].bounds;
+    return length(b.hi - b.lo);
+  }
+  return longestEdge(mesh_.tree[id]);
+}
+
+Bands ReflectedLightHierarchy::variation(uint32_t n) const {
+  // What a node's polynomial misses of its children: the largest difference
+  // at their corners between each child's own polynomial and the node's
+  // restricted to it (0 at a leaf, which has no finer information).
+  const MeshTreeNode &t = mesh_.tree[n];
+  Bands v(0.0);
+  if (t.isLeaf()) return v;
+  const bool quad = t.vertexCount == 4;
+  static constexpr double corner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  static constexpr double triangleCorner[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+  for (int c = 0; c < 4; ++c) {
+    const ReceiverPolynomial<Bands> parent = sourceShape_[n].restrictTo(quad, c);
+    const ReceiverPolynomial<Bands> &child = sourceShape_[t.children[c]];
+    for (int k = 0; k < t.vertexCount; ++k) {
+      const double u = quad ? corner[k][0] : triangleCorner[k][0], w = quad ? corner[k][1] : triangleCorner[k][1];
+      const Bands d = child.value(u, w) - parent.value(u, w);
+      for (int b = 0; b < kBandCount; ++b) v[b] = std::max(v[b], std::abs(d[b]));
+    }
+  }
+  return v;
+}
+
+double ReflectedLightHierarchy::error(uint32_t r, uint32_t s, double formFactor, double spreadOfF) const {
+  // The error in the reflected radiosity of the receiver that the link
+  // would make, W·m⁻² (max band).
+  const Bands spread = reflected_[s] * spreadOfF + variation(s) * formFactor;
+  double worst = 0;
+  for (int b = 0; b < kBandCount; ++b)
+    worst = std::max(worst, std::max(reflectance_[r][b], kLeastReflectance) * spread[b]);
+  return worst;
+}
+
+void ReflectedLightHierarchy::splitNode(uint32_t n) {
+  if (!mesh_.tree[n].isLeaf()) return;
+  splitTreeNode(mesh_, n);
+  leaves_ += 3;
+  for (int c = 0; c < 4; ++c) {
+    const uint32_t child = static_cast<uint32_t>(mesh_.tree[n].children[c]);
+    addNodeData(child);
+    reflected_[child] = reflected_[n];
+    direct_[child] = direct_[n];
+    sourceShape_[child] = sourceShape_[n].restrictTo(mesh_.tree[n].vertexCount == 4, c);
+    irradiance_[child] = irradiance_[n].restrictTo(mesh_.tree[n].vertexCount == 4, c);
+  }
+  newLeaves_.push_back(n);
+}
+
+bool ReflectedLightHierarchy::splitPair(uint32_t r, uint32_t s, bool clearShaft, std::vector<PendingPair> &pending) {
+  thread_local std::vector<uint32_t> children, others;
+  if (r == s) {
+    // A cluster with itself: every pair of its children, each child with itself too.
+    childrenOf(r, children);
+    for (uint32_t a : children)
+      for (uint32_t b : children)
+        if ((a != b || isCluster(a)) && facingEnds(a, b)) pending.push_back({a, b, false});
+    return true;
+  }
+  // The larger of the two (RenderPark's rule; splitting by which term of
+  // the error dominates made more links and a worse image).
+  const bool treeNodes = !isCluster(r) && !isCluster(s);
+  const bool receiverFirst = treeNodes ? mesh_.tree[r].area >= mesh_.tree[s].area : sizeOf(r) >= sizeOf(s);
+  const bool splitReceiver = canSplitEnd(r) && (receiverFirst || !canSplitEnd(s));
+  if (!splitReceiver && !canSplitEnd(s)) return false;
+  const uint32_t node = splitReceiver ? r : s;
+  // Cleared shafts carry over only between tree nodes (a child's hull lies in its parent's).
+  const bool clear = clearShaft && treeNodes;
+  childrenOf(node, children);
+  for (uint32_t child : children) {
+    const uint32_t rr = splitReceiver ? child : r, ss = splitReceiver ? s : child;
+    if (facingEnds(rr, ss)) pending.push_back({rr, ss, clear});
+  }
+  return true;
+}
+
+void ReflectedLightHierarchy::refine(std::vector<PendingPair> pending) {
+  // In batches from the back of the queue, so that the estimates held at
+  // once (about 250 bytes each) stay bounded however many pairs wait.
+  constexpr size_t kBatch = size_t(1) << 15;
+  std::vector<LinkEstimate> estimates;
+  std::vector<ClusterLinkEstimate> clusterEstimates;
+  std::vector<PendingPair> batch;
+  std::vector<uint8_t> kind;  // 0: two tree nodes, 1: a cluster link to estimate, 2: split without estimating
+  std::vector<size_t> kept;
+  while (!pending.empty()) {
+    const size_t count = std::min(kBatch, pending.size());
+    batch.assign(pending.end() - static_cast<std::ptrdiff_t>(count), pending.end());
+    pending.resize(pending.size() - count);
+    kind.assign(count, 0);
+    for (size_t i = 0; i < count; ++i) {
+      const uint32_t r = batch[i].receiver, s = batch[i].source;
+      if (!isCluster(r) && !isCluster(s)) continue;
+      // A cluster with itself, or two ends whose boxes meet: no point model
+      // holds, so split them; when neither can be split, the near field.
+      const bool splittable = canSplitEnd(r) || canSplitEnd(s);
+      static const bool selfLinks = std::getenv("RADIANT_SELF") != nullptr;
+      if (r == s) kind[i] = splittable ? 2 : (selfLinks ? 3 : 4);
+      else if (endsOverlap(hierarchyEnd(r), hierarchyEnd(s))) kind[i] = splittable ? 2 : 3;
+      else kind[i] = 1;
+    }
+    estimates.assign(count, LinkEstimate{});
+    clusterEstimates.assign(count, ClusterLinkEstimate{});
+    arena_.execute([&] {
+      tbb::parallel_for(size_t(0), count, [&](size_t i) {
+        const uint32_t r = batch[i].receiver, s = batch[i].source;
+        if (kind[i] == 0) estimates[i] = estimator_.estimate(end(r), end(s), batch[i].clearShaft);
+        else if (kind[i] == 1 || kind[i] == 3)
+          clusterEstimates[i] = estimateClusterLink(tracer_, hierarchyEnd(r), hierarchyEnd(s), kind[i] == 3);
+      });
+    });
+    kept.clear();
+    if (std::getenv("RADIANT_DEBUG")) {
+      size_t k0 = 0, k1 = 0, k2 = 0;
+      for (size_t i = 0; i < count; ++i) (kind[i] == 0 ? k0 : kind[i] == 1 ? k1 : k2)++;
+      std::fprintf(stderr, "batch %zu: tree %zu cluster %zu split %zu; pending %zu, links %zu + %zu, leaves %zu\n", count, k0, k1, k2,
+                   pending.size(), records_.size(), clusterRecords_.size(), leaves_);
+    }
+    for (size_t i = 0; i < count; ++i) {
+      const uint32_t r = batch[i].receiver, s = batch[i].source;
+      if (kind[i] == 2) {
+        splitPair(r, s, false, pending);
+        continue;
+      }
+      // The light a smallest cluster sends to itself stays out: the
+      // surfaces of a region under the smallest link size are taken as
+      // seeing little of each other (a tessellated smooth surface).
+      if (kind[i] == 4) {
+        ++debugSelfDropped_;
+        continue;
+      }
+      if (kind[i] == 1 || kind[i] == 3) {
+        const ClusterLinkEstimate &e = clusterEstimates[i];
+        rays_ += e.rays;
+        ++debugClusterEstimates_;
+        if (clusterLinkError(r, s, e) > threshold_ && splitPair(r, s, false, pending)) continue;
+        if (e.kernelMean > 0 && e.visibility > 0) keepClusterLink(r, s, e, e.isotropic);
+        else if (e.kernelMean <= 0) ++debugZeroKernel_;
+        else if (e.kernelMean > 0 && std::getenv("RADIANT_DEBUG")) {
+          const double f = projectedArea(s, e.direction) * kInvPi * e.kernelMean;
+          const double area = isCluster(r) ? clusters_.clusters[clusterIndex(r)].area : mesh_.tree[r].area;
+          debugDroppedPower_ += f * area;
+          ++debugDropped_;
+        }
+        continue;
+      }
+      rays_ += estimates[i].rays;
+      ++debugTreeEstimates_;
+      if (error(r, s, estimates[i].formFactor, estimates[i].spread) > threshold_ && (canSplit(r) || canSplit(s))) {
+        splitPair(r, s, estimates[i].clearShaft, pending);
+        continue;
+      }
+      if (estimates[i].formFactor > 0) kept.push_back(i);
+    }
+    // Only the links kept need the source's terms of their shape.
+    arena_.execute([&] {
+      tbb::parallel_for(size_t(0), kept.size(), [&](size_t k) {
+        const size_t i = kept[k];
+        estimator_.completeShape(end(batch[i].receiver), end(batch[i].source), estimates[i]);
+      });
+    });
+    for (size_t i : kept) {
+      const uint32_t r = batch[i].receiver, s = batch[i].source;
+      links_[r].push_back(static_cast<uint32_t>(records_.size()));
+      records_.push_back({r, s, estimates[i].shape, float(estimates[i].spread), estimates[i].clearShaft, true});
+    }
+  }
+  // New leaves need the direct light at their test points, and their R.
+  if (!newLeaves_.empty()) {
+    initialiseNewLeaves();
+    newLeaves_.clear();
+  }
+}
+
+void ReflectedLightHierarchy::initialiseNewLeaves() {
+  std::vector<std::pair<uint32_t, Vec3>> points;
+  std::vector<Vec3> nodePoints;
+  for (uint32_t n : newLeaves_)
+    for (int c = 0; c < 4; ++c) {
+      const MeshTreeNode &child = mesh_.tree[mesh_.tree[n].children[c]];
+      if (!child.isLeaf()) continue;
+      field_.testPointsOf(child, nodePoints);
+      for (const Vec3 &p : nodePoints) points.push_back({child.patch, p});
+    }
+  field_.evaluate(mesh_, points, options_.threads);
+  for (uint32_t n : newLeaves_)
+    for (int c = 0; c < 4; ++c) {
+      const uint32_t child = static_cast<uint32_t>(mesh_.tree[n].children[c]);
+      if (mesh_.tree[child].isLeaf()) {
+        direct_[child] = field_.nodeAverage(mesh_.tree[child]);
+        directShape_[child] = directShape(child);
+      }
+    }
+}
+
+Bands ReflectedLightHierarchy::pushPull(uint32_t n, const ReceiverPolynomial<Bands> &down, double &change,
+                                        double &largest) {
+  // `down`: what the ancestors (and the clusters above) gathered, in this node's parameters.
+  const MeshTreeNode &t = mesh_.tree[n];
+  const bool quad = t.vertexCount == 4;
+  ReceiverPolynomial<Bands> h = down;
+  h += gathered_[n];
+  Bands r;
+  if (t.isLeaf()) {
+    irradiance_[n] = h;
+    r = reflectance_[n] * (direct_[n] + nonNegative(h.mean(quad)));
+    change = std::max({change, (r - reflected_[n]).max(), (reflected_[n] - r).max()});
+    largest = std::max(largest, r.max());
+  } else {
+    r = Bands(0.0);
+    for (int c = 0; c < 4; ++c) {
+      const uint32_t child = static_cast<uint32_t>(t.children[c]);
+      r += pushPull(child, h.restrictTo(quad, c), change, largest) * (mesh_.tree[child].area / t.area);
+    }
+  }
+  reflected_[n] = r;
+  return r;
+}
+
+void ReflectedLightHierarchy::writeTo(Solution &s) const {
+  rebuildElementsFromTrees(mesh_);
+  const size_t elements = mesh_.elements.size();
+  for (auto *v : {&s.reflectance, &s.emission, &s.radiosity, &s.direct, &s.indirect, &s.irradiance, &s.unshot})
+    v->assign(elements, Bands(0.0));
+  s.treeRadiosity.assign(mesh_.tree.size(), Bands(0.0));
+  for (uint32_t n = 0; n < mesh_.tree.size(); ++n) {
+    s.treeRadiosity[n] = emission_[n] + reflected_[n];
+    const int32_t e = mesh_.tree[n].element;
+    if (e < 0) continue;
+    s.reflectance[e] = reflectance_[n];
+    s.emission[e] = emission_[n];
+    const Bands reflectedIrradiance = nonNegative(irradiance_[n].mean(mesh_.tree[n].vertexCount == 4));
+    s.direct[e] = reflectance_[n] * direct_[n];
+    s.indirect[e] = reflectance_[n] * reflectedIrradiance;
+    s.radiosity[e] = s.emission[e] + s.direct[e] + s.indirect[e];
+    s.irradiance[e] = direct_[n] + reflectedIrradiance;
+  }
+  // At the nodes: the direct light exact, the reflected light from each
+  // leaf's polynomial at its corners, averaged over the leaves around.
+  s.nodeDirectIrradiance.resize(mesh_.nodes.size());
+  for (uint32_t v = 0; v < mesh_.nodes.size(); ++v) s.nodeDirectIrradiance[v] = field_.at(mesh_.nodePatch[v], mesh_.nodes[v]);
+  s.nodeIndirectIrradiance.assign(mesh_.nodes.size(), Bands(0.0));
+  std::vector<double> weight(mesh_.nodes.size(), 0.0);
+  static constexpr double quadCorner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  static constexpr double triangleCorner[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+  for (uint32_t n = 0; n < mesh_.tree.size(); ++n) {
+    const int32_t e = mesh_.tree[n].element;
+    if (e < 0) continue;
+    const Element &element = mesh_.elements[e];
+    const bool quad = element.vertexCount == 4;
+    for (int k = 0; k < element.vertexCount; ++k) {
+      const double u = quad ? quadCorner[k][0] : triangleCorner[k][0], v = quad ? quadCorner[k][1] : triangleCorner[k][1];
+      s.nodeIndirectIrradiance[element.nodes[k]] += irradiance_[n].value(u, v) * element.area;
+      weight[element.nodes[k]] += element.area;
+    }
+  }
+  for (uint32_t v = 0; v < mesh_.nodes.size(); ++v) {
+    if (weight[v] > 0) s.nodeIndirectIrradiance[v] = s.nodeIndirectIrradiance[v] / weight[v];
+    // A polynomial extrapolated to a corner may undershoot a little where the light falls off.
+    for (int b = 0; b < kBandCount; ++b) s.nodeIndirectIrradiance[v][b] = std::max(0.0, s.nodeIndirectIrradiance[v][b]);
+  }
+  s.links.clear();
+  s.ambient = s.indirectAmbient = Bands(0.0);
+  s.stats.absorbedPower = Bands(0.0);
+  for (size_t e = 0; e < elements; ++e)
+    s.stats.absorbedPower += (Bands(1.0) - s.reflectance[e]) * s.irradiance[e] * mesh_.elements[e].area;
+  s.stats.escapedPower = s.stats.emittedPower - s.stats.absorbedPower;
+}
+
+void ReflectedLightHierarchy::debugUnitGather() {
+  // Every source at R = 1: what each leaf gathers is Σ F over what it sees (1 in a closed scene).
+  const auto savedReflected = reflected_;
+  const auto savedShape = sourceShape_;
+  for (uint32_t n = 0; n < mesh_.tree.size(); ++n) {
+    reflected_[n] = Bands(1.0);
+    sourceShape_[n] = ReceiverPolynomial<Bands>();
+    sourceShape_[n].c[0] = Bands(1.0);
+  }
+  pullClusters();
+  const uint32_t nodes = static_cast<uint32_t>(mesh_.tree.size());
+  for (uint32_t n = 0; n < nodes; ++n) gatherTreeNode(n);
+  for (uint32_t c = 0; c < clusters_.clusters.size(); ++c) gatherCluster(c);
+  arena_.execute([&] { pushClusters(); });
+  // Walk each patch's tree, summing what reaches each leaf.
+  double sum = 0, area = 0, worstLow = 1e9, worstHigh = 0;
+  uint32_t worstLeaf = 0;
+  double worstBigValue = 1e9;
+  double byPatchSize[2] = {0, 0}, areaBySize[2] = {0, 0};
+  std::function<void(uint32_t, ReceiverPolynomial<Bands>)> walk = [&](uint32_t n, ReceiverPolynomial<Bands> down) {
+    const MeshTreeNode &t = mesh_.tree[n];
+    down += gathered_[n];
+    if (t.isLeaf()) {
+      const double f = down.mean(t.vertexCount == 4)[0];
+      sum += f * t.area;
+      area += t.area;
+      if (f < worstBigValue) worstLeaf = n, worstBigValue = f;
+      worstLow = std::min(worstLow, f);
+      worstHigh = std::max(worstHigh, f);
+      const int big = mesh_.patches[t.patch].area > 0.01;
+      byPatchSize[big] += f * t.area;
+      areaBySize[big] += t.area;
+      return;
+    }
+    for (int c = 0; c < 4; ++c) walk(static_cast<uint32_t>(t.children[c]), down.restrictTo(t.vertexCount == 4, c));
+  };
+  for (uint32_t p = 0; p < mesh_.patches.size(); ++p) {
+    ReceiverPolynomial<Bands> down;
+    down.c[0] = patchClusterIrradiance_[p];
+    walk(static_cast<uint32_t>(mesh_.patches[p].treeRoot), down);
+  }
+  std::fprintf(stderr, "unit gather: area mean %.5f (small patches %.5f, large %.5f), min %.4f, max %.4f\n", sum / area,
+               byPatchSize[0] / std::max(areaBySize[0], 1e-30), byPatchSize[1] / std::max(areaBySize[1], 1e-30), worstLow,
+               worstHigh);
+  {
+    // The worst leaf's chain of links.
+    uint32_t n = worstLeaf;
+    const MeshTreeNode &leaf = mesh_.tree[n];
+    std::fprintf(stderr, "worst large-patch leaf %u (%.4f) on patch %u (area %.4g), corner0 %.3f %.3f %.3f\n", n, worstBigValue, leaf.patch, leaf.area,
+                 leaf.corners[0].x, leaf.corners[0].y, leaf.corners[0].z);
+    // Ancestors: find by walking from the root.
+    std::vector<uint32_t> chain;
+    std::function<bool(uint32_t)> find = [&](uint32_t m) {
+      chain.push_back(m);
+      if (m == n) return true;
+      const MeshTreeNode &t = mesh_.tree[m];
+      if (!t.isLeaf())
+        for (int c = 0; c < 4; ++c)
+          if (find(static_cast<uint32_t>(t.children[c]))) return true;
+      chain.pop_back();
+      return false;
+    };
+    find(static_cast<uint32_t>(mesh_.patches[leaf.patch].treeRoot));
+    double treeF = 0, clusterF = 0;
+    size_t treeLinks = 0, clusterLinks = 0;
+    for (uint32_t m : chain)
+      for (uint32_t l : links_[m]) {
+        if (isCluster(l)) {
+          const ClusterLinkRecord &r = clusterRecords_[clusterIndex(l)];
+          clusterF += projectedArea(r.source, r.directionVector()) * kInvPi * r.kernel.mean(mesh_.tree[m].vertexCount == 4);
+          ++clusterLinks;
+        } else {
+          treeF += formFactorOf(records_[l]);
+          ++treeLinks;
+        }
+      }
+    std::fprintf(stderr, "  chain of %zu nodes: %zu tree links F %.4f, %zu cluster links F %.4f, from clusters above %.4f\n",
+                 chain.size(), treeLinks, treeF, clusterLinks, clusterF, patchClusterIrradiance_[leaf.patch][0]);
+  }
+  reflected_ = savedReflected;
+  sourceShape_ = savedShape;
+  pullClusters();
+}
+
+}  // namespace radiant
