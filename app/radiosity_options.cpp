@@ -161,6 +161,8 @@ void printSolveSummary(const Solution &s) {
   const SolveStats &st = s.stats;
   fmt::print(stderr, "radiant: {} solved {} elements in {:.2f} s: {} iterations, residual {:.3g}, {:.3g} M shadow rays\n",
              st.solver, s.elementCount(), st.seconds, st.iterations, st.residual, st.formFactorRays * 1e-6);
+  if (st.links > 0)
+    fmt::print(stderr, "radiant: {} links, {} of them with a cluster of patches at an end\n", st.links, st.clusterLinks);
   fmt::print(stderr, "radiant: power (W, band average): emitted {:.6g}, absorbed {:.6g}, escaped {:.6g}\n",
              st.emittedPower.average(), st.absorbedPower.average(), st.escapedPower.average());
 }

@@ -114,29 +114,39 @@ double DirectIrradiance::sampledFormFactor(const Vec3 &x, const Vec3 &n, size_t 
   const EmitterPolygon &e = emitters_[emitter];
   const double unoccluded = unoccludedFormFactor(x, n, emitter);
   if (!(unoccluded > 0) || !tracer_) return unoccluded;
-  constexpr int k = kSampledVisibilityGrid;
-  double all = 0, seen = 0;
-  for (int a = 0; a < k; ++a)
-    for (int b = 0; b < k; ++b) {
-      const double u = (a + 0.5) / k, v = (b + 0.5) / k;
-      Vec3 y;
-      if (e.vertexCount == 4) {
-        y = e.corners[0] * ((1 - u) * (1 - v)) + e.corners[1] * (u * (1 - v)) + e.corners[2] * (u * v) +
-            e.corners[3] * ((1 - u) * v);
-      } else {
-        double b1, b2;
-        sampleUniformTriangle(u, v, b1, b2);
-        y = e.corners[0] * (1 - b1 - b2) + e.corners[1] * b1 + e.corners[2] * b2;
+  // The kernel-weighted visible fraction of a k × k grid of cell centres.
+  auto fraction = [&](int k, bool &partial) {
+    double all = 0, seen = 0;
+    int hidden = 0, shown = 0;
+    for (int a = 0; a < k; ++a)
+      for (int b = 0; b < k; ++b) {
+        const double u = (a + 0.5) / k, v = (b + 0.5) / k;
+        Vec3 y;
+        if (e.vertexCount == 4) {
+          y = e.corners[0] * ((1 - u) * (1 - v)) + e.corners[1] * (u * (1 - v)) + e.corners[2] * (u * v) +
+              e.corners[3] * ((1 - u) * v);
+        } else {
+          double b1, b2;
+          sampleUniformTriangle(u, v, b1, b2);
+          y = e.corners[0] * (1 - b1 - b2) + e.corners[1] * b1 + e.corners[2] * b2;
+        }
+        const Vec3 d = y - x;
+        const double r2 = dot(d, d), towards = dot(d, n), from = -dot(d, e.normal);
+        // Only the part in front of x's plane: that is all the exact factor covers.
+        if (!(towards > 0 && from > 0)) continue;
+        const double w = towards * from / (r2 * r2);
+        all += w;
+        if (tracer_->visible(x, n, y, e.normal)) seen += w, ++shown;
+        else ++hidden;
       }
-      const Vec3 d = y - x;
-      const double r2 = dot(d, d), towards = dot(d, n), from = -dot(d, e.normal);
-      // Only the part in front of x's plane: that is all the exact factor covers.
-      if (!(towards > 0 && from > 0)) continue;
-      const double w = towards * from / (r2 * r2);
-      all += w;
-      if (tracer_->visible(x, n, y, e.normal)) seen += w;
-    }
-  return all > 0 ? unoccluded * (seen / all) : 0.0;
+    partial = shown > 0 && hidden > 0;
+    return all > 0 ? seen / all : 0.0;
+  };
+  // A quarter of the rays first; where they disagree (a penumbra), the full grid.
+  bool partial = false;
+  double visible = fraction(kSampledVisibilityGrid / 2, partial);
+  if (partial) visible = fraction(kSampledVisibilityGrid, partial);
+  return unoccluded * visible;
 }
 
 double DirectIrradiance::unoccludedFormFactor(const Vec3 &x, const Vec3 &n, size_t emitter) const {

@@ -90,9 +90,15 @@ class DirectIrradiance {
   /// everything. The grid is the same for every x, so the estimate has no
   /// noise: it is a deterministic function of x that steps by about 1/k² of
   /// the light where an occluder's edge crosses one of its rays, and the
-  /// mesh refinement is not chasing random differences. Needs the tracer.
+  /// mesh refinement is not chasing random differences. A grid of half the
+  /// size goes first, and the full one only where its rays disagree (in a
+  /// penumbra): lit and shadowed points cost a quarter. A regular lattice
+  /// of occluders aliases with the grid: 16 × 16 stays within 10 % of the
+  /// unoccluded light of backprojection where 8 × 8 missed by 25 %
+  /// (DirectIrradiance.SampledPastManyOccludersAgreesWithBackprojection).
+  /// Needs the tracer.
   double sampledFormFactor(const Vec3 &x, const Vec3 &n, size_t emitter) const;
-  static constexpr int kSampledVisibilityGrid = 8;
+  static constexpr int kSampledVisibilityGrid = 16;
 
  private:
   const Scene &scene_;

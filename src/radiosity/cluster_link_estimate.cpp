@@ -106,6 +106,28 @@ struct RayCandidate {
   double weight = 0;
 };
 
+bool facesEachOther(const Vec3 &a, const Vec3 &na, const Vec3 &b, const Vec3 &nb) {
+  return dot(b - a, na) > 0 && dot(a - b, nb) > 0;
+}
+
+/// A ray between a point (`point`, normal `pointNormal`) and one of a
+/// node's interior points, the first from `start` on that faces it both
+/// ways (a ray from a point the other faces away from would only find its
+/// own surface); none facing: no candidate. `nodeIsSource` orders the ends.
+void addCandidate(const MeshTreeNode &node, const Vec3 &nodeNormal, const Vec3 &point, const Vec3 &pointNormal,
+                  size_t start, double weight, bool nodeIsSource, std::vector<RayCandidate> &out) {
+  static constexpr double quadAt[4][2] = {{0.25, 0.25}, {0.75, 0.25}, {0.75, 0.75}, {0.25, 0.75}};
+  static constexpr double triangleAt[4][2] = {{1.0 / 6, 1.0 / 6}, {2.0 / 3, 1.0 / 6}, {1.0 / 6, 2.0 / 3}, {1.0 / 3, 1.0 / 3}};
+  for (size_t t = 0; t < 4; ++t) {
+    const auto &uv = node.vertexCount == 4 ? quadAt[(start + t) % 4] : triangleAt[(start + t) % 4];
+    const Vec3 y = pointOnNode(node, uv[0], uv[1]);
+    if (!facesEachOther(y, nodeNormal, point, pointNormal)) continue;
+    if (nodeIsSource) out.push_back({point, pointNormal, y, nodeNormal, weight});
+    else out.push_back({y, nodeNormal, point, pointNormal, weight});
+    return;
+  }
+}
+
 /// The fraction of the link's light that arrives: rays between candidates
 /// chosen in proportion to their shares (at evenly spaced quantiles, so the
 /// same pairs every time), which makes the fraction consistent with the
@@ -204,14 +226,10 @@ ClusterLinkEstimate estimateClusterLink(const RayTracer &tracer, const Hierarchy
       sum += rule[k].weight * values[k];
     }
     // Rays from the receiver's interior points to the patches that light it.
-    for (size_t j = 0; j < share.size(); ++j) {
-      if (!(share[j] > 0)) continue;
-      static constexpr double quadAt[4][2] = {{0.25, 0.25}, {0.75, 0.25}, {0.75, 0.75}, {0.25, 0.75}};
-      static constexpr double triangleAt[4][2] = {{1.0 / 6, 1.0 / 6}, {2.0 / 3, 1.0 / 6}, {1.0 / 6, 2.0 / 3}, {1.0 / 3, 1.0 / 3}};
-      const auto &uv = quad ? quadAt[j % 4] : triangleAt[j % 4];
-      candidates.push_back({pointOnNode(n, uv[0], uv[1]), receiver.normal, sourcePatches.centroids[j],
-                            sourcePatches.patches[j]->normal, share[j]});
-    }
+    for (size_t j = 0; j < share.size(); ++j)
+      if (share[j] > 0)
+        addCandidate(n, receiver.normal, sourcePatches.centroids[j], sourcePatches.patches[j]->normal, j, share[j],
+                     false, candidates);
     // The intensity toward the receiver covers the patches facing that
     // way; where none do and yet the receiver sees some (a wide source
     // close by), the link carries the source's mean R instead.
@@ -253,15 +271,12 @@ ClusterLinkEstimate estimateClusterLink(const RayTracer &tracer, const Hierarchy
                 ? formFactorPointToPolygon(x, p->normal, std::span<const Vec3>(s.corners.data(), size_t(s.vertexCount)))
                 : 0.0;
         // Rays to the source's interior points, in turn.
-        static constexpr double quadAt[4][2] = {{0.25, 0.25}, {0.75, 0.25}, {0.75, 0.75}, {0.25, 0.75}};
-        static constexpr double triangleAt[4][2] = {{1.0 / 6, 1.0 / 6}, {2.0 / 3, 1.0 / 6}, {1.0 / 6, 2.0 / 3}, {1.0 / 3, 1.0 / 3}};
-        const auto &uv = s.vertexCount == 4 ? quadAt[k % 4] : triangleAt[k % 4];
-        if (f > 0) candidates.push_back({x, p->normal, pointOnNode(s, uv[0], uv[1]), source.normal, p->area * f});
+        if (f > 0) addCandidate(s, source.normal, x, p->normal, k, p->area * f, true, candidates);
       } else {
         share.assign(sourcePatches.patches.size(), 0.0);
         f = formFactorToPatches(x, p->normal, sourcePatches, share.data(), p->area);
         for (size_t j = 0; j < share.size(); ++j)
-          if (share[j] > 0)
+          if (share[j] > 0 && facesEachOther(x, p->normal, sourcePatches.centroids[j], sourcePatches.patches[j]->normal))
             candidates.push_back({x, p->normal, sourcePatches.centroids[j], sourcePatches.patches[j]->normal, share[j]});
       }
       exact += p->area * f;

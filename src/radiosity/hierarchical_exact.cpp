@@ -121,6 +121,8 @@ void solveHierarchicalExact(const RayTracer &tracer, Solution &s, const SolverOp
   s.stats.iterations = total;
   s.stats.residual = residual;
   s.stats.formFactorRays = hierarchy.rays();
+  s.stats.links = hierarchy.linkCount();
+  s.stats.clusterLinks = hierarchy.clusterLinkCount();
   hierarchy.writeTo(s);
   lap("writing the solution");
   if (timing)

@@ -5,9 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 
-#include "radiosity/form_factor.h"
 #include "radiosity/reflected_light_hierarchy.h"
 
 namespace radiant {
@@ -52,8 +50,7 @@ void ReflectedLightHierarchy::initialiseClusters() {
 bool ReflectedLightHierarchy::canSplitEnd(uint32_t id) const {
   if (!isCluster(id)) return canSplit(id);
   const Box3 &b = clusters_.clusters[clusterIndex(id)].bounds;
-  static const double factor = std::getenv("RADIANT_ATOMIC") ? std::atof(std::getenv("RADIANT_ATOMIC")) : 2.0;
-  return std::max({b.hi.x - b.lo.x, b.hi.y - b.lo.y, b.hi.z - b.lo.z}) >= factor * minimumEdge_;
+  return std::max({b.hi.x - b.lo.x, b.hi.y - b.lo.y, b.hi.z - b.lo.z}) >= 2 * minimumEdge_;
 }
 
 HierarchyEnd ReflectedLightHierarchy::hierarchyEnd(uint32_t id) const {
@@ -162,8 +159,6 @@ double visibilityUncertainty(double visibility, int rays) {
 }  // namespace
 
 double ReflectedLightHierarchy::clusterLinkError(uint32_t r, uint32_t s, const ClusterLinkEstimate &e) const {
-  static const bool noClusters = std::getenv("RADIANT_NO_CLUSTER_LINKS") != nullptr;
-  if (noClusters) return 1e30;
   // F: the link's form factor (unoccluded): the source's projected area
   // toward the receiver over π times the kernel's mean, or the mean itself
   // in the near field.
@@ -177,19 +172,16 @@ double ReflectedLightHierarchy::clusterLinkError(uint32_t r, uint32_t s, const C
   // polynomial misses its children).
   const Bands spreadOfR = isCluster(s) ? largest - mean : variation(s);
   const Bands &rho = isCluster(r) ? clusterReflectance_[clusterIndex(r)] : reflectance_[r];
-  const double geometry = unoccluded * (e.spread + visibilityUncertainty(e.visibility, e.rays));
+  // The kernel's spread is over the receiver: splitting the source cannot
+  // make it smaller, only spread it over more links (each under the
+  // threshold, all together no better). A receiver that cannot be split
+  // keeps it, whatever the source.
+  const double spread = canSplitEnd(r) ? e.spread : 0.0;
+  const double geometry = unoccluded * (spread + visibilityUncertainty(e.visibility, e.rays));
   double worst = 0;
-  int worstBand = 0;
   for (int b = 0; b < kBandCount; ++b) {
     const double err = geometry * largest[b] + visible * (spreadOfR[b] + (harmonics ? kHarmonicsError * mean[b] : 0.0));
-    const double weighted = std::max(rho[b], kLeastReflectance) * err;
-    if (weighted > worst) worst = weighted, worstBand = b;
-  }
-  if (worst > threshold_) {
-    const double g = unoccluded * e.spread * largest[worstBand],
-                 v = unoccluded * visibilityUncertainty(e.visibility, e.rays) * largest[worstBand],
-                 h = visible * spreadOfR[worstBand];
-    (g >= v && g >= h ? debugSplitGeometry_ : v >= h ? debugSplitVisibility_ : debugSplitHarmonics_)++;
+    worst = std::max(worst, std::max(rho[b], kLeastReflectance) * err);
   }
   return worst;
 }
@@ -213,7 +205,6 @@ void ReflectedLightHierarchy::keepClusterLink(uint32_t r, uint32_t s, const Clus
   // create light: no link carries more than all of its source's exitance.
   const double formFactor = e.isotropic ? e.kernelMean : projectedArea(s, e.direction) * kInvPi * e.kernelMean;
   const double scale = formFactor > 1 ? 1 / formFactor : 1.0;
-  if (formFactor > 1) ++debugClamped_;
   for (int k = 0; k < 4; ++k) record.kernel.c[k] = float(e.kernel.c[k] * scale);
   record.direction = {float(e.direction.x), float(e.direction.y), float(e.direction.z)};
   record.kernelMean = float(e.kernelMean);
@@ -308,86 +299,6 @@ void ReflectedLightHierarchy::pullClusters() {
     clusterLargest_[i] = largest;
     clusterIntensity_[i] = intensity;
   }
-}
-
-void ReflectedLightHierarchy::debugCheckClusterLinks() const {
-  // Unoccluded transfer per unit R of every source patch: the link's model against patch-by-patch contour integrals.
-  double sumApprox[4] = {}, sumExact[4] = {};
-  size_t counted[4] = {};
-  auto patchesOf = [&](uint32_t id, std::vector<uint32_t> &out) {
-    out.clear();
-    if (!isCluster(id)) return;
-    const Cluster &c = clusters_.clusters[clusterIndex(id)];
-    for (uint32_t k = c.first; k < c.first + c.count; ++k) out.push_back(clusters_.order[k]);
-  };
-  std::vector<uint32_t> rp, sp;
-  size_t step = std::max<size_t>(1, clusterRecords_.size() / 20000);
-  for (size_t l = 0; l < clusterRecords_.size(); l += step) {
-    const ClusterLinkRecord &link = clusterRecords_[l];
-    if (!link.alive) continue;
-    const Vec3 w = link.directionVector();
-    const double unit = link.nearField ? link.kernelMean : projectedArea(link.source, w) * kInvPi * link.kernelMean;
-    // Receiver points and weights.
-    std::vector<std::pair<Vec3, Vec3>> points;
-    std::vector<double> weights, cosines;
-    if (isCluster(link.receiver)) {
-      patchesOf(link.receiver, rp);
-      double area = 0;
-      for (uint32_t p : rp) area += mesh_.patches[p].area;
-      for (uint32_t p : rp) {
-        const Patch &patch = mesh_.patches[p];
-        Vec3 c;
-        for (int k = 0; k < patch.vertexCount; ++k) c += patch.corners[k];
-        points.push_back({c / double(patch.vertexCount), patch.normal});
-        weights.push_back(patch.area / area);
-        cosines.push_back(link.nearField ? 1.0 : std::max(0.0, -dot(patch.normal, w)));
-      }
-    } else {
-      const MeshTreeNode &t = mesh_.tree[link.receiver];
-      const auto &rule = receiverRule(t.vertexCount == 4);
-      for (const auto &q : rule) {
-        points.push_back({pointOn(t, q.u, q.v), normalOf(link.receiver)});
-        weights.push_back(q.weight);
-        cosines.push_back(1.0);
-      }
-    }
-    double approx = 0, exact = 0;
-    for (size_t i = 0; i < points.size(); ++i) {
-      approx += weights[i] * cosines[i];
-      double f = 0;
-      auto addPolygon = [&](std::span<const Vec3> poly, const Vec3 &n) {
-        if (dot(points[i].first - poly[0], n) <= 0) return;
-        Vec3 c;
-        for (const Vec3 &q : poly) c += q;
-        c = c / double(poly.size());
-        if (!tracer_.visible(points[i].first, points[i].second, c, n)) return;
-        f += formFactorPointToPolygon(points[i].first, points[i].second, poly);
-      };
-      if (isCluster(link.source)) {
-        patchesOf(link.source, sp);
-        for (uint32_t p : sp) {
-          const Patch &patch = mesh_.patches[p];
-          addPolygon(std::span<const Vec3>(patch.corners.data(), size_t(patch.vertexCount)), patch.normal);
-        }
-      } else {
-        const MeshTreeNode &t = mesh_.tree[link.source];
-        addPolygon(std::span<const Vec3>(t.corners.data(), size_t(t.vertexCount)), normalOf(link.source));
-      }
-      exact += weights[i] * f;
-    }
-    // For a cluster receiver `approx` so far is the mean cosine; the model gives F × that (kernel at the centre).
-    approx = (isCluster(link.receiver) ? unit * approx : unit) * link.visibility;
-    auto big = [&](uint32_t id) { return isCluster(id) && exactOffset_[clusterIndex(id)] < 0; };
-    const int kind = link.nearField ? 3 : big(link.receiver) || big(link.source) ? 0 : (isCluster(link.receiver) ? 2 : 0) + (isCluster(link.source) ? 1 : 0);
-    sumApprox[kind] += approx;
-    sumExact[kind] += exact;
-    ++counted[kind];
-  }
-  std::fprintf(stderr, "clamped %zu cluster links\n", debugClamped_);
-  const char *names[4] = {"with a large cluster", "tree<-cluster", "cluster<-tree", "near field"};
-  for (int k = 0; k < 4; ++k)
-    std::fprintf(stderr, "check %s: %zu links, sum model %.5g, sum exact %.5g, ratio %.4f\n", names[k], counted[k],
-                 sumApprox[k], sumExact[k], sumExact[k] > 0 ? sumApprox[k] / sumExact[k] : 0.0);
 }
 
 }  // namespace radiant

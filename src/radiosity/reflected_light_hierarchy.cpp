@@ -8,8 +8,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <functional>
 
 #include "texture/surface_detail.h"
 
@@ -114,28 +112,6 @@ void ReflectedLightHierarchy::link() {
     pullShapes(static_cast<uint32_t>(mesh_.patches[p].treeRoot));
   }
   pullClusters();
-  if (std::getenv("RADIANT_DEBUG")) {
-    size_t tt = 0, tc = 0, ct = 0, cc = 0, bigPatchReceivers = 0, smallSmall = 0;
-    for (const LinkRecord &l : records_) {
-      tt += l.alive;
-      bigPatchReceivers += l.alive && mesh_.patches[mesh_.tree[l.receiver].patch].area > 0.01;
-      smallSmall += l.alive && mesh_.patches[mesh_.tree[l.receiver].patch].area <= 0.01 &&
-                    mesh_.patches[mesh_.tree[l.source].patch].area <= 0.01;
-    }
-    std::fprintf(stderr, "small<-small tree links %zu\n", smallSmall);
-    for (const ClusterLinkRecord &l : clusterRecords_) {
-      if (!l.alive) continue;
-      if (isCluster(l.receiver)) (isCluster(l.source) ? cc : ct)++;
-      else tc++;
-    }
-    std::fprintf(stderr, "links: tree<-tree %zu (receiver on a patch > 0.01 m2: %zu), tree<-cluster %zu, cluster<-tree %zu, cluster<-cluster %zu\n",
-                 tt, bigPatchReceivers, tc, ct, cc);
-    std::fprintf(stderr, "estimates: tree %zu, cluster %zu; cluster splits by geometry %zu, visibility %zu, harmonics %zu\n",
-                 debugTreeEstimates_, debugClusterEstimates_, debugSplitGeometry_, debugSplitVisibility_, debugSplitHarmonics_);
-    debugCheckClusterLinks();
-    std::fprintf(stderr, "dropped %zu invisible cluster links, unoccluded F x receiver area %.4g m2; %zu with a zero kernel, %zu self links of the smallest clusters\n", debugDropped_, debugDroppedPower_, debugZeroKernel_, debugSelfDropped_);
-    debugUnitGather();
-  }
 }
 
 size_t ReflectedLightHierarchy::rerefine() {
@@ -389,71 +365,52 @@ void ReflectedLightHierarchy::refine(std::vector<PendingPair> pending) {
   std::vector<LinkEstimate> estimates;
   std::vector<ClusterLinkEstimate> clusterEstimates;
   std::vector<PendingPair> batch;
-  std::vector<uint8_t> kind;  // 0: two tree nodes, 1: a cluster link to estimate, 2: split without estimating
+  // What each pending pair is: two tree nodes; a link with a cluster end to
+  // estimate; a pair no point model holds for, to split unseen; or such a
+  // pair that cannot be split, taken as near field.
+  enum PairKind : uint8_t { kTreeNodes, kClusterLink, kSplitUnseen, kNearField };
+  std::vector<uint8_t> kind;
   std::vector<size_t> kept;
   while (!pending.empty()) {
     const size_t count = std::min(kBatch, pending.size());
     batch.assign(pending.end() - static_cast<std::ptrdiff_t>(count), pending.end());
     pending.resize(pending.size() - count);
-    kind.assign(count, 0);
+    kind.assign(count, kTreeNodes);
     for (size_t i = 0; i < count; ++i) {
       const uint32_t r = batch[i].receiver, s = batch[i].source;
       if (!isCluster(r) && !isCluster(s)) continue;
       // A cluster with itself, or two ends whose boxes meet: no point model
-      // holds, so split them; when neither can be split, the near field.
+      // holds, so split them; when neither can be split (a smallest cluster
+      // with itself, or beside a smallest node), the near field.
       const bool splittable = canSplitEnd(r) || canSplitEnd(s);
-      static const bool selfLinks = std::getenv("RADIANT_SELF") != nullptr;
-      if (r == s) kind[i] = splittable ? 2 : (selfLinks ? 3 : 4);
-      else if (endsOverlap(hierarchyEnd(r), hierarchyEnd(s))) kind[i] = splittable ? 2 : 3;
-      else kind[i] = 1;
+      if (r == s || endsOverlap(hierarchyEnd(r), hierarchyEnd(s))) kind[i] = splittable ? kSplitUnseen : kNearField;
+      else kind[i] = kClusterLink;
     }
     estimates.assign(count, LinkEstimate{});
     clusterEstimates.assign(count, ClusterLinkEstimate{});
     arena_.execute([&] {
       tbb::parallel_for(size_t(0), count, [&](size_t i) {
         const uint32_t r = batch[i].receiver, s = batch[i].source;
-        if (kind[i] == 0) estimates[i] = estimator_.estimate(end(r), end(s), batch[i].clearShaft);
-        else if (kind[i] == 1 || kind[i] == 3)
-          clusterEstimates[i] = estimateClusterLink(tracer_, hierarchyEnd(r), hierarchyEnd(s), kind[i] == 3);
+        if (kind[i] == kTreeNodes) estimates[i] = estimator_.estimate(end(r), end(s), batch[i].clearShaft);
+        else if (kind[i] != kSplitUnseen)
+          clusterEstimates[i] = estimateClusterLink(tracer_, hierarchyEnd(r), hierarchyEnd(s), kind[i] == kNearField);
       });
     });
     kept.clear();
-    if (std::getenv("RADIANT_DEBUG")) {
-      size_t k0 = 0, k1 = 0, k2 = 0;
-      for (size_t i = 0; i < count; ++i) (kind[i] == 0 ? k0 : kind[i] == 1 ? k1 : k2)++;
-      std::fprintf(stderr, "batch %zu: tree %zu cluster %zu split %zu; pending %zu, links %zu + %zu, leaves %zu\n", count, k0, k1, k2,
-                   pending.size(), records_.size(), clusterRecords_.size(), leaves_);
-    }
     for (size_t i = 0; i < count; ++i) {
       const uint32_t r = batch[i].receiver, s = batch[i].source;
-      if (kind[i] == 2) {
+      if (kind[i] == kSplitUnseen) {
         splitPair(r, s, false, pending);
         continue;
       }
-      // The light a smallest cluster sends to itself stays out: the
-      // surfaces of a region under the smallest link size are taken as
-      // seeing little of each other (a tessellated smooth surface).
-      if (kind[i] == 4) {
-        ++debugSelfDropped_;
-        continue;
-      }
-      if (kind[i] == 1 || kind[i] == 3) {
+      if (kind[i] != kTreeNodes) {
         const ClusterLinkEstimate &e = clusterEstimates[i];
         rays_ += e.rays;
-        ++debugClusterEstimates_;
         if (clusterLinkError(r, s, e) > threshold_ && splitPair(r, s, false, pending)) continue;
         if (e.kernelMean > 0 && e.visibility > 0) keepClusterLink(r, s, e, e.isotropic);
-        else if (e.kernelMean <= 0) ++debugZeroKernel_;
-        else if (e.kernelMean > 0 && std::getenv("RADIANT_DEBUG")) {
-          const double f = projectedArea(s, e.direction) * kInvPi * e.kernelMean;
-          const double area = isCluster(r) ? clusters_.clusters[clusterIndex(r)].area : mesh_.tree[r].area;
-          debugDroppedPower_ += f * area;
-          ++debugDropped_;
-        }
         continue;
       }
       rays_ += estimates[i].rays;
-      ++debugTreeEstimates_;
       if (error(r, s, estimates[i].formFactor, estimates[i].spread) > threshold_ && (canSplit(r) || canSplit(s))) {
         splitPair(r, s, estimates[i].clearShaft, pending);
         continue;
@@ -573,90 +530,6 @@ void ReflectedLightHierarchy::writeTo(Solution &s) const {
   for (size_t e = 0; e < elements; ++e)
     s.stats.absorbedPower += (Bands(1.0) - s.reflectance[e]) * s.irradiance[e] * mesh_.elements[e].area;
   s.stats.escapedPower = s.stats.emittedPower - s.stats.absorbedPower;
-}
-
-void ReflectedLightHierarchy::debugUnitGather() {
-  // Every source at R = 1: what each leaf gathers is Σ F over what it sees (1 in a closed scene).
-  const auto savedReflected = reflected_;
-  const auto savedShape = sourceShape_;
-  for (uint32_t n = 0; n < mesh_.tree.size(); ++n) {
-    reflected_[n] = Bands(1.0);
-    sourceShape_[n] = ReceiverPolynomial<Bands>();
-    sourceShape_[n].c[0] = Bands(1.0);
-  }
-  pullClusters();
-  const uint32_t nodes = static_cast<uint32_t>(mesh_.tree.size());
-  for (uint32_t n = 0; n < nodes; ++n) gatherTreeNode(n);
-  for (uint32_t c = 0; c < clusters_.clusters.size(); ++c) gatherCluster(c);
-  arena_.execute([&] { pushClusters(); });
-  // Walk each patch's tree, summing what reaches each leaf.
-  double sum = 0, area = 0, worstLow = 1e9, worstHigh = 0;
-  uint32_t worstLeaf = 0;
-  double worstBigValue = 1e9;
-  double byPatchSize[2] = {0, 0}, areaBySize[2] = {0, 0};
-  std::function<void(uint32_t, ReceiverPolynomial<Bands>)> walk = [&](uint32_t n, ReceiverPolynomial<Bands> down) {
-    const MeshTreeNode &t = mesh_.tree[n];
-    down += gathered_[n];
-    if (t.isLeaf()) {
-      const double f = down.mean(t.vertexCount == 4)[0];
-      sum += f * t.area;
-      area += t.area;
-      if (f < worstBigValue) worstLeaf = n, worstBigValue = f;
-      worstLow = std::min(worstLow, f);
-      worstHigh = std::max(worstHigh, f);
-      const int big = mesh_.patches[t.patch].area > 0.01;
-      byPatchSize[big] += f * t.area;
-      areaBySize[big] += t.area;
-      return;
-    }
-    for (int c = 0; c < 4; ++c) walk(static_cast<uint32_t>(t.children[c]), down.restrictTo(t.vertexCount == 4, c));
-  };
-  for (uint32_t p = 0; p < mesh_.patches.size(); ++p) {
-    ReceiverPolynomial<Bands> down;
-    down.c[0] = patchClusterIrradiance_[p];
-    walk(static_cast<uint32_t>(mesh_.patches[p].treeRoot), down);
-  }
-  std::fprintf(stderr, "unit gather: area mean %.5f (small patches %.5f, large %.5f), min %.4f, max %.4f\n", sum / area,
-               byPatchSize[0] / std::max(areaBySize[0], 1e-30), byPatchSize[1] / std::max(areaBySize[1], 1e-30), worstLow,
-               worstHigh);
-  {
-    // The worst leaf's chain of links.
-    uint32_t n = worstLeaf;
-    const MeshTreeNode &leaf = mesh_.tree[n];
-    std::fprintf(stderr, "worst large-patch leaf %u (%.4f) on patch %u (area %.4g), corner0 %.3f %.3f %.3f\n", n, worstBigValue, leaf.patch, leaf.area,
-                 leaf.corners[0].x, leaf.corners[0].y, leaf.corners[0].z);
-    // Ancestors: find by walking from the root.
-    std::vector<uint32_t> chain;
-    std::function<bool(uint32_t)> find = [&](uint32_t m) {
-      chain.push_back(m);
-      if (m == n) return true;
-      const MeshTreeNode &t = mesh_.tree[m];
-      if (!t.isLeaf())
-        for (int c = 0; c < 4; ++c)
-          if (find(static_cast<uint32_t>(t.children[c]))) return true;
-      chain.pop_back();
-      return false;
-    };
-    find(static_cast<uint32_t>(mesh_.patches[leaf.patch].treeRoot));
-    double treeF = 0, clusterF = 0;
-    size_t treeLinks = 0, clusterLinks = 0;
-    for (uint32_t m : chain)
-      for (uint32_t l : links_[m]) {
-        if (isCluster(l)) {
-          const ClusterLinkRecord &r = clusterRecords_[clusterIndex(l)];
-          clusterF += projectedArea(r.source, r.directionVector()) * kInvPi * r.kernel.mean(mesh_.tree[m].vertexCount == 4);
-          ++clusterLinks;
-        } else {
-          treeF += formFactorOf(records_[l]);
-          ++treeLinks;
-        }
-      }
-    std::fprintf(stderr, "  chain of %zu nodes: %zu tree links F %.4f, %zu cluster links F %.4f, from clusters above %.4f\n",
-                 chain.size(), treeLinks, treeF, clusterLinks, clusterF, patchClusterIrradiance_[leaf.patch][0]);
-  }
-  reflected_ = savedReflected;
-  sourceShape_ = savedShape;
-  pullClusters();
 }
 
 }  // namespace radiant

@@ -177,8 +177,6 @@ class ReflectedLightHierarchy {
   void pushClusters();
   /// After push–pull: each cluster's R, largest R and intensity from its patches.
   void pullClusters();
-  void debugCheckClusterLinks() const;
-  void debugUnitGather();
 
   const Scene &scene_;
   const RayTracer &tracer_;
@@ -205,9 +203,6 @@ class ReflectedLightHierarchy {
   std::vector<uint32_t> newLeaves_;  ///< split since the direct light was last read
   size_t leaves_ = 0;
   size_t rays_ = 0;
-  mutable size_t debugTreeEstimates_ = 0, debugClusterEstimates_ = 0, debugSplitGeometry_ = 0,
-                 debugSplitVisibility_ = 0, debugSplitHarmonics_ = 0, debugClamped_ = 0, debugDropped_ = 0, debugZeroKernel_ = 0, debugSelfDropped_ = 0;
-  double debugDroppedPower_ = 0;
   // Per cluster.
   std::vector<Bands> clusterReflectance_;        ///< largest ρ of its patches (at least kLeastReflectance)
   std::vector<Bands> clusterReflected_, clusterLargest_;  ///< area mean and largest of its patches' R

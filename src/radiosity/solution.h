@@ -24,6 +24,9 @@ struct SolveStats {
   Bands absorbedPower;           ///< Σ A (1−ρ) H, W
   Bands escapedPower;            ///< emitted − absorbed − still unshot (open scenes), W
   size_t formFactorRays = 0;
+  /// Hierarchical solvers: the links at the end, and how many of them have a
+  /// cluster at one end (not kept in the solution file).
+  size_t links = 0, clusterLinks = 0;
 };
 
 /// How much of a hierarchical link's source its receiver sees (from shadow rays).
