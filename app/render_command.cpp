@@ -334,10 +334,16 @@ CommandRunner addRenderCommand(CLI::App &app) {
     }
     writeRenderOutputs(image, outputs, display, app.count("--tonemap") > 0, tracer, camera, o->quiet);
     if (!o->variancePath.empty()) writeImage(rendered.variance, o->variancePath);
-    if (!o->quiet)
-      fmt::print(stderr, "radiant: {} spp{} in {:.2f} s ({:.3g} Msamples/s); wrote {}\n", stats.samplesPerPixel,
-                 spectral ? fmt::format(" × {} passes", passes) : std::string(), stats.seconds,
+    if (!o->quiet) {
+      // Converged pixels may have stopped early (render/driver.h): say what the mean pixel took.
+      const double pixelsTaken = double(r.width) * r.height * (spectral ? passes : 1);
+      const double mean = driver.onlyPixelX >= 0 ? stats.samplesPerPixel : stats.cameraSamples / pixelsTaken;
+      const std::string converged =
+          mean < stats.samplesPerPixel - 0.5 ? fmt::format(" (converged pixels stopped: {:.1f} on average)", mean) : "";
+      fmt::print(stderr, "radiant: {} spp{}{} in {:.2f} s ({:.3g} Msamples/s); wrote {}\n", stats.samplesPerPixel,
+                 spectral ? fmt::format(" × {} passes", passes) : std::string(), converged, stats.seconds,
                  stats.cameraSamples / std::max(stats.seconds, 1e-9) * 1e-6, fmt::join(outputs, ", "));
+    }
     return 0;
   };
 }

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "render/sampling.h"
+#include "util/fast_angle.h"
 
 namespace radiant {
 
@@ -129,20 +130,32 @@ void clipToFrontHalfSpace(const Vec3 &p, const Vec3 &n, std::span<const Vec3> po
 
 double formFactorPointToPolygon(const Vec3 &p, const Vec3 &n, std::span<const Vec3> polygon) {
   if (polygon.size() < 3) return 0;
+  // Wholly in front of p's plane (the usual case): no clipping, no copy.
+  // The test is clipToFrontHalfSpace's, with its tolerance.
+  double size2 = 0;
+  bool inFront = true;
+  for (const Vec3 &v : polygon) size2 = std::max(size2, dot(v - p, v - p));
+  const double tolerance = 1e-12 * std::sqrt(size2);
+  for (const Vec3 &v : polygon) inFront = inFront && dot(v - p, n) > tolerance;
+  std::span<const Vec3> integrated = polygon;
   thread_local std::vector<Vec3> clipped;
-  clipToFrontHalfSpace(p, n, polygon, clipped);
-  if (clipped.size() < 3) return 0;
+  if (!inFront) {
+    clipToFrontHalfSpace(p, n, polygon, clipped);
+    if (clipped.size() < 3) return 0;
+    integrated = clipped;
+  }
 
   double sum = 0;
-  for (size_t k = 0; k < clipped.size(); ++k) {
-    const Vec3 r0 = clipped[k] - p;
-    const Vec3 r1 = clipped[(k + 1) % clipped.size()] - p;
+  for (size_t k = 0; k < integrated.size(); ++k) {
+    const Vec3 r0 = integrated[k] - p;
+    const Vec3 r1 = integrated[(k + 1) % integrated.size()] - p;
     const Vec3 c = cross(r0, r1);
     const double cn = length(c);
     // An edge collinear with p (or a repeated vertex) spans no solid angle.
     if (!(cn > 0)) continue;
-    // atan2, not acos: acos loses half its digits at small angles (§1.4).
-    sum += std::atan2(cn, dot(r0, r1)) * dot(n, c) / cn;
+    // The angle from its sine and cosine, not acos: acos loses half its
+    // digits at small angles (§1.4).
+    sum += angleFromSineAndCosine(cn, dot(r0, r1)) * dot(n, c) / cn;
   }
   // For a planar polygon wholly in front of p every term has the sign set by
   // the winding as seen from p (positive when the polygon turns clockwise as
@@ -159,7 +172,7 @@ Vec3 vectorFormFactor(const Vec3 &p, std::span<const Vec3> polygon) {
     const double cn = length(c);
     centroid += polygon[k];
     if (!(cn > 0)) continue;
-    sum += c * (std::atan2(cn, dot(r0, r1)) / cn);
+    sum += c * (angleFromSineAndCosine(cn, dot(r0, r1)) / cn);
   }
   sum = sum / (2 * kPi);
   // The sign follows the winding as seen from p: turn it towards the polygon.

@@ -170,7 +170,7 @@ double ReflectedLightHierarchy::clusterLinkError(uint32_t r, uint32_t s, const C
   // The kernel holds the source's patches for a uniform R; how far R strays
   // from that over them: its largest against its mean (a node: how far its
   // polynomial misses its children).
-  const Bands spreadOfR = isCluster(s) ? largest - mean : variation(s);
+  const Bands spreadOfR = isCluster(s) ? largest - mean : variation_[s];
   const Bands &rho = isCluster(r) ? clusterReflectance_[clusterIndex(r)] : reflectance_[r];
   // The kernel's spread is over the receiver: splitting the source cannot
   // make it smaller, only spread it over more links (each under the

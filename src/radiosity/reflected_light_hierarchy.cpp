@@ -61,6 +61,7 @@ void ReflectedLightHierarchy::addNodeData(uint32_t n) {
   gathered_.emplace_back();
   irradiance_.emplace_back();
   direct_.push_back(Bands(0.0));
+  variation_.push_back(Bands(0.0));
   links_.emplace_back();
 }
 
@@ -100,8 +101,19 @@ void ReflectedLightHierarchy::initialiseFromDirectLight() {
   pullClusters();
 }
 
+void ReflectedLightHierarchy::updateVariation() {
+  // Only the refinement reads it, so it is taken before each, not every
+  // sweep. It holds through a refinement: a split makes children that are
+  // exact restrictions of their parent's polynomial, which leaves the
+  // parent's variation as it was (and a new leaf's is 0).
+  arena_.execute([&] {
+    tbb::parallel_for(uint32_t(0), uint32_t(mesh_.tree.size()), [&](uint32_t n) { variation_[n] = computeVariation(n); });
+  });
+}
+
 void ReflectedLightHierarchy::link() {
   if (clusters_.clusters.empty()) return;
+  updateVariation();
   refine({{clusterId(0), clusterId(0), false}});
   // The ambient estimate only guided the refinement: the solve starts from
   // the direct light alone, so that a closed room no light reaches stays
@@ -115,6 +127,7 @@ void ReflectedLightHierarchy::link() {
 }
 
 size_t ReflectedLightHierarchy::rerefine() {
+  updateVariation();
   std::vector<PendingPair> pending;
   size_t refined = 0;
   for (size_t l = 0; l < records_.size(); ++l) {
@@ -284,7 +297,7 @@ double ReflectedLightHierarchy::sizeOf(uint32_t id) const {
   return longestEdge(mesh_.tree[id]);
 }
 
-Bands ReflectedLightHierarchy::variation(uint32_t n) const {
+Bands ReflectedLightHierarchy::computeVariation(uint32_t n) const {
   // What a node's polynomial misses of its children: the largest difference
   // at their corners between each child's own polynomial and the node's
   // restricted to it (0 at a leaf, which has no finer information).
@@ -309,7 +322,7 @@ Bands ReflectedLightHierarchy::variation(uint32_t n) const {
 double ReflectedLightHierarchy::error(uint32_t r, uint32_t s, double formFactor, double spreadOfF) const {
   // The error in the reflected radiosity of the receiver that the link
   // would make, W·m⁻² (max band).
-  const Bands spread = reflected_[s] * spreadOfF + variation(s) * formFactor;
+  const Bands spread = reflected_[s] * spreadOfF + variation_[s] * formFactor;
   double worst = 0;
   for (int b = 0; b < kBandCount; ++b)
     worst = std::max(worst, std::max(reflectance_[r][b], kLeastReflectance) * spread[b]);

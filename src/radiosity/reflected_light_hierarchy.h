@@ -141,7 +141,8 @@ class ReflectedLightHierarchy {
   void pullDirect(uint32_t n);
   bool facing(uint32_t a, uint32_t b) const;
   bool canSplit(uint32_t n) const;
-  Bands variation(uint32_t n) const;
+  Bands computeVariation(uint32_t n) const;
+  void updateVariation();
   double error(uint32_t r, uint32_t s, double formFactor, double spreadOfF) const;
   void splitNode(uint32_t n);
   void refine(std::vector<PendingPair> pending);
@@ -190,6 +191,8 @@ class ReflectedLightHierarchy {
   mutable tbb::task_arena arena_;
   // Per tree node.
   std::vector<Bands> reflectance_, emission_, reflected_, direct_;
+  /// What each node's R polynomial misses of its children's (computeVariation), as of updateVariation.
+  std::vector<Bands> variation_;
   /// R over each node as a polynomial in its parameters (mean: reflected_),
   /// and at the leaves H_direct's (directShape).
   std::vector<ReceiverPolynomial<Bands>> sourceShape_, directShape_;

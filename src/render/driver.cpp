@@ -26,10 +26,13 @@ struct Tile {
   int x0, y0, x1, y1;
 };
 
-/// The driver for either film: `shade(pixel, ray, rng)` takes one camera sample.
+/// The driver for either film: `shade(pixel, ray, rng)` takes one camera
+/// sample. `converged`, when given, is asked between rounds which pixels may
+/// stop (from kMinimumSamples on).
 template <typename Shade>
 RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, int width, int height,
-                  const Shade &shade, const ProgressCallback &progress) {
+                  const Shade &shade, const ProgressCallback &progress,
+                  const std::function<bool(size_t)> &converged = {}) {
   const auto start = Clock::now();
   std::vector<Tile> tiles;
   if (options.onlyPixelX >= 0) {
@@ -64,7 +67,11 @@ RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, int
   };
 
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
-  while (done < target) {
+  const size_t pixels = options.onlyPixelX >= 0 ? 1 : size_t(width) * height;
+  std::vector<uint8_t> active(size_t(width) * height, 1);
+  size_t activeCount = pixels;
+  uint64_t pixelSamples = 0;  // camera samples taken so far, over all pixels
+  while (done < target && activeCount > 0) {
     double elapsed = secondsSince(start);
     if (budget > 0 && done > 0 && elapsed >= budget) break;
     // Rounds double in size so early images are quick and the per-round
@@ -72,8 +79,8 @@ RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, int
     // measured speed says fits in the time left.
     int roundSamples = std::min(target - done, std::max(1, done));
     if (budget > 0 && done > 0) {
-      double perSample = elapsed / done;
-      int fits = static_cast<int>((budget - elapsed) / perSample);
+      double perPixelSample = elapsed / double(pixelSamples);
+      int fits = static_cast<int>((budget - elapsed) / (perPixelSample * double(activeCount)));
       if (fits < 1) break;
       roundSamples = std::min(roundSamples, fits);
     }
@@ -86,6 +93,7 @@ RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, int
           for (int y = tile.y0; y < tile.y1; ++y)
             for (int x = tile.x0; x < tile.x1; ++x) {
               size_t pixel = size_t(y) * width + x;
+              if (!active[pixel]) continue;
               for (int s = first; s < last; ++s) {
                 Sampler rng(options.seed, pixel, s);  // the first two numbers place the sample in its pixel
                 double jitterX = rng.next(), jitterY = rng.next();
@@ -98,13 +106,21 @@ RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, int
       });
     });
     done = last;
+    pixelSamples += uint64_t(activeCount) * roundSamples;
+    if (converged && done >= kMinimumSamples && options.onlyPixelX < 0) {
+      activeCount = 0;
+      for (size_t p = 0; p < active.size(); ++p) {
+        if (active[p] && converged(p)) active[p] = 0;
+        activeCount += active[p];
+      }
+    }
   }
   report(done, 0, 0, true);
 
   RenderStats stats;
   stats.samplesPerPixel = done;
   stats.seconds = secondsSince(start);
-  stats.cameraSamples = uint64_t(done) * (options.onlyPixelX >= 0 ? 1 : size_t(width) * height);
+  stats.cameraSamples = pixelSamples;
   return stats;
 }
 
@@ -112,9 +128,27 @@ RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, int
 
 RenderStats renderImage(const PinholeCamera &camera, const Renderer &renderer, const DriverOptions &options,
                         Film &film, const ProgressCallback &progress) {
+  std::function<bool(size_t)> converged;
+  Bands imageMean(0.0);
+  if (options.stopConvergedPixels && renderer.variesOnlyAcrossThePixel())
+    converged = [&](size_t pixel) {
+      // The image's mean, once per round (the first pixel asked starts it).
+      if (pixel == 0) {
+        imageMean = Bands(0.0);
+        for (size_t p = 0; p < film.pixelCount(); ++p) imageMean += film.mean(p);
+        imageMean = imageMean / double(std::max<size_t>(1, film.pixelCount()));
+      }
+      const Bands mean = film.mean(pixel), variance = film.varianceOfMean(pixel);
+      for (int b = 0; b < kBandCount; ++b) {
+        const double tolerance = kPixelTolerance * (mean[b] + 0.1 * imageMean[b]);
+        if (variance[b] > tolerance * tolerance) return false;
+      }
+      return true;
+    };
   return drive(
       camera, options, film.width, film.height,
-      [&](size_t pixel, const Ray &ray, Sampler &rng) { film.add(pixel, renderer.radiance(ray, rng)); }, progress);
+      [&](size_t pixel, const Ray &ray, Sampler &rng) { film.add(pixel, renderer.radiance(ray, rng)); }, progress,
+      converged);
 }
 
 RenderStats renderPairedImage(const PinholeCamera &camera, const Renderer &renderer, const DriverOptions &options,

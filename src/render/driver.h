@@ -6,6 +6,16 @@
 // samples in index order, so the image depends on the seed and the sample
 // count, never on the thread count or the tiling. A time budget only chooses
 // how many samples are taken.
+//
+// Converged pixels: for a renderer whose estimate varies only across the
+// pixel (Renderer::variesOnlyAcrossThePixel: the radiosity displays), a
+// pixel stops taking samples once, after at least kMinimumSamples, the
+// standard error of its mean is below kPixelTolerance of its value (plus a
+// tenth of the image's mean, for dark pixels): a pixel inside one surface
+// has converged after a few samples, and the rest of the time goes to the
+// edges, whose antialiasing is then what the image's error is made of.
+// Which pixels stop is decided between rounds from the film alone, so it
+// too is the same for every thread count.
 #pragma once
 
 #include <functional>
@@ -25,7 +35,12 @@ struct DriverOptions {
   int tileSize = 16;
   /// Restrict rendering to one pixel (debugging); −1 for the whole image.
   int onlyPixelX = -1, onlyPixelY = -1;
+  /// Let converged pixels stop (only for a renderer that varies only across the pixel).
+  bool stopConvergedPixels = true;
 };
+
+constexpr int kMinimumSamples = 8;
+constexpr double kPixelTolerance = 1e-3;
 
 struct Progress {
   int samplesDone = 0;    ///< complete samples per pixel so far
@@ -37,7 +52,7 @@ struct Progress {
 };
 
 struct RenderStats {
-  int samplesPerPixel = 0;
+  int samplesPerPixel = 0;  ///< the most any pixel took (all of them, unless converged pixels stopped)
   double seconds = 0;
   uint64_t cameraSamples = 0;
 };

@@ -65,6 +65,8 @@ class RadiosityDisplay final : public Renderer {
     return x.throughput * radiosity * kInvPi;
   }
 
+  bool variesOnlyAcrossThePixel() const override { return true; }
+
  private:
   const RayTracer &tracer_;
   const Solution &solution_;

@@ -38,6 +38,10 @@ class Renderer {
     const Bands L = radiance(ray, rng);
     return {L, L};
   }
+  /// The estimate varies with where in its pixel the camera ray goes and
+  /// hardly otherwise (the radiosity displays): a pixel whose samples
+  /// agree has converged, and the driver spends no more on it.
+  virtual bool variesOnlyAcrossThePixel() const { return false; }
 };
 
 struct Solution;
