@@ -31,13 +31,16 @@ namespace radiant {
 
 struct LinkEstimate {
   double formFactor = 0;   ///< F(receiver ← source), area mean over the receiver, visibility included
-  /// The coupling as polynomials over the receiver, one per term of the
-  /// source's radiosity polynomial (1, u, v): what the receiver at (u, v)
-  /// gathers from a source whose R is that term, so a link carries
-  /// Σ_j R_j·shape[j] (shape[0]'s mean is formFactor). The source's bilinear
-  /// term (uv) is left out: measured, it made the Cornell box 0.1–0.3 %
-  /// darker at every --quality, and a third smaller record is faster.
-  std::array<ReceiverPolynomial<float>, 3> shape;
+  /// The form factor as a polynomial over the receiver (its mean is
+  /// formFactor), and where on the source the coupling lies: the
+  /// kernel-weighted mean of the source's parameters (u, v) seen from the
+  /// receiver's centre. A link carries shape × R(moments), the source's
+  /// radiosity polynomial evaluated there without its bilinear term, which
+  /// gathers a source whose R varies linearly to second order (measured,
+  /// the bilinear term made the Cornell box 0.1–0.3 % darker at every
+  /// --quality).
+  ReceiverPolynomial<float> shape;
+  std::array<float, 2> moments{0.5f, 0.5f};
   /// max over cubature points |F_k − shape(x_k)|: what the polynomial misses (visibility included)
   double spread = 0;
   int rays = 0;  ///< backprojections (cubature points with faces in the shaft)
@@ -76,7 +79,7 @@ class LinkEstimator {
   /// shape[0] (what the refinement decides by). `knownClear`: a parent pair's
   /// shaft was clear, so this one is too.
   LinkEstimate estimate(const LinkEnd &receiver, const LinkEnd &source, bool knownClear) const;
-  /// The rest of the shape (the source's u, v, uv terms), for a link that is kept.
+  /// The moments, for a link that is kept.
   void completeShape(const LinkEnd &receiver, const LinkEnd &source, LinkEstimate &estimate) const;
   /// The faces with area inside the convex hull of the two nodes' corners,
   /// other than the nodes' own faces: all that may stand between them.

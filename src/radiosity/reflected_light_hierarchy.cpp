@@ -165,8 +165,8 @@ void ReflectedLightHierarchy::gatherTreeNode(uint32_t n) {
     }
     const LinkRecord &link = records_[l];
     const ReceiverPolynomial<Bands> &r = sourceShape_[link.source];
-    for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < 4; ++k) g.c[k] += r.c[j] * double(link.shape[j].c[k]);
+    const Bands source = r.c[0] + r.c[1] * double(link.moments[0]) + r.c[2] * double(link.moments[1]);
+    for (int k = 0; k < 4; ++k) g.c[k] += source * double(link.shape.c[k]);
   }
   gathered_[n] = g;
 }
@@ -430,7 +430,7 @@ void ReflectedLightHierarchy::refine(std::vector<PendingPair> pending) {
       }
       if (estimates[i].formFactor > 0) kept.push_back(i);
     }
-    // Only the links kept need the source's terms of their shape.
+    // Only the links kept need the source's moments.
     arena_.execute([&] {
       tbb::parallel_for(size_t(0), kept.size(), [&](size_t k) {
         const size_t i = kept[k];
@@ -440,7 +440,8 @@ void ReflectedLightHierarchy::refine(std::vector<PendingPair> pending) {
     for (size_t i : kept) {
       const uint32_t r = batch[i].receiver, s = batch[i].source;
       links_[r].push_back(static_cast<uint32_t>(records_.size()));
-      records_.push_back({r, s, estimates[i].shape, float(estimates[i].spread), estimates[i].clearShaft, true});
+      records_.push_back(
+          {r, s, estimates[i].shape, estimates[i].moments, float(estimates[i].spread), estimates[i].clearShaft, true});
     }
   }
   // New leaves need the direct light at their test points, and their R.

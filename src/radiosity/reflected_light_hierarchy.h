@@ -108,15 +108,17 @@ class ReflectedLightHierarchy {
     bool clearShaft = false;  ///< known unoccluded from a parent pair (tree nodes only)
   };
 
-  /// A link between two tree nodes: 68 bytes with its index in the
-  /// receiver's list (the form factor is shape[0]'s mean over the receiver).
+  /// A link between two tree nodes (LinkEstimate): 40 bytes, 44 with its
+  /// index in the receiver's list (the form factor is shape's mean over the receiver).
   struct LinkRecord {
     uint32_t receiver, source;
-    std::array<ReceiverPolynomial<float>, 3> shape;
+    ReceiverPolynomial<float> shape;
+    std::array<float, 2> moments;
     float spread = 0;
     bool clearShaft = false;
     bool alive = true;
   };
+  static_assert(sizeof(LinkRecord) == 40, "docs/PERFORMANCE.md quotes the bytes per link");
 
   /// A link with a cluster at one end or both (ClusterLinkEstimate).
   struct ClusterLinkRecord {
@@ -134,7 +136,7 @@ class ReflectedLightHierarchy {
   // --- tree nodes (reflected_light_hierarchy.cpp)
   void addNodeData(uint32_t n);
   const Vec3 &normalOf(uint32_t n) const { return mesh_.patches[mesh_.tree[n].patch].normal; }
-  double formFactorOf(const LinkRecord &l) const { return l.shape[0].mean(mesh_.tree[l.receiver].vertexCount == 4); }
+  double formFactorOf(const LinkRecord &l) const { return l.shape.mean(mesh_.tree[l.receiver].vertexCount == 4); }
   LinkEnd end(uint32_t n) const { return {mesh_.tree[n], normalOf(n), mesh_.patches[mesh_.tree[n].patch].face}; }
   ReceiverPolynomial<Bands> directShape(uint32_t n) const;
   void pullShapes(uint32_t n);
