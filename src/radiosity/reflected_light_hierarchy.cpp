@@ -124,6 +124,7 @@ void ReflectedLightHierarchy::link() {
     pullShapes(static_cast<uint32_t>(mesh_.patches[p].treeRoot));
   }
   pullClusters();
+  measureClosure();
 }
 
 size_t ReflectedLightHierarchy::rerefine() {
@@ -151,7 +152,54 @@ size_t ReflectedLightHierarchy::rerefine() {
   }
   refined = pending.size();
   refine(std::move(pending));
+  if (refined > 0) measureClosure();
   return refined;
+}
+
+void ReflectedLightHierarchy::measureClosure() {
+  // The form factors from any point sum to at most 1 (they share its
+  // hemisphere, Cohen & Wallace §2.5), so a leaf whose links sum past 1
+  // counts some light twice: a cluster link's kernel taken at a point of the
+  // receiving cluster that sees more than its other patches do, say a small
+  // patch of a sphere where it touches the floor. The sweeps then grow there
+  // by ρ·ΣF > 1 and never settle. One gather of R = 1 measures ΣF at every
+  // leaf; the leaf's gathered light is then scaled by 1/ΣF where it passes
+  // 1 by more than the estimates' own error (a few per cent, either way:
+  // clipping those would take light out of a closed box).
+  constexpr double kClosureSlack = 1.25;
+  const auto reflected = reflected_;
+  const auto shapes = sourceShape_;
+  const uint32_t nodes = static_cast<uint32_t>(mesh_.tree.size());
+  for (uint32_t n = 0; n < nodes; ++n) {
+    reflected_[n] = Bands(1.0);
+    sourceShape_[n] = ReceiverPolynomial<Bands>();
+    sourceShape_[n].c[0] = Bands(1.0);
+  }
+  pullClusters();
+  closure_.assign(nodes, 1.0f);
+  arena_.execute([&] {
+    tbb::parallel_for(uint32_t(0), nodes, [&](uint32_t n) { gatherTreeNode(n); });
+    tbb::parallel_for(uint32_t(0), uint32_t(clusters_.clusters.size()), [&](uint32_t c) { gatherCluster(c); });
+    pushClusters();
+    tbb::parallel_for(size_t(0), mesh_.patches.size(), [&](size_t p) {
+      auto walk = [&](auto &self, uint32_t n, ReceiverPolynomial<Bands> down) -> void {
+        const MeshTreeNode &t = mesh_.tree[n];
+        down += gathered_[n];
+        if (t.isLeaf()) {
+          const double sum = down.mean(t.vertexCount == 4).average();
+          if (sum > kClosureSlack) closure_[n] = float(1 / sum);
+          return;
+        }
+        for (int c = 0; c < 4; ++c) self(self, static_cast<uint32_t>(t.children[c]), down.restrictTo(t.vertexCount == 4, c));
+      };
+      ReceiverPolynomial<Bands> down;
+      down.c[0] = patchClusterIrradiance_[p];
+      walk(walk, static_cast<uint32_t>(mesh_.patches[p].treeRoot), down);
+    });
+  });
+  reflected_ = reflected;
+  sourceShape_ = shapes;
+  pullClusters();
 }
 
 void ReflectedLightHierarchy::gatherTreeNode(uint32_t n) {
@@ -481,6 +529,8 @@ Bands ReflectedLightHierarchy::pushPull(uint32_t n, const ReceiverPolynomial<Ban
   h += gathered_[n];
   Bands r;
   if (t.isLeaf()) {
+    if (n < closure_.size() && closure_[n] < 1)
+      for (auto &c : h.c) c *= double(closure_[n]);
     irradiance_[n] = h;
     r = reflectance_[n] * (direct_[n] + nonNegative(h.mean(quad)));
     change = std::max({change, (r - reflected_[n]).max(), (reflected_[n] - r).max()});

@@ -150,6 +150,8 @@ class ReflectedLightHierarchy {
   void refine(std::vector<PendingPair> pending);
   void initialiseNewLeaves();
   Bands pushPull(uint32_t n, const ReceiverPolynomial<Bands> &down, double &change, double &largest);
+  /// Each leaf's Σ_j F_ij from one gather of R = 1, and the scale that holds it to 1.
+  void measureClosure();
   void gatherTreeNode(uint32_t n);
 
   // --- clusters (reflected_light_clusters.cpp)
@@ -200,6 +202,8 @@ class ReflectedLightHierarchy {
   std::vector<ReceiverPolynomial<Bands>> sourceShape_, directShape_;
   /// What each node gathered over its own links, and at the leaves all they received, as polynomials.
   std::vector<ReceiverPolynomial<Bands>> gathered_, irradiance_;
+  /// At the leaves: 1, or 1/Σ_j F_ij where the links' form factors sum clearly past 1 (measureClosure).
+  std::vector<float> closure_;
   std::vector<std::vector<uint32_t>> links_;  ///< incoming links (indices, see above)
   /// Deques, not vectors: growing one never copies it, so its peak memory
   /// is what it holds (a vector's doubling held 3× its links for a moment).
