@@ -471,10 +471,22 @@ TEST(Stochastic, AgreesWithHierarchicalOnTheCornellBox) {
   EXPECT_NEAR(directMc / directGs, 1.0, 0.02);
 }
 
-TEST(Radiosity, AutoPicksHierarchicalForARoomAndStochasticForManyPatches) {
+TEST(Radiosity, AutoPicksHierarchicalExactUpTo2000PatchesAndStochasticBeyond) {
+  EXPECT_EQ(resolveSolverName("auto", 2000, false), "hierarchical-exact");
+  EXPECT_EQ(resolveSolverName("auto", 2001, false), "stochastic");
+  EXPECT_EQ(resolveSolverName("auto", 2000, true), "hierarchical");
+  EXPECT_EQ(resolveSolverName("auto", 2001, true), "stochastic");
+  EXPECT_EQ(resolveSolverName("auto", 1000, false, 256), "hierarchical-exact");
+  EXPECT_EQ(resolveSolverName("auto", 1000, false, 257), "stochastic");
+  EXPECT_EQ(resolveSolverName("gauss-seidel", 10, false), "gauss-seidel");
   Scene room = test::furnace(1.0, 0.5);
   EXPECT_EQ(solve(room, "auto", 0.5, 1e-3).stats.solver, "hierarchical-exact");
-  // A box whose walls are each cut into 25 × 25 quads: 3750 input patches.
+}
+
+TEST(Radiosity, AutoPicksStochasticForAFurnaceOfThousandsOfPatches) {
+  // A box whose walls are each cut into 25 × 25 quads, all emitting: 3750
+  // patches, and as many emitters.
+  // The furnace: B = E/(1 − ρ) = 2 everywhere.
   Scene many;
   many.objects.push_back({"cut box", "test"});
   Material wall;

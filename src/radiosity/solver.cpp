@@ -51,16 +51,34 @@ void applyQuality(SolverOptions &options, const std::string &name) {
   throw InputError(InputLocation{"--quality"}, fmt::format("unknown quality '{}'; known: {}", name, names));
 }
 
-std::string resolveSolverName(const std::string &name, size_t patches, bool importance) {
-  constexpr size_t kAutoHierarchicalPatches = 2000;
+std::string resolveSolverName(const std::string &name, size_t patches, bool importance, size_t emitters) {
+  // Both hierarchical solvers suit a room of tens to thousands of patches.
+  // hierarchical (for --importance) links every pair of input patches first,
+  // hopeless for 10⁵. hierarchical-exact starts from clusters and solves a
+  // 10⁵-triangle scene in 25–30 s on 2 cores (cornell-knots), whose image
+  // then beats the path tracer's at equal time (docs/PERFORMANCE.md); but
+  // its mesh is then 10⁵ leaves fine, which the per-pixel methods that
+  // gather from every element (kok's secondary sources, multipass) cannot
+  // take, and a user of `auto` on such a scene wants an image in seconds:
+  // beyond 2000 patches the stochastic solver takes over. Its direct light
+  // is exact per emitter face at every mesh node: a room lit by a few
+  // lamps, not a furnace of 3750 glowing quads (5 minutes), so beyond 256
+  // emitting faces the stochastic solver takes over too.
+  constexpr size_t kAutoHierarchicalPatches = 2000, kAutoExactEmitters = 256;
   if (name != "auto") return name;
-  if (importance && patches <= kAutoHierarchicalPatches) return "hierarchical";
-  return patches <= kAutoHierarchicalPatches ? "hierarchical-exact" : "stochastic";
+  if (importance) return patches <= kAutoHierarchicalPatches ? "hierarchical" : "stochastic";
+  return patches <= kAutoHierarchicalPatches && emitters <= kAutoExactEmitters ? "hierarchical-exact" : "stochastic";
+}
+
+std::string resolveSolverName(const std::string &name, const Scene &scene, bool importance) {
+  size_t emitters = 0;
+  for (const Face &f : scene.faces) emitters += scene.materials[f.material].isEmitter();
+  return resolveSolverName(name, scene.faces.size(), importance, emitters);
 }
 
 Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOptions &meshOptions,
                       const SolverOptions &options, const SolverProgressCallback &progress) {
-  if (resolveSolverName(options.solver, scene.faces.size(), options.importance) == "hierarchical-exact") {
+  if (resolveSolverName(options.solver, scene, options.importance) == "hierarchical-exact") {
     // It refines the patches' trees itself, from a uniform start.
     if (options.adaptiveRounds > 0)
       throw InputError(InputLocation{"--adaptive-rounds"}, "hierarchical-exact refines by itself");
@@ -80,7 +98,7 @@ Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOpt
     // The large-scene solver meshes the cut faces too (no leaks, nothing hidden meshed).
     std::vector<FaceSplit> splits;
     MeshOptions uniform = meshOptions;
-    if (resolveSolverName(options.solver, scene.faces.size(), options.importance) == "stochastic") {
+    if (resolveSolverName(options.solver, scene, options.importance) == "stochastic") {
       splits = splitFaces(scene, tracer);
       uniform.faceSplits = &splits;
     }
@@ -90,7 +108,7 @@ Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOpt
   }
   RadiosityMesh mesh = buildTreeMesh(scene, meshOptions);
   SolverOptions round = options;
-  round.solver = resolveSolverName(options.solver, mesh.patches.size(), options.importance);
+  round.solver = resolveSolverName(options.solver, scene, options.importance);
   if (round.solver == "hierarchical")
     throw InputError(InputLocation{"--adaptive-rounds"},
                      "the hierarchical solver refines by itself; adaptive rounds are for --solver gauss-seidel, "
@@ -116,10 +134,8 @@ Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOpt
 
 void solveRadiosity(const RayTracer &tracer, Solution &solution, const SolverOptions &options,
                     const SolverProgressCallback &progress) {
-  // "auto": hierarchical radiosity links every pair of input patches first,
-  // which is cheap for a room of tens of patches and hopeless for 10⁵ of them;
-  // beyond a few thousand patches the stochastic solver takes over.
-  std::string name = resolveSolverName(options.solver, solution.mesh.patches.size(), options.importance);
+  // "auto": resolveSolverName says which and why.
+  std::string name = resolveSolverName(options.solver, tracer.scene(), options.importance);
   const SolverInfo *chosen = nullptr;
   std::string names = "auto";
   for (const SolverInfo &info : solverRegistry()) {
