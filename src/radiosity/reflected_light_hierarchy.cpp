@@ -156,6 +156,14 @@ size_t ReflectedLightHierarchy::rerefine() {
   return refined;
 }
 
+void ReflectedLightHierarchy::gatherAll() {
+  // Within arena_: every node and cluster gathers over its links, and what
+  // the clusters gathered goes down to their patches (patchClusterIrradiance_).
+  tbb::parallel_for(uint32_t(0), uint32_t(mesh_.tree.size()), [&](uint32_t n) { gatherTreeNode(n); });
+  tbb::parallel_for(uint32_t(0), uint32_t(clusters_.clusters.size()), [&](uint32_t c) { gatherCluster(c); });
+  pushClusters();
+}
+
 void ReflectedLightHierarchy::measureClosure() {
   // The form factors from any point sum to at most 1 (they share its
   // hemisphere, Cohen & Wallace §2.5), so a leaf whose links sum past 1
@@ -178,9 +186,7 @@ void ReflectedLightHierarchy::measureClosure() {
   pullClusters();
   closure_.assign(nodes, 1.0f);
   arena_.execute([&] {
-    tbb::parallel_for(uint32_t(0), nodes, [&](uint32_t n) { gatherTreeNode(n); });
-    tbb::parallel_for(uint32_t(0), uint32_t(clusters_.clusters.size()), [&](uint32_t c) { gatherCluster(c); });
-    pushClusters();
+    gatherAll();
     tbb::parallel_for(size_t(0), mesh_.patches.size(), [&](size_t p) {
       auto walk = [&](auto &self, uint32_t n, ReceiverPolynomial<Bands> down) -> void {
         const MeshTreeNode &t = mesh_.tree[n];
@@ -223,14 +229,10 @@ int ReflectedLightHierarchy::solve(double tolerance, int maxSweeps, double &resi
                                    const SolverProgressCallback &progress, int &total,
                                    std::chrono::steady_clock::time_point start) {
   int sweeps = 0;
-  const uint32_t nodes = static_cast<uint32_t>(mesh_.tree.size());
-  const uint32_t clusterCount = static_cast<uint32_t>(clusters_.clusters.size());
   std::vector<double> change(mesh_.patches.size()), largest(mesh_.patches.size());
   while (sweeps < maxSweeps) {
     arena_.execute([&] {
-      tbb::parallel_for(uint32_t(0), nodes, [&](uint32_t n) { gatherTreeNode(n); });
-      tbb::parallel_for(uint32_t(0), clusterCount, [&](uint32_t c) { gatherCluster(c); });
-      pushClusters();
+      gatherAll();
       tbb::parallel_for(size_t(0), mesh_.patches.size(), [&](size_t p) {
         change[p] = largest[p] = 0;
         ReceiverPolynomial<Bands> down;

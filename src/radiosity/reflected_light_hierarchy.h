@@ -150,6 +150,8 @@ class ReflectedLightHierarchy {
   void refine(std::vector<PendingPair> pending);
   void initialiseNewLeaves();
   Bands pushPull(uint32_t n, const ReceiverPolynomial<Bands> &down, double &change, double &largest);
+  /// One gather over every link, through the clusters to their patches (inside arena_).
+  void gatherAll();
   /// Each leaf's Σ_j F_ij from one gather of R = 1, and the scale that holds it to 1.
   void measureClosure();
   void gatherTreeNode(uint32_t n);
