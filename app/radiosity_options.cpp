@@ -67,7 +67,7 @@ void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &o) {
   std::string levels;
   for (const QualityLevel &level : qualityLevels()) levels += fmt::format("\n  {:<13} {}", level.name, level.summary);
   app.add_option("--quality", o.quality, "hierarchical-exact (the default solver): accuracy against time:" + levels)
-      ->default_val("normal");
+      ->default_val("high");
   app.add_option("--rays-per-element", o.solver.raysPerElement,
                  "Stochastic: rays of the first iteration per element (noise falls as 1/sqrt)")
       ->default_val(64)

@@ -16,7 +16,7 @@ namespace radiant {
 struct RadiosityCommandOptions {
   SolverOptions solver;
   std::optional<double> meshSize;  ///< scene units
-  std::string quality = "normal";  ///< hierarchical-exact's preset (radiosity/solver.h qualityLevels)
+  std::string quality = "high";  ///< hierarchical-exact's preset (radiosity/solver.h qualityLevels)
 };
 
 void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &options);

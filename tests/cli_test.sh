@@ -82,7 +82,7 @@ OBJ
 
 # Radiosity: solve, save, reuse, report; refuse a solution for another scene.
 furnace="$source_dir/scenes/furnace/scene.json"
-if "$radiant" solve "$cornell" --mesh-size 150 -o box.rad --report box.csv -q; then
+if "$radiant" solve "$cornell" --mesh-size 150 --quality draft -o box.rad --report box.csv -q; then
   [ -s box.rad ] && pass || fail "solve -o wrote nothing"
   head -1 box.csv | grep -q "^object,area_m2," && grep -q "^floor," box.csv && pass || fail "solve --report"
   "$radiant" render "$cornell" --method interpolate --solution box.rad --spp 1 --width 16 --height 16 -o i.exr -q \
@@ -111,7 +111,7 @@ for method in rushmeier reichert shirley kok; do
   "$radiant" render "$cornell" --method "$method" --solution box.rad --spp 1 --width 16 --height 16 \
     -o "two-pass-$method.exr" -q && [ -s "two-pass-$method.exr" ] && pass || fail "render --method $method"
 done
-"$radiant" render "$cornell" --method shirley --mesh-size 200 --spp 1 --width 16 --height 16 -o s.png -q \
+"$radiant" render "$cornell" --method shirley --mesh-size 200 --quality draft --spp 1 --width 16 --height 16 -o s.png -q \
   && pass || fail "shirley solving the scene itself"
 "$radiant" render "$cornell" --method shirley --solution box.rad --selective --selective-map map.png --spp 1 \
   --width 16 --height 16 -o s.png 2>err.txt && [ -s map.png ] && grep -q "of pixels re-evaluated" err.txt \
@@ -139,7 +139,7 @@ else
 fi
 "$radiant" render "$spectral" --colour rgb --white-balance equal-energy --spp 1 --width 16 --height 16 -o sprgb.png \
   -q && [ -s sprgb.png ] && pass || fail "render --colour rgb of a spectral scene"
-if "$radiant" solve "$spectral" --mesh-size 200 -o sp.rad --report sp.csv -q; then
+if "$radiant" solve "$spectral" --mesh-size 200 --quality draft -o sp.rad --report sp.csv -q; then
   head -1 sp.csv | grep -q "radiosity_700nm_W_m2_nm" && pass || fail "spectral report lacks the wavelength columns"
   "$radiant" render "$spectral" --solution sp.rad --method interpolate --width 16 --height 16 -o spi.exr -q \
     && pass || fail "render --solution of a spectral solution"
@@ -155,7 +155,7 @@ expect_error "an RGB colour in a spectral scene" "/materials/light/reflectance: 
   "$radiant" render rgb-in-spectral.json -o x.exr -q
 
 # Irradiance images for illuminance maps (docs/tone-mapping.md#false-colour).
-if "$radiant" render "$cornell" --method interpolate --quantity irradiance --mesh-size 100 --width 24 --height 24 \
+if "$radiant" render "$cornell" --method interpolate --quantity irradiance --mesh-size 100 --quality draft --width 24 --height 24 \
     -o irr.exr -q; then
   "$radiant" tonemap irr.exr --falsecolor --legend --quantity illuminance -o lux.png 2>lux.txt && [ -s lux.png ] \
     && grep -q "illuminance .* lux" lux.txt && pass || { fail "tonemap of an irradiance render"; cat lux.txt; }
@@ -168,7 +168,7 @@ expect_error "irradiance from a two-pass method" "quantity: irradiance images co
 # Texture and bump maps (docs/textures.md): the textured box renders with each method.
 textured="$source_dir/scenes/cornell-textured/scene.json"
 for method in path interpolate shirley; do
-  mesh=(--mesh-size 150)
+  mesh=(--mesh-size 150 --quality draft)  # the solve's speed, not its accuracy, is what this tests
   [ "$method" = path ] && mesh=()
   "$radiant" render "$textured" --method "$method" --spp 1 --width 16 --height 16 "${mesh[@]}" -o "tex-$method.png" -q \
     && [ -s "tex-$method.png" ] && pass || fail "textured box with --method $method"

@@ -48,11 +48,11 @@ struct SolverOptions {
   /// hierarchical-exact (radiosity/hierarchical_exact.cpp): tolerances relative to
   /// the scene's mean first-bounce radiosity (the area mean of ρ·H_direct).
   /// The direct light is refined until it interpolates within this fraction…
-  double directTolerance = 0.01;
+  double directTolerance = 0.005;
   /// …down to leaves of this edge, metres (0: 1/256 of the scene's extent);
   double directMinimumEdge = 0;
   /// a link is refined while its estimated error exceeds this fraction…
-  double linkError = 0.003;
+  double linkError = 0.001;
   /// …and its nodes' edges are at least twice this, metres (0: 1/64 of the extent).
   double linkMinimumEdge = 0;
   /// Hierarchical, --importance: refine for `importanceView` only (Smits,
