@@ -6,6 +6,7 @@
 #include <tbb/task_arena.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <chrono>
@@ -27,12 +28,12 @@ struct Tile {
 };
 
 /// The driver for either film: `shade(pixel, ray, rng)` takes one camera
-/// sample. `converged`, when given, is asked between rounds which pixels may
-/// stop (from kMinimumSamples on).
+/// sample. `stopConverged`, when given, clears between rounds the flags of
+/// the active pixels that may stop (from kMinimumSamples on).
 template <typename Shade>
 RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, int width, int height,
                   const Shade &shade, const ProgressCallback &progress,
-                  const std::function<bool(size_t)> &converged = {}) {
+                  const std::function<void(std::vector<uint8_t> &active)> &stopConverged = {}) {
   const auto start = Clock::now();
   std::vector<Tile> tiles;
   if (options.onlyPixelX >= 0) {
@@ -107,12 +108,9 @@ RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, int
     });
     done = last;
     pixelSamples += uint64_t(activeCount) * roundSamples;
-    if (converged && done >= kMinimumSamples && options.onlyPixelX < 0) {
-      activeCount = 0;
-      for (size_t p = 0; p < active.size(); ++p) {
-        if (active[p] && converged(p)) active[p] = 0;
-        activeCount += active[p];
-      }
+    if (stopConverged && done >= kMinimumSamples && options.onlyPixelX < 0) {
+      stopConverged(active);
+      activeCount = size_t(std::count(active.begin(), active.end(), uint8_t(1)));
     }
   }
   report(done, 0, 0, true);
@@ -128,27 +126,28 @@ RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, int
 
 RenderStats renderImage(const PinholeCamera &camera, const Renderer &renderer, const DriverOptions &options,
                         Film &film, const ProgressCallback &progress) {
-  std::function<bool(size_t)> converged;
-  Bands imageMean(0.0);
+  std::function<void(std::vector<uint8_t> &)> stopConverged;
   if (options.stopConvergedPixels && renderer.variesOnlyAcrossThePixel())
-    converged = [&](size_t pixel) {
-      // The image's mean, once per round (the first pixel asked starts it).
-      if (pixel == 0) {
-        imageMean = Bands(0.0);
-        for (size_t p = 0; p < film.pixelCount(); ++p) imageMean += film.mean(p);
-        imageMean = imageMean / double(std::max<size_t>(1, film.pixelCount()));
+    stopConverged = [&](std::vector<uint8_t> &active) {
+      // Against the image's mean of this round, so that dark pixels stop too.
+      Bands imageMean(0.0);
+      for (size_t p = 0; p < film.pixelCount(); ++p) imageMean += film.mean(p);
+      imageMean = imageMean / double(std::max<size_t>(1, film.pixelCount()));
+      for (size_t pixel = 0; pixel < active.size(); ++pixel) {
+        if (!active[pixel]) continue;
+        const Bands mean = film.mean(pixel), variance = film.varianceOfMean(pixel);
+        bool converged = true;
+        for (int b = 0; b < kBandCount; ++b) {
+          const double tolerance = kPixelTolerance * (mean[b] + 0.1 * imageMean[b]);
+          converged = converged && variance[b] <= tolerance * tolerance;
+        }
+        if (converged) active[pixel] = 0;
       }
-      const Bands mean = film.mean(pixel), variance = film.varianceOfMean(pixel);
-      for (int b = 0; b < kBandCount; ++b) {
-        const double tolerance = kPixelTolerance * (mean[b] + 0.1 * imageMean[b]);
-        if (variance[b] > tolerance * tolerance) return false;
-      }
-      return true;
     };
   return drive(
       camera, options, film.width, film.height,
       [&](size_t pixel, const Ray &ray, Sampler &rng) { film.add(pixel, renderer.radiance(ray, rng)); }, progress,
-      converged);
+      stopConverged);
 }
 
 RenderStats renderPairedImage(const PinholeCamera &camera, const Renderer &renderer, const DriverOptions &options,
