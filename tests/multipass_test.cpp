@@ -17,6 +17,7 @@
 #include "scene/load_scene.h"
 #include "render_helpers.h"
 #include "test_scenes.h"
+#include "sanitizer.h"
 
 namespace radiant {
 namespace {
@@ -387,6 +388,7 @@ TEST(Multipass, ATimeBudgetIsUsed) {
 // (its interpolated indirect light is the coarse solution's), while the
 // multipass image's error keeps falling pass after pass.
 TEST(Multipass, KeepsConvergingWhereShirleyFlattensOut) {
+  RADIANT_SKIP_UNDER_SANITIZER();
   Scene scene = loadScene(kSpecularBox);
   RayTracer tracer(scene);
   const int size = 24;

@@ -18,6 +18,7 @@
 #include "film_metrics.h"
 #include "test_scenes.h"
 #include "util/error.h"
+#include "sanitizer.h"
 
 namespace radiant {
 namespace {
@@ -141,6 +142,7 @@ TEST(Radiosity, DirectPlusIndirectPlusEmissionIsTheRadiosity) {
 }
 
 TEST(Radiosity, GaussSeidelAndProgressiveAgreeOnTheCornellBox) {
+  RADIANT_SKIP_UNDER_SANITIZER();
   // Gathering and shooting on the same mesh solve the same equations: the
   // power escaping through the open front, and each surface's mean
   // radiosity, agree up to the noise of the visibility estimates. With 4
@@ -277,6 +279,7 @@ struct ImageAgainstPath {
 };
 
 TEST(Radiosity, InterpolatedImageApproachesThePathTracerAsTheMeshIsRefined) {
+  RADIANT_SKIP_UNDER_SANITIZER();
   // The classic radiosity image converges to the reference as elements shrink.
   Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
   RayTracer tracer(scene);

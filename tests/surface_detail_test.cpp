@@ -17,6 +17,7 @@
 #include "test_scenes.h"
 #include "texture/surface_detail.h"
 #include "util/error.h"
+#include "sanitizer.h"
 
 namespace radiant {
 namespace {
@@ -211,6 +212,7 @@ TEST(SurfaceDetail, BumpGatherKeepsTheLobeAboveTheSurface) {
 // the bump-mapped wall shirley and path agree in mean and in the variance of
 // shading across the wall (the bumps' light and shade), per-pixel noise removed.
 TEST(SurfaceDetail, CornellTexturedFloorAndBumpedWallAgreeWithPath) {
+  RADIANT_SKIP_UNDER_SANITIZER();
   const int size = 48;
   Scene textured = texturedBox();
   Scene plain = loadScene(std::string(RADIANT_SOURCE_DIR) + "/scenes/cornell-box/scene.json");

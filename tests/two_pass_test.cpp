@@ -14,6 +14,7 @@
 #include "scene/load_scene.h"
 #include "film_metrics.h"
 #include "test_scenes.h"
+#include "sanitizer.h"
 
 namespace radiant {
 namespace {
@@ -371,6 +372,7 @@ TEST(TwoPass, SelectiveLinksCorrectTheHierarchicalSolutionTowardsThePathTracer) 
 }
 
 TEST(TwoPass, ErrorAgainstThePathTracerFallsAsTheMeshIsRefinedAndSamplesGrow) {
+  RADIANT_SKIP_UNDER_SANITIZER();
   // The Cornell box, 8×8-pixel blocks (so the comparison is of light, not of
   // noise): each method's mean relative block error against `path` falls
   // from a coarse solution with few samples to a fine one with more.
