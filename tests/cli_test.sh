@@ -180,7 +180,7 @@ expect_error "odd --bump-orientations" "must be even" \
 
 # Multipass (docs/multipass.md): every pass written, the latest under the plain name.
 specular="$source_dir/scenes/cornell-specular/scene.json"
-if "$radiant" render "$specular" --method multipass --spp 16 --width 16 --height 16 --mesh-size 200 -o mp.exr -o mp.png \
+if "$radiant" render "$specular" --method multipass --solver stochastic --spp 16 --width 16 --height 16 --mesh-size 200 -o mp.exr -o mp.png \
     2>mp.txt; then
   for f in mp.pass1.exr mp.pass2.png mp.pass5.exr mp.exr mp.png; do [ -s "$f" ] && pass || fail "multipass did not write $f"; done
   grep -q "multipass 3 (unbiased, the solution as control variate)" mp.txt && grep -q "multipass 4 (low frequency" mp.txt &&

@@ -358,7 +358,7 @@ TEST(Multipass, ATimeBudgetIsUsed) {
   options.photonsPerPass = 20000;
   auto solve = [&](int maxShots) {
     SolverOptions solver;
-    solver.solver = maxShots > 0 ? "progressive" : "auto";
+    solver.solver = maxShots > 0 ? "progressive" : "stochastic";
     if (maxShots > 0) solver.maxIterations = maxShots;
     return meshAndSolve(scene, tracer, MeshOptions{}, solver);
   };

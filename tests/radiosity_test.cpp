@@ -474,9 +474,9 @@ TEST(Stochastic, AgreesWithHierarchicalOnTheCornellBox) {
   EXPECT_NEAR(directMc / directGs, 1.0, 0.02);
 }
 
-TEST(Radiosity, AutoPicksHierarchicalExactUpTo2000PatchesAndStochasticBeyond) {
-  EXPECT_EQ(resolveSolverName("auto", 2000, false), "hierarchical-exact");
-  EXPECT_EQ(resolveSolverName("auto", 2001, false), "stochastic");
+TEST(Radiosity, AutoPicksHierarchicalExactUpTo250000PatchesAndStochasticBeyond) {
+  EXPECT_EQ(resolveSolverName("auto", 250000, false), "hierarchical-exact");
+  EXPECT_EQ(resolveSolverName("auto", 250001, false), "stochastic");
   EXPECT_EQ(resolveSolverName("auto", 2000, true), "hierarchical");
   EXPECT_EQ(resolveSolverName("auto", 2001, true), "stochastic");
   EXPECT_EQ(resolveSolverName("auto", 1000, false, 256), "hierarchical-exact");

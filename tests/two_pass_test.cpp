@@ -428,4 +428,39 @@ TEST(TwoPass, ShirleyAndKokDoNotCountUnshotEmissionTwice) {
 }
 
 }  // namespace
+// A hierarchical solution refines the walls behind a shadow to thousands of
+// leaves; kok then removes the selected patches' light, at each receiver,
+// from the leaves near it and from inner tree nodes (their leaves' mean) it
+// sees under a small angle, or pairing every leaf with every receiver would
+// take minutes. The removal must still be the same light: its total within
+// 0.5 %, and element by element within 2 % of the largest removal (what a
+// node's piecewise-constant mean misses where its form factor varies).
+TEST(TwoPass, KokRemovesTheSameLightFromCoarserSourcePieces) {
+  Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
+  RayTracer tracer(scene);
+  SolverOptions solver;
+  solver.solver = "hierarchical-exact";
+  applyQuality(solver, "draft");
+  const Solution solution = meshAndSolve(scene, tracer, MeshOptions{}, solver);
+  RendererOptions options;
+  options.secondarySources = 4;
+  const SecondarySources every(tracer, solution, options, /*openingRatio=*/0);
+  const SecondarySources trees(tracer, solution, options);
+  std::cout << every.sourceElementCount() << " source elements; per receiver: " << every.piecesPerReceiver()
+            << " leaves, " << trees.piecesPerReceiver() << " pieces\n";
+  EXPECT_LT(trees.piecesPerReceiver(), 0.1 * every.piecesPerReceiver());
+  double everyTotal = 0, treesTotal = 0, worst = 0, largest = 0;
+  for (uint32_t e = 0; e < solution.elementCount(); ++e) largest = std::max(largest, every.removedRadiosity()[e].average());
+  for (uint32_t e = 0; e < solution.elementCount(); ++e) {
+    const double a = solution.mesh.elements[e].area, f = every.removedRadiosity()[e].average(),
+                 c = trees.removedRadiosity()[e].average();
+    everyTotal += a * f, treesTotal += a * c;
+    worst = std::max(worst, std::abs(c - f) / largest);
+  }
+  std::cout << "removed power: every leaf " << everyTotal << ", trees " << treesTotal << "; worst element " << worst
+            << " of the largest removal\n";
+  EXPECT_NEAR(treesTotal / everyTotal, 1.0, 0.005);
+  EXPECT_LT(worst, 0.02);
+}
+
 }  // namespace radiant

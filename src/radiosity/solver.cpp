@@ -52,22 +52,21 @@ void applyQuality(SolverOptions &options, const std::string &name) {
 }
 
 std::string resolveSolverName(const std::string &name, size_t patches, bool importance, size_t emitters) {
-  // Both hierarchical solvers suit a room of tens to thousands of patches.
-  // hierarchical (for --importance) links every pair of input patches first,
-  // hopeless for 10⁵. hierarchical-exact starts from clusters and solves a
-  // 10⁵-triangle scene in 25–30 s on 2 cores (cornell-knots), whose image
-  // then beats the path tracer's at equal time (docs/PERFORMANCE.md); but
-  // its mesh is then 10⁵ leaves fine, which the per-pixel methods that
-  // gather from every element (kok's secondary sources, multipass) cannot
-  // take, and a user of `auto` on such a scene wants an image in seconds:
-  // beyond 2000 patches the stochastic solver takes over. Its direct light
-  // is exact per emitter face at every mesh node: a room lit by a few
-  // lamps, not a furnace of 3750 glowing quads (5 minutes), so beyond 256
+  // hierarchical (for --importance) links every pair of input patches
+  // first, hopeless beyond a few thousand. hierarchical-exact starts from
+  // clusters: a 10⁵-triangle scene (cornell-knots) solves in 25–30 s on 2
+  // cores and its image beats the path tracer's at equal time, where the
+  // stochastic solver's stays 6× worse at every budget; a 2·10⁵-face
+  // sphere in a room takes 28 s and 0.8 GB (docs/PERFORMANCE.md), so
+  // beyond 2.5·10⁵ faces, where it would take minutes and gigabytes, the
+  // stochastic solver takes over. hierarchical-exact's direct light is
+  // exact per emitter face at every mesh node: a room lit by a few lamps,
+  // not a furnace of 3750 glowing quads (5 minutes), so beyond 256
   // emitting faces the stochastic solver takes over too.
-  constexpr size_t kAutoHierarchicalPatches = 2000, kAutoExactEmitters = 256;
+  constexpr size_t kAutoHierarchicalPatches = 2000, kAutoExactPatches = 250000, kAutoExactEmitters = 256;
   if (name != "auto") return name;
   if (importance) return patches <= kAutoHierarchicalPatches ? "hierarchical" : "stochastic";
-  return patches <= kAutoHierarchicalPatches && emitters <= kAutoExactEmitters ? "hierarchical-exact" : "stochastic";
+  return patches <= kAutoExactPatches && emitters <= kAutoExactEmitters ? "hierarchical-exact" : "stochastic";
 }
 
 std::string resolveSolverName(const std::string &name, const Scene &scene, bool importance) {

@@ -21,13 +21,80 @@ Bands reflectedRadiosity(const Solution &s, uint32_t element) {
   return b;
 }
 
-/// Above this many receiver × source-element pairs the removal would take
+/// Above this many receiver × source-element pairs that no tree can
+/// coarsen (patches meshed as uniform grids) the removal would take
 /// minutes; the user should select fewer sources.
-constexpr double kMaxPairs = 2e8;
+constexpr double kMaxLeafPairs = 2e8;
+
+/// A piece of a selected patch as the removal sees it: an element, or on a
+/// patch refined as a tree (hierarchical solvers) an inner node with its
+/// leaves' area-weighted mean and its children.
+struct SourcePiece {
+  uint32_t patch = 0;
+  Vec3 centre;
+  double radius = 0;  ///< the farthest corner from the centre
+  double area = 0;
+  std::vector<Vec3> polygon;
+  Bands reflected;
+  std::array<int32_t, 4> children{-1, -1, -1, -1};  ///< into the pieces; −1: a leaf
+};
+
+/// The selected patches as trees of pieces; `roots` receives the top ones
+/// (a tree patch's root, or each element of a patch meshed as a grid).
+/// Returns Σ area × (B − E) of the piece just added, for its parent's mean.
+Bands addTreePieces(const Solution &s, int32_t node, std::vector<SourcePiece> &pieces) {
+  const MeshTreeNode &n = s.mesh.tree[size_t(node)];
+  const size_t index = pieces.size();
+  pieces.push_back({});
+  SourcePiece piece;
+  piece.patch = n.patch;
+  piece.area = n.area;
+  piece.polygon.assign(n.corners.begin(), n.corners.begin() + n.vertexCount);
+  Bands power(0.0);
+  if (n.isLeaf()) {
+    power = reflectedRadiosity(s, uint32_t(n.element)) * n.area;
+  } else {
+    for (int c = 0; c < 4; ++c) {
+      if (n.children[size_t(c)] < 0) continue;
+      piece.children[size_t(c)] = int32_t(pieces.size());
+      power += addTreePieces(s, n.children[size_t(c)], pieces);
+    }
+  }
+  piece.reflected = n.area > 0 ? power / n.area : Bands(0.0);
+  pieces[index] = std::move(piece);
+  return power;
+}
+
+/// A node's radiosity as a receiver at x gathers it: its children's means
+/// weighted by the point-to-area kernel from x, not by area alone, so that
+/// where R and the kernel vary together over the node (a wall brighter
+/// near the receiver) the node is not taken as its plain mean.
+Bands valueSeenFrom(const std::vector<SourcePiece> &pieces, const SourcePiece &node, const Vec3 &x, const Vec3 &n,
+                    const Vec3 &nk) {
+  if (node.children[0] < 0) return node.reflected;
+  Bands sum(0.0);
+  double weights = 0;
+  for (int32_t c : node.children) {
+    if (c < 0) continue;
+    const SourcePiece &child = pieces[size_t(c)];
+    const Vec3 d = child.centre - x;
+    const double r2 = dot(d, d), cosines = std::max(0.0, dot(d, n)) * std::max(0.0, -dot(d, nk));
+    const double w = child.area * cosines / (r2 * (r2 + child.area * kInvPi));
+    sum += child.reflected * w, weights += w;
+  }
+  return weights > 0 ? sum / weights : node.reflected;
+}
+
+void finishPiece(SourcePiece &piece) {
+  piece.centre = Vec3{0, 0, 0};
+  for (const Vec3 &c : piece.polygon) piece.centre += c / double(piece.polygon.size());
+  for (const Vec3 &c : piece.polygon) piece.radius = std::max(piece.radius, length(c - piece.centre));
+}
 
 }  // namespace
 
-SecondarySources::SecondarySources(const RayTracer &tracer, const Solution &solution, const RendererOptions &options)
+SecondarySources::SecondarySources(const RayTracer &tracer, const Solution &solution, const RendererOptions &options,
+                                   double openingRatio)
     : solution_(solution) {
   const RadiosityMesh &mesh = solution.mesh;
   std::vector<double> power(mesh.patches.size(), 0.0);
@@ -59,39 +126,61 @@ SecondarySources::SecondarySources(const RayTracer &tracer, const Solution &solu
   if (!cumulative_.empty()) cumulative_.back() = 1.0;
   pdfAreaOfPatch_.assign(mesh.patches.size(), 0.0);
   for (size_t j = 0; j < patches_.size(); ++j) pdfAreaOfPatch_[patches_[j]] = probability_[j] / mesh.patches[patches_[j]].area;
-  computeRemovedRadiosity(tracer, std::max(1, options.removalVisibilityGrid));
+  computeRemovedRadiosity(tracer, std::max(1, options.removalVisibilityGrid), openingRatio);
 }
 
-void SecondarySources::computeRemovedRadiosity(const RayTracer &tracer, int grid) {
+void SecondarySources::computeRemovedRadiosity(const RayTracer &tracer, int grid, double openingRatio) {
   const RadiosityMesh &mesh = solution_.mesh;
   const Solution &s = solution_;
-  // The selected patches' elements, with their polygons and values, once.
-  struct Source {
-    uint32_t element;
-    std::vector<Vec3> polygon;
-    Bands reflected;
-  };
-  std::vector<Source> sources;
-  for (uint32_t p : patches_)
-    for (uint32_t k = 0; k < mesh.patches[p].elementCount; ++k) {
-      uint32_t e = mesh.patches[p].firstElement + k;
-      sources.push_back({e, mesh.polygon(e), reflectedRadiosity(s, e)});
+  // The selected patches' pieces, with their polygons and values, once:
+  // as trees where the solution refined them as trees.
+  std::vector<SourcePiece> pieces;
+  std::vector<int32_t> roots;
+  size_t leaves = 0;
+  for (uint32_t p : patches_) {
+    const Patch &patch = mesh.patches[p];
+    if (patch.treeRoot >= 0) {
+      roots.push_back(int32_t(pieces.size()));
+      addTreePieces(s, patch.treeRoot, pieces);
+      continue;
     }
-  if (double(sources.size()) * double(mesh.elements.size()) > kMaxPairs)
+    for (uint32_t k = 0; k < patch.elementCount; ++k) {
+      const uint32_t e = patch.firstElement + k;
+      roots.push_back(int32_t(pieces.size()));
+      pieces.push_back({p, mesh.elements[e].centre, 0, mesh.elements[e].area, mesh.polygon(e), reflectedRadiosity(s, e)});
+    }
+  }
+  for (SourcePiece &piece : pieces) finishPiece(piece), leaves += piece.children[0] < 0;
+  if (double(roots.size()) * double(mesh.elements.size()) > kMaxLeafPairs)
     throw InputError(InputLocation{"--sources"},
                      fmt::format("{} source elements × {} receivers is too many form factors; select fewer sources",
-                                 sources.size(), mesh.elements.size()));
+                                 roots.size(), mesh.elements.size()));
+  sourcePieces_ = leaves;
   removed_.assign(mesh.elements.size(), Bands(0.0));
+  std::vector<uint32_t> evaluated(mesh.elements.size(), 0);
   tbb::parallel_for(size_t(0), mesh.elements.size(), [&](size_t i) {
     const Element &receiver = mesh.elements[i];
     const Vec3 &n = mesh.normalOf(uint32_t(i));
     std::vector<Vec3> front;
+    std::vector<int32_t> stack(roots.rbegin(), roots.rend());
     Bands gathered(0.0);
-    for (const Source &source : sources) {
-      const Element &k = mesh.elements[source.element];
-      if (k.patch == receiver.patch) continue;
-      const Vec3 &nk = mesh.normalOf(source.element);
-      if (dot(receiver.centre - k.centre, nk) <= 0) continue;  // behind the source: its front faces away
+    while (!stack.empty()) {
+      const SourcePiece &source = pieces[size_t(stack.back())];
+      stack.pop_back();
+      if (source.patch == receiver.patch) continue;
+      const Vec3 &nk = mesh.patches[source.patch].normal;
+      // Behind the source's plane: its front faces away (all of it: the
+      // pieces of a patch share its plane).
+      if (dot(receiver.centre - source.centre, nk) <= 0) continue;
+      // A piece seen under a wide angle is taken as its children (Barnes
+      // & Hut's opening test): near the receiver the leaves themselves,
+      // far away a node's mean, whose form factor varies little over it.
+      if (source.children[0] >= 0 && source.radius > openingRatio * length(receiver.centre - source.centre)) {
+        for (int c = 3; c >= 0; --c)
+          if (source.children[size_t(c)] >= 0) stack.push_back(source.children[size_t(c)]);
+        continue;
+      }
+      ++evaluated[i];
       // The part of the source in front of the receiver, its exact factor,
       // and its visible fraction from grid × grid stratified points on that part.
       clipToFrontHalfSpace(receiver.centre, n, source.polygon, front);
@@ -103,10 +192,13 @@ void SecondarySources::computeRemovedRadiosity(const RayTracer &tracer, int grid
         for (int b = 0; b < grid; ++b)
           visible +=
               tracer.visible(receiver.centre, n, sampleConvexPolygon(front, (a + 0.5) / grid, (b + 0.5) / grid), nk);
-      gathered += source.reflected * (f * visible / double(grid * grid));
+      gathered += valueSeenFrom(pieces, source, receiver.centre, n, nk) * (f * visible / double(grid * grid));
     }
     removed_[i] = s.reflectance[i] * gathered;
   });
+  double sum = 0;
+  for (uint32_t count : evaluated) sum += count;
+  piecesPerReceiver_ = evaluated.empty() ? 0 : sum / double(evaluated.size());
 }
 
 Bands SecondarySources::radiance(uint32_t element) const { return reflectedRadiosity(solution_, element) * kInvPi; }

@@ -26,7 +26,15 @@ class SecondarySources {
   /// Selects patches by reflected power Σ (B − E)·A: the `options.secondarySources`
   /// largest, or the fewest carrying `options.secondarySourceFraction` of the total.
   /// Then computes removedRadiosity() for every element (parallel, deterministic).
-  SecondarySources(const RayTracer &tracer, const Solution &solution, const RendererOptions &options);
+  /// Where the solution refined a selected patch as a tree (hierarchical
+  /// solvers: 10⁴ leaves behind a shadow), each receiver gathers from the
+  /// tree's nodes that it sees under a small angle — node radius below
+  /// openingRatio × distance — and from the leaves only near it, so the
+  /// cost grows with the receivers times the log of the leaves; 0 gathers
+  /// every leaf.
+  static constexpr double kOpeningRatio = 0.25;
+  SecondarySources(const RayTracer &tracer, const Solution &solution, const RendererOptions &options,
+                   double openingRatio = kOpeningRatio);
 
   bool empty() const { return patches_.empty(); }
   const std::vector<uint32_t> &patches() const { return patches_; }
@@ -42,9 +50,13 @@ class SecondarySources {
   /// k' the part of element k in front of centre_i's tangent plane, V its visible fraction:
   /// what the solution's indirect radiosity holds from the selected sources.
   const std::vector<Bands> &removedRadiosity() const { return removed_; }
+  /// The selected patches' elements, and how many pieces (elements or tree
+  /// nodes) each receiver gathered from on average.
+  size_t sourceElementCount() const { return sourcePieces_; }
+  double piecesPerReceiver() const { return piecesPerReceiver_; }
 
  private:
-  void computeRemovedRadiosity(const RayTracer &tracer, int grid);
+  void computeRemovedRadiosity(const RayTracer &tracer, int grid, double openingRatio);
 
   const Solution &solution_;
   std::vector<uint32_t> patches_;
@@ -52,6 +64,8 @@ class SecondarySources {
   std::vector<double> pdfAreaOfPatch_;  ///< by patch index
   double powerFraction_ = 0;
   std::vector<Bands> removed_;
+  size_t sourcePieces_ = 0;
+  double piecesPerReceiver_ = 0;
 };
 
 }  // namespace radiant
