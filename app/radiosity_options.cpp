@@ -14,7 +14,7 @@
 namespace radiant {
 
 void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &o) {
-  std::string solvers = fmt::format("\n  {:<13} {}", "auto", "hierarchical-exact up to 250 000 input faces (256 emitting), else stochastic");
+  std::string solvers = fmt::format("\n  {:<13} {}", "auto", "hierarchical-exact up to 150 000 input faces (256 emitting), else stochastic");
   for (const SolverInfo &info : solverRegistry()) solvers += fmt::format("\n  {:<13} {}", info.name, info.summary);
   app.add_option("--solver", o.solver.solver, "Radiosity solver:" + solvers)->default_val("auto");
   app.add_option("--mesh-size", o.meshSize,

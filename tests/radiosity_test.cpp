@@ -474,8 +474,8 @@ TEST(Stochastic, AgreesWithHierarchicalOnTheCornellBox) {
   EXPECT_NEAR(directMc / directGs, 1.0, 0.02);
 }
 
-TEST(Radiosity, AutoPicksHierarchicalExactUpTo250000PatchesAndStochasticBeyond) {
-  EXPECT_EQ(resolveSolverName("auto", 250000, false), "hierarchical-exact");
+TEST(Radiosity, AutoPicksHierarchicalExactUpTo150000PatchesAndStochasticBeyond) {
+  EXPECT_EQ(resolveSolverName("auto", 150000, false), "hierarchical-exact");
   EXPECT_EQ(resolveSolverName("auto", 250001, false), "stochastic");
   EXPECT_EQ(resolveSolverName("auto", 2000, true), "hierarchical");
   EXPECT_EQ(resolveSolverName("auto", 2001, true), "stochastic");

@@ -54,16 +54,18 @@ void applyQuality(SolverOptions &options, const std::string &name) {
 std::string resolveSolverName(const std::string &name, size_t patches, bool importance, size_t emitters) {
   // hierarchical (for --importance) links every pair of input patches
   // first, hopeless beyond a few thousand. hierarchical-exact starts from
-  // clusters: a 10⁵-triangle scene (cornell-knots) solves in 25–30 s on 2
-  // cores and its image beats the path tracer's at equal time, where the
-  // stochastic solver's stays 6× worse at every budget; a 2·10⁵-face
-  // sphere in a room takes 28 s and 0.8 GB (docs/PERFORMANCE.md), so
-  // beyond 2.5·10⁵ faces, where it would take minutes and gigabytes, the
-  // stochastic solver takes over. hierarchical-exact's direct light is
-  // exact per emitter face at every mesh node: a room lit by a few lamps,
-  // not a furnace of 3750 glowing quads (5 minutes), so beyond 256
+  // clusters: a 10⁵-triangle scene (cornell-knots) solves in 50–55 s on 2
+  // cores at the default --quality high (25 s at normal) and its image then
+  // has half the path tracer's RMSE at equal time, where the stochastic
+  // solver's stays 3–6× worse at every budget; a 10⁵-triangle sphere in a
+  // room takes 90 s and 1.2 GB at high (28 s, 0.8 GB at normal;
+  // docs/PERFORMANCE.md), growing as faces^0.5–0.6, so beyond 1.5·10⁵
+  // faces, where it would take minutes and gigabytes, the stochastic
+  // solver takes over. Its direct
+  // light is exact per emitter face at every mesh node: a room lit by a few
+  // lamps, not a furnace of 3750 glowing quads (5 minutes), so beyond 256
   // emitting faces the stochastic solver takes over too.
-  constexpr size_t kAutoHierarchicalPatches = 2000, kAutoExactPatches = 250000, kAutoExactEmitters = 256;
+  constexpr size_t kAutoHierarchicalPatches = 2000, kAutoExactPatches = 150000, kAutoExactEmitters = 256;
   if (name != "auto") return name;
   if (importance) return patches <= kAutoHierarchicalPatches ? "hierarchical" : "stochastic";
   return patches <= kAutoExactPatches && emitters <= kAutoExactEmitters ? "hierarchical-exact" : "stochastic";

@@ -22,7 +22,7 @@ struct ImportanceView {
 
 struct SolverOptions {
   /// A name from solverRegistry(), or "auto": hierarchical-exact for up to
-  /// 250 000 input faces lit by at most 256 emitting ones, stochastic beyond (resolveSolverName).
+  /// 150 000 input faces lit by at most 256 emitting ones, stochastic beyond (resolveSolverName).
   std::string solver = "auto";
   /// Gauss–Seidel and hierarchical: max change of B in a sweep over the
   /// largest reflected radiosity B − E; progressive: unshot power over
@@ -108,7 +108,7 @@ void solveRadiosity(const RayTracer &tracer, Solution &solution, const SolverOpt
                     const SolverProgressCallback &progress = {});
 
 /// "auto" resolved for a mesh of `patches` input patches; other names
-/// unchanged: hierarchical-exact up to 250 000 patches and 256 emitters, stochastic beyond.
+/// unchanged: hierarchical-exact up to 150 000 patches and 256 emitters, stochastic beyond.
 /// With `importance` (--importance), "auto" picks the solver that refines
 /// for a view, hierarchical, up to 2000 patches.
 std::string resolveSolverName(const std::string &name, size_t patches, bool importance = false, size_t emitters = 0);
