@@ -445,8 +445,17 @@ TEST(TwoPass, KokRemovesTheSameLightFromCoarserSourcePieces) {
   const Solution solution = meshAndSolve(scene, tracer, MeshOptions{}, solver);
   RendererOptions options;
   options.secondarySources = 2;  // the two brightest reflectors: the leaf-by-leaf sum stays a few seconds
-  const SecondarySources every(tracer, solution, options, /*openingRatio=*/0);
+  // The reference goes the way of a uniform mesh, element by element, not
+  // through the trees at all: a tree piece built wrong cannot hide in both.
+  Solution flat = solution;
+  for (Patch &patch : flat.mesh.patches) patch.treeRoot = -1;
+  const SecondarySources every(tracer, flat, options);
   const SecondarySources trees(tracer, solution, options);
+  ASSERT_EQ(every.patches(), trees.patches());
+  size_t leaves = 0;
+  for (uint32_t p : trees.patches()) leaves += solution.mesh.patches[p].elementCount;
+  EXPECT_EQ(trees.sourceElementCount(), leaves);
+  EXPECT_LE(every.piecesPerReceiver(), double(leaves));
   std::cout << every.sourceElementCount() << " source elements; per receiver: " << every.piecesPerReceiver()
             << " leaves, " << trees.piecesPerReceiver() << " pieces\n";
   EXPECT_LT(trees.piecesPerReceiver(), 0.1 * every.piecesPerReceiver());

@@ -39,30 +39,47 @@ struct SourcePiece {
   std::array<int32_t, 4> children{-1, -1, -1, -1};  ///< into the pieces; −1: a leaf
 };
 
-/// The selected patches as trees of pieces; `roots` receives the top ones
-/// (a tree patch's root, or each element of a patch meshed as a grid).
-/// Returns Σ area × (B − E) of the piece just added, for its parent's mean.
-Bands addTreePieces(const Solution &s, int32_t node, std::vector<SourcePiece> &pieces) {
-  const MeshTreeNode &n = s.mesh.tree[size_t(node)];
-  const size_t index = pieces.size();
-  pieces.push_back({});
-  SourcePiece piece;
-  piece.patch = n.patch;
-  piece.area = n.area;
-  piece.polygon.assign(n.corners.begin(), n.corners.begin() + n.vertexCount);
-  Bands power(0.0);
-  if (n.isLeaf()) {
-    power = reflectedRadiosity(s, uint32_t(n.element)) * n.area;
-  } else {
-    for (int c = 0; c < 4; ++c) {
-      if (n.children[size_t(c)] < 0) continue;
-      piece.children[size_t(c)] = int32_t(pieces.size());
-      power += addTreePieces(s, n.children[size_t(c)], pieces);
-    }
+/// A tree patch's pieces, its root first (at the index pieces had on
+/// entry), each node before its children. A node's value is its leaves'
+/// area-weighted mean over their own areas (a root's face area can differ
+/// from the sum of its leaves' by round-off). Throws on a tree deeper than
+/// any the solver builds (a damaged solution file).
+void addTreePieces(const Solution &s, int32_t root, std::vector<SourcePiece> &pieces) {
+  constexpr int kMaxDepth = 64;
+  const size_t first = pieces.size();
+  // Pre-order with an explicit stack: (tree node, its piece's parent piece, depth).
+  struct Pending {
+    int32_t node, parent, slot, depth;
+  };
+  std::vector<Pending> stack{{root, -1, 0, 0}};
+  while (!stack.empty()) {
+    const Pending at = stack.back();
+    stack.pop_back();
+    if (at.depth > kMaxDepth)
+      throw InputError(InputLocation{"solution"}, fmt::format("a patch's subdivision tree is deeper than {}", kMaxDepth));
+    const MeshTreeNode &n = s.mesh.tree[size_t(at.node)];
+    const int32_t index = int32_t(pieces.size());
+    SourcePiece piece;
+    piece.patch = n.patch;
+    piece.polygon.assign(n.corners.begin(), n.corners.begin() + n.vertexCount);
+    if (n.isLeaf()) piece.area = n.area, piece.reflected = reflectedRadiosity(s, uint32_t(n.element)) * n.area;
+    pieces.push_back(std::move(piece));
+    if (at.parent >= 0) pieces[size_t(at.parent)].children[size_t(at.slot)] = index;
+    if (n.isLeaf()) continue;
+    for (int c = 3; c >= 0; --c)
+      if (n.children[size_t(c)] >= 0) stack.push_back({n.children[size_t(c)], index, c, at.depth + 1});
   }
-  piece.reflected = n.area > 0 ? power / n.area : Bands(0.0);
-  pieces[index] = std::move(piece);
-  return power;
+  // Children come after their parents: one backward pass sums Σ A·(B − E)
+  // and Σ A upwards, then turns the sums into means.
+  for (size_t i = pieces.size(); i-- > first;) {
+    SourcePiece &piece = pieces[i];
+    if (piece.children[0] < 0) continue;
+    piece.area = 0, piece.reflected = Bands(0.0);
+    for (int32_t c : piece.children)
+      if (c >= 0) piece.area += pieces[size_t(c)].area, piece.reflected += pieces[size_t(c)].reflected;
+  }
+  for (size_t i = first; i < pieces.size(); ++i)
+    pieces[i].reflected = pieces[i].area > 0 ? pieces[i].reflected / pieces[i].area : Bands(0.0);
 }
 
 /// A node's radiosity as a receiver at x gathers it: its children's means
@@ -151,10 +168,13 @@ void SecondarySources::computeRemovedRadiosity(const RayTracer &tracer, int grid
     }
   }
   for (SourcePiece &piece : pieces) finishPiece(piece), leaves += piece.children[0] < 0;
-  if (double(roots.size()) * double(mesh.elements.size()) > kMaxLeafPairs)
+  // What no tree can coarsen (grid patches' elements, or every leaf when the
+  // opening ratio is 0) is paired with every receiver: refuse minutes of it.
+  const size_t unopened = openingRatio > 0 ? roots.size() : leaves;
+  if (double(unopened) * double(mesh.elements.size()) > kMaxLeafPairs)
     throw InputError(InputLocation{"--sources"},
                      fmt::format("{} source elements × {} receivers is too many form factors; select fewer sources",
-                                 roots.size(), mesh.elements.size()));
+                                 unopened, mesh.elements.size()));
   sourcePieces_ = leaves;
   removed_.assign(mesh.elements.size(), Bands(0.0));
   std::vector<uint32_t> evaluated(mesh.elements.size(), 0);
