@@ -61,10 +61,10 @@ std::string resolveSolverName(const std::string &name, size_t patches, bool impo
   // room takes 90 s and 1.2 GB at high (28 s, 0.8 GB at normal;
   // docs/PERFORMANCE.md), growing as faces^0.5–0.6, so beyond 1.5·10⁵
   // faces, where it would take minutes and gigabytes, the stochastic
-  // solver takes over. Its direct
-  // light is exact per emitter face at every mesh node: a room lit by a few
-  // lamps, not a furnace of 3750 glowing quads (5 minutes), so beyond 256
-  // emitting faces the stochastic solver takes over too.
+  // solver takes over. Its direct light is exact per emitter face at every
+  // mesh node: a room lit by a few lamps, not a furnace of 3750 glowing
+  // quads (5 minutes), so beyond 256 emitting faces the stochastic solver
+  // takes over too.
   constexpr size_t kAutoHierarchicalPatches = 2000, kAutoExactPatches = 150000, kAutoExactEmitters = 256;
   if (name != "auto") return name;
   if (importance) return patches <= kAutoHierarchicalPatches ? "hierarchical" : "stochastic";

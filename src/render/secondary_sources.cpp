@@ -31,7 +31,7 @@ constexpr double kMaxLeafPairs = 2e8;
 /// leaves' area-weighted mean and its children.
 struct SourcePiece {
   uint32_t patch = 0;
-  Vec3 centre;
+  Vec3 centre;        ///< the polygon's centroid (finishPiece)
   double radius = 0;  ///< the farthest corner from the centre
   double area = 0;
   std::vector<Vec3> polygon;
@@ -103,8 +103,7 @@ Bands valueSeenFrom(const std::vector<SourcePiece> &pieces, const SourcePiece &n
 }
 
 void finishPiece(SourcePiece &piece) {
-  piece.centre = Vec3{0, 0, 0};
-  for (const Vec3 &c : piece.polygon) piece.centre += c / double(piece.polygon.size());
+  piece.centre = polygonCentroid(piece.polygon);
   for (const Vec3 &c : piece.polygon) piece.radius = std::max(piece.radius, length(c - piece.centre));
 }
 
@@ -164,7 +163,7 @@ void SecondarySources::computeRemovedRadiosity(const RayTracer &tracer, int grid
     for (uint32_t k = 0; k < patch.elementCount; ++k) {
       const uint32_t e = patch.firstElement + k;
       roots.push_back(int32_t(pieces.size()));
-      pieces.push_back({p, mesh.elements[e].centre, 0, mesh.elements[e].area, mesh.polygon(e), reflectedRadiosity(s, e)});
+      pieces.push_back({p, {}, 0, mesh.elements[e].area, mesh.polygon(e), reflectedRadiosity(s, e)});
     }
   }
   for (SourcePiece &piece : pieces) finishPiece(piece), leaves += piece.children[0] < 0;
@@ -175,7 +174,7 @@ void SecondarySources::computeRemovedRadiosity(const RayTracer &tracer, int grid
     throw InputError(InputLocation{"--sources"},
                      fmt::format("{} source elements × {} receivers is too many form factors; select fewer sources",
                                  unopened, mesh.elements.size()));
-  sourcePieces_ = leaves;
+  sourceElements_ = leaves;
   removed_.assign(mesh.elements.size(), Bands(0.0));
   std::vector<uint32_t> evaluated(mesh.elements.size(), 0);
   tbb::parallel_for(size_t(0), mesh.elements.size(), [&](size_t i) {

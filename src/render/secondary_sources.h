@@ -52,7 +52,7 @@ class SecondarySources {
   const std::vector<Bands> &removedRadiosity() const { return removed_; }
   /// The selected patches' elements, and how many pieces (elements or tree
   /// nodes) each receiver gathered from on average.
-  size_t sourceElementCount() const { return sourcePieces_; }
+  size_t sourceElementCount() const { return sourceElements_; }
   double piecesPerReceiver() const { return piecesPerReceiver_; }
 
  private:
@@ -64,7 +64,7 @@ class SecondarySources {
   std::vector<double> pdfAreaOfPatch_;  ///< by patch index
   double powerFraction_ = 0;
   std::vector<Bands> removed_;
-  size_t sourcePieces_ = 0;
+  size_t sourceElements_ = 0;
   double piecesPerReceiver_ = 0;
 };
 
