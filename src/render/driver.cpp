@@ -95,8 +95,9 @@ RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, int
             for (int x = tile.x0; x < tile.x1; ++x) {
               size_t pixel = size_t(y) * width + x;
               if (!active[pixel]) continue;
+              const Sampler::PixelOffsets offsets = Sampler::pixelOffsets(options.seed, pixel);
               for (int s = first; s < last; ++s) {
-                Sampler rng(options.seed, pixel, s);  // the first two numbers place the sample in its pixel
+                Sampler rng(offsets, options.seed, pixel, s);  // the first two numbers place the sample in its pixel
                 double jitterX = rng.next(), jitterY = rng.next();
                 shade(pixel, camera.generateRay(x + jitterX, y + jitterY), rng);
               }

@@ -23,26 +23,40 @@ namespace radiant {
 class Sampler {
  public:
   static constexpr int kQuasiRandomDimensions = 8;
+  /// A pixel's Cranley–Patterson offsets: the same for every sample of the
+  /// pixel, so the driver draws them once per pixel, not once per sample.
+  using PixelOffsets = std::array<double, kQuasiRandomDimensions>;
 
-  /// Plain pseudo-random numbers from `rng` (tests, single-ray queries).
-  explicit Sampler(const Pcg32 &rng) : rng_(rng), quasiRandomLeft_(0) {}
-  /// Camera sample `sample` of pixel `pixel`.
-  Sampler(uint64_t seed, uint64_t pixel, uint64_t sample)
-      : rng_(sampleGenerator(seed, pixel, sample)), quasiRandomLeft_(kQuasiRandomDimensions) {
+  static PixelOffsets pixelOffsets(uint64_t seed, uint64_t pixel) {
     Pcg32 offsets = sampleGenerator(seed ^ 0x5bd1e995ULL, pixel, ~uint64_t(0));
-    const auto &alpha = generators();
-    // s·α mod 1 in two steps keeps full precision for large s.
-    for (int k = 0; k < kQuasiRandomDimensions; ++k) {
-      // a − ⌊a⌋ is fmod(a, 1) exactly for a ≥ 0 (Sterbenz), at a fraction of its cost.
-      const double a = double(sample) * alpha[k];
-      double x = offsets.next() + (a - std::floor(a));
-      point_[k] = x - std::floor(x);
-    }
+    PixelOffsets shift{};
+    for (double &x : shift) x = offsets.next();
+    return shift;
   }
 
-  /// Uniform in [0, 1).
+  /// Plain pseudo-random numbers from `rng` (tests, single-ray queries).
+  explicit Sampler(const Pcg32 &rng) : rng_(rng), rngReady_(true), dimension_(kQuasiRandomDimensions) {}
+  /// Camera sample `sample` of pixel `pixel`.
+  Sampler(uint64_t seed, uint64_t pixel, uint64_t sample) : Sampler(pixelOffsets(seed, pixel), seed, pixel, sample) {}
+  /// The same, with the pixel's offsets already drawn (pixelOffsets(seed, pixel)).
+  Sampler(const PixelOffsets &offsets, uint64_t seed, uint64_t pixel, uint64_t sample)
+      : offsets_(offsets), seed_(seed), pixel_(pixel), sample_(sample) {}
+
+  /// Uniform in [0, 1). The quasi-random numbers and the sample's own
+  /// generator are made when first asked for: a display method draws only
+  /// the two that place the sample in its pixel.
   double next() {
-    if (quasiRandomLeft_ > 0) return point_[kQuasiRandomDimensions - quasiRandomLeft_--];
+    if (dimension_ < kQuasiRandomDimensions) {
+      // s·α mod 1 in two steps keeps full precision for large s; a − ⌊a⌋
+      // is fmod(a, 1) exactly for a ≥ 0 (Sterbenz), at a fraction of its cost.
+      const double a = double(sample_) * generators()[dimension_];
+      const double x = offsets_[dimension_++] + (a - std::floor(a));
+      return x - std::floor(x);
+    }
+    if (!rngReady_) {
+      rng_ = sampleGenerator(seed_, pixel_, sample_);
+      rngReady_ = true;
+    }
     return rng_.next();
   }
 
@@ -66,9 +80,11 @@ class Sampler {
     return alpha;
   }
 
+  PixelOffsets offsets_{};
+  uint64_t seed_ = 0, pixel_ = 0, sample_ = 0;
   Pcg32 rng_;
-  int quasiRandomLeft_;
-  std::array<double, kQuasiRandomDimensions> point_{};
+  bool rngReady_ = false;
+  int dimension_ = 0;  ///< the next quasi-random dimension; kQuasiRandomDimensions once all are drawn
 };
 
 }  // namespace radiant

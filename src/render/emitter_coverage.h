@@ -1,12 +1,13 @@
-// Which pixels show a light source: what `max-reflected` needs to leave the
-// emitters out of its normalisation, and what render stores in its EXR so that
-// `radiant tonemap` can do the same later without the scene.
+// Which pixels show a light source, found by tracing camera rays: what
+// `max-reflected` needs to leave the emitters out of its normalisation, and
+// what render stores in its EXR ("emitter" channel) so that `radiant tonemap`
+// can do the same later without the scene. The display stage reads only the
+// stored fraction (display/emitter_mask.h); the tracing lives here, with the
+// camera and the ray tracer.
 #pragma once
 
-#include <cstdint>
 #include <vector>
 
-#include "io/image.h"
 #include "raytrace/ray_tracer.h"
 #include "scene/camera.h"
 
@@ -22,12 +23,5 @@ constexpr int kEmitterCoverageGrid = 4;
 /// through a mirror or glass do not count: what counts is the light source
 /// itself in view.
 std::vector<float> emitterCoverage(const RayTracer &tracer, const PinholeCamera &camera, int width, int height);
-
-/// The pixels a "reflecting surfaces only" statistic must skip: every pixel
-/// with some emitter coverage, and its eight neighbours, because the film's
-/// samples do not fall on the coverage grid and a pixel at the edge of a light
-/// can hold some of its radiance while no grid ray hit it. All false when the
-/// image carries no coverage.
-std::vector<uint8_t> emitterPixelMask(const Image &image);
 
 }  // namespace radiant
