@@ -6,7 +6,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "display/emitter_coverage.h"
+#include "render/emitter_coverage.h"
 #include "util/error.h"
 
 namespace radiant {

@@ -49,7 +49,7 @@
 #include "raytrace/ray_tracer.h"
 #include "render/driver.h"
 #include "render/renderer.h"
-#include "render/sampling.h"
+#include "util/sampling.h"
 #include "scene/camera.h"
 #include "scene/load_scene.h"
 #include "util/random.h"

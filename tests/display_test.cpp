@@ -10,12 +10,13 @@
 #include <numeric>
 
 #include "display/display_mapping.h"
-#include "display/emitter_coverage.h"
+#include "display/emitter_mask.h"
 #include "display/false_colour.h"
 #include "display/luminance.h"
 #include "display/tone_operator.h"
 #include "io/image.h"
 #include "raytrace/ray_tracer.h"
+#include "render/emitter_coverage.h"
 #include "scene/load_scene.h"
 #include "util/error.h"
 

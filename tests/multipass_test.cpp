@@ -12,7 +12,7 @@
 #include "render/caustic_photons.h"
 #include "render/driver.h"
 #include "render/multipass.h"
-#include "render/sampling.h"
+#include "util/sampling.h"
 #include "util/random.h"
 #include "scene/load_scene.h"
 #include "render_helpers.h"

@@ -6,7 +6,7 @@
 #include "chi_square.h"
 #include "render/bsdf.h"
 #include "render/light_sampler.h"
-#include "render/sampling.h"
+#include "util/sampling.h"
 #include "util/random.h"
 
 namespace radiant {

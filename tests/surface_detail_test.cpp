@@ -15,7 +15,7 @@
 #include "scene/load_scene.h"
 #include "render_helpers.h"
 #include "test_scenes.h"
-#include "texture/surface_detail.h"
+#include "raytrace/surface_detail.h"
 #include "util/error.h"
 #include "sanitizer.h"
 

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "display/bitmap_text.h"
-#include "display/emitter_coverage.h"
+#include "display/emitter_mask.h"
 #include "display/luminance.h"
 #include "util/error.h"
 

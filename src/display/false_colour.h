@@ -21,7 +21,7 @@ enum class FalseColourQuantity { Luminance, Illuminance };
 struct FalseColourSettings {
   FalseColourQuantity quantity = FalseColourQuantity::Luminance;
   /// The scale's ends in cd/m² or lux. Default (both empty): MAX is the largest
-  /// value among pixels that show no emitter (display/emitter_coverage.h),
+  /// value among pixels that show no emitter (display/emitter_mask.h),
   /// rounded up to 1, 2 or 5 × 10^k (to 10^k with a log scale); MIN is 0, or
   /// MAX/1000 (three decades) with a log scale.
   std::optional<double> minimum, maximum;

@@ -12,7 +12,7 @@
 //
 // Which pixels show an emitter comes from the image's emitter coverage (the
 // "emitter" channel render writes in its EXR); pixels with coverage and their
-// neighbours are left out (display/emitter_coverage.h). An image without it —
+// neighbours are left out (display/emitter_mask.h). An image without it —
 // a PFM, an EXR from elsewhere — is treated as showing no emitter: the lights
 // then set the scale and the room comes out dark, and a warning says so.
 //
@@ -24,7 +24,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "display/emitter_coverage.h"
+#include "display/emitter_mask.h"
 #include "display/tone_operator.h"
 
 namespace radiant {

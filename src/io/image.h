@@ -18,7 +18,7 @@ struct Image {
   int width = 0, height = 0;
   std::vector<float> rgb;  ///< 3 floats per pixel
   /// Optional, one float per pixel: the fraction of the pixel's camera rays
-  /// whose first hit is the front of an emitter (display/emitter_coverage.h).
+  /// whose first hit is the front of an emitter (render/emitter_coverage.h).
   /// Empty when unknown. OpenEXR keeps it as the channel "emitter"; PFM drops it.
   std::vector<float> emitterFraction;
   /// What the pixels hold, when known: "radiance" (W·sr⁻¹·m⁻², what render

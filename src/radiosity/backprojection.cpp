@@ -5,7 +5,7 @@
 
 #include "radiosity/form_factor.h"
 #include "raytrace/ray_tracer.h"
-#include "render/sampling.h"
+#include "util/sampling.h"
 
 namespace radiant {
 

@@ -18,7 +18,7 @@
 #include <cmath>
 #include <vector>
 
-#include "render/sampling.h"
+#include "util/sampling.h"
 #include "util/fast_angle.h"
 
 namespace radiant {

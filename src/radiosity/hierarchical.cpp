@@ -36,8 +36,8 @@
 #include "radiosity/form_factor.h"
 #include "radiosity/importance.h"
 #include "radiosity/solver.h"
-#include "texture/surface_detail.h"
-#include "render/sampling.h"
+#include "raytrace/surface_detail.h"
+#include "util/sampling.h"
 #include "util/error.h"
 
 namespace radiant {

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "texture/surface_detail.h"
+#include "raytrace/surface_detail.h"
 
 namespace radiant {
 

@@ -1,6 +1,6 @@
 #include "radiosity/solution.h"
 
-#include "texture/surface_detail.h"
+#include "raytrace/surface_detail.h"
 
 #include <cmath>
 #include <unordered_map>

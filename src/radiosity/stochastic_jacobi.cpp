@@ -25,7 +25,7 @@
 #include <chrono>
 
 #include "radiosity/solver.h"
-#include "render/sampling.h"
+#include "util/sampling.h"
 
 namespace radiant {
 

@@ -1,4 +1,4 @@
-#include "texture/surface_detail.h"
+#include "raytrace/surface_detail.h"
 
 #include <algorithm>
 #include <array>

@@ -1,6 +1,6 @@
 #include "render/bsdf.h"
 
-#include "render/sampling.h"
+#include "util/sampling.h"
 
 namespace radiant {
 

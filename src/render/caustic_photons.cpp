@@ -8,7 +8,7 @@
 
 #include "render/bsdf.h"
 #include "render/light_sampler.h"
-#include "render/sampling.h"
+#include "util/sampling.h"
 #include "util/random.h"
 
 namespace radiant {

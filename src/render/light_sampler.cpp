@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "render/sampling.h"
+#include "util/sampling.h"
 
 namespace radiant {
 

@@ -19,8 +19,8 @@
 #include "render/light_sampler.h"
 #include "radiosity/solution.h"
 #include "render/caustic_photons.h"
-#include "render/sampling.h"
-#include "texture/surface_detail.h"
+#include "util/sampling.h"
+#include "raytrace/surface_detail.h"
 
 namespace radiant {
 
@@ -68,7 +68,7 @@ class PathTracer final : public Renderer {
       Hit hit;
       if (!tracer_.intersect(ray, hit)) break;  // no environment light: the world outside is black
       const Material &material = scene_.materials[hit.material];
-      // Texture and bump maps (texture/surface_detail.h): ρ(x) and the bumped shading normal.
+      // Texture and bump maps (raytrace/surface_detail.h): ρ(x) and the bumped shading normal.
       Bands diffuse = material.diffuse;
       if (material.hasSurfaceDetail()) {
         // The finest texels, unfiltered: the pixel's own samples integrate the texture

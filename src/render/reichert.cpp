@@ -24,7 +24,7 @@
 #include <fmt/format.h>
 
 #include "radiosity/form_factor.h"
-#include "render/sampling.h"
+#include "util/sampling.h"
 #include "render/two_pass.h"
 #include "util/error.h"
 

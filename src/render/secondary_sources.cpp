@@ -7,7 +7,7 @@
 #include <numeric>
 
 #include "radiosity/form_factor.h"
-#include "render/sampling.h"
+#include "util/sampling.h"
 #include "util/error.h"
 
 namespace radiant {

@@ -23,7 +23,7 @@
 #include <optional>
 
 #include "radiosity/backprojection.h"
-#include "render/sampling.h"
+#include "util/sampling.h"
 #include "render/secondary_sources.h"
 #include "render/bump_gather.h"
 #include "render/caustic_photons.h"

@@ -1,7 +1,7 @@
 #include "render/two_pass.h"
 
 #include "render/bsdf.h"
-#include "texture/surface_detail.h"
+#include "raytrace/surface_detail.h"
 #include "util/error.h"
 
 namespace radiant {

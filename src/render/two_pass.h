@@ -28,7 +28,7 @@ struct VisiblePoint {
   int specularBounces = 0;
   MeshLocation location;  ///< in the radiosity mesh
   const Material *material = nullptr;
-  /// Surface detail (texture/surface_detail.h): ρ(x), the diffuse reflectance
+  /// Surface detail (raytrace/surface_detail.h): ρ(x), the diffuse reflectance
   /// here (the material's, times its texture), and hit.shadingNormal is the
   /// bumped normal. textureFactor = ρ(x)/ρ̄(x) (C&W eq. 9.11) scales what is
   /// read from the solution here; exactly 1 without a texture.

@@ -52,7 +52,7 @@ void detail::checkMaterial(const Material &m, const InputLocation &where, const 
   // ρ ≥ 1 makes B = E + ρFB a series that never converges (C&W §5.2: the
   // matrix is diagonally dominant only while every ρ < 1).
   // With a texture, ρ(x) = Kd × texel is clamped below 1 where it is used
-  // (texture/surface_detail.h), so Kd = 1, common in MTL files with map_Kd, is fine.
+  // (raytrace/surface_detail.h), so Kd = 1, common in MTL files with map_Kd, is fine.
   checkBands(m.diffuse, where, subject, names.diffuse, 1.0, m.diffuseTexture.empty(),
              ": a diffuse reflectance of 1 or more makes radiosity diverge");
   checkBands(m.specular, where, subject, names.specular, 1.0, false,
