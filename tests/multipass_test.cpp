@@ -3,7 +3,6 @@
 // tracer, and the caustic map's brightness.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 
 #include "film_metrics.h"
@@ -346,41 +345,51 @@ TEST(Multipass, TheScheduleEndsAndIsDeterministic) {
   for (float v : black.rgb) EXPECT_EQ(v, 0.0f);
 }
 
-// With a time budget the passes go on until it is spent (review: a pass
-// too short for one sample must not end the render early).
-TEST(Multipass, ATimeBudgetIsUsed) {
+// A time budget, at the two ends where the outcome does not depend on the
+// machine's speed (how much of a budget a render uses in between is measured
+// by bench/multipass_budget, docs/PERFORMANCE.md). A budget of 1 ns is spent
+// by the time the preview is shown, so the preview is the only pass.
+TEST(Multipass, ASpentBudgetEndsTheRenderAfterThePreview) {
   Scene scene = loadScene(kSpecularBox);
   RayTracer tracer(scene);
-  const int size = 32;
+  const int size = 8;
   PinholeCamera camera(scene.camera, size, size);
   MultipassOptions options;
-  options.samplesPerPixel = 1 << 20;
-  options.photonsPerPass = 20000;
-  auto solve = [&](int maxShots) {
-    SolverOptions solver;
-    solver.solver = maxShots > 0 ? "progressive" : "stochastic";
-    if (maxShots > 0) solver.maxIterations = maxShots;
-    return meshAndSolve(scene, tracer, MeshOptions{}, solver);
-  };
-  // The budget is timed here, not guessed: a run capped at one sample per
-  // pixel (passes 1, 2 and one short pass 3) shows what the fixed passes cost
-  // on this machine — under a sanitizer, with other tests beside it, that is
-  // many times the 0.5 s of a quiet Release build — and the budget leaves
-  // room for several more passes after them.
-  MultipassOptions capped = options;
-  capped.samplesPerPixel = 1;
-  const auto probeStart = std::chrono::steady_clock::now();
-  renderMultipass(tracer, camera, size, size, capped, solve, [](const MultipassPass &, const Image &, const Image &) {});
-  const double fixedSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - probeStart).count();
-  options.timeBudgetSeconds = 1.5 + 2 * fixedSeconds;
-  const auto start = std::chrono::steady_clock::now();
-  int last = 0;
-  renderMultipass(tracer, camera, size, size, options, solve,
-                  [&](const MultipassPass &pass, const Image &, const Image &) { last = pass.index; });
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  EXPECT_GE(seconds, 0.9 * options.timeBudgetSeconds);
-  EXPECT_GE(last, 4);
+  options.timeBudgetSeconds = 1e-9;
+  options.photonsPerPass = 5000;
+  std::vector<int> passes;
+  renderMultipass(tracer, camera, size, size, options, progressiveOn(tracer, 0.25),
+                  [&](const MultipassPass &pass, const Image &, const Image &) { passes.push_back(pass.index); });
+  EXPECT_EQ(passes, std::vector<int>{1});
+}
+
+// A budget of 10⁶ s (11 days) is never spent here, so the schedule planned
+// from measured times (not the cost units of a render without a budget) must
+// go on until --spp is used, however fast or slow the passes are: nothing but
+// the budget or the cap may end it. (The review's case, a pass too short for
+// one sample ending the render early, happens only as a budget runs out,
+// where the bench measures it.)
+TEST(Multipass, ABudgetNotSpentRunsToTheSampleCap) {
+  Scene scene = loadScene(kSpecularBox);
+  RayTracer tracer(scene);
+  const int size = 8, spp = 24;
+  PinholeCamera camera(scene.camera, size, size);
+  MultipassOptions options;
+  options.timeBudgetSeconds = 1e6;
+  options.samplesPerPixel = spp;
+  options.photonsPerPass = 5000;
+  int last = 0, units2 = 0;  // the work of passes 3… in half units, as TheScheduleEndsAndIsDeterministic counts it
+  renderMultipass(tracer, camera, size, size, options, progressiveOn(tracer, 0.25),
+                  [&](const MultipassPass &pass, const Image &, const Image &) {
+                    EXPECT_EQ(pass.index, last + 1) << "passes in order, none left out";
+                    last = pass.index;
+                    if (pass.index < 3) return;
+                    EXPECT_GE(pass.samplesPerPixel, 1) << "pass " << pass.index;
+                    units2 += pass.samplesPerPixel * (pass.unbiased ? 2 : 1);
+                  });
+  EXPECT_GE(last, 4) << "the preview, pass 2, the first pairs and at least one planned pass";
+  EXPECT_LE(units2, 2 * spp) << "--spp caps the work";
+  EXPECT_GE(units2, 2 * spp - 1) << "--spp is used: the budget did not end the render";
 }
 
 // Converging (the second test): with a deliberately coarse first-pass
