@@ -1,6 +1,8 @@
-// The stages of src/ include only earlier stages (README.md, "Layout"): a
-// folder that includes a later one is an arrow against the data flow, and the
-// test names the file and the include.
+// The shape of the sources: the stages of src/ include only earlier stages
+// (README.md, "Layout") — a folder that includes a later one is an arrow
+// against the data flow, and the test names the file and the include — and
+// no file of src/ or app/ grows past 600 lines (one method per file; the CIE
+// 1931 observer's table is data, and excepted).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -51,6 +53,25 @@ TEST(Layering, EveryStageIncludesOnlyEarlierStages) {
   EXPECT_GT(files, 100u);  // the scan found the sources
   EXPECT_GT(includes, 200u);
   for (const std::string &b : backwards) ADD_FAILURE() << b;
+}
+
+TEST(Layering, NoSourceFileOver600Lines) {
+  constexpr int kMaxLines = 600;
+  size_t files = 0;
+  for (const char *folder : {"src", "app"}) {
+    const std::filesystem::path root = std::filesystem::path(RADIANT_SOURCE_DIR) / folder;
+    for (const auto &entry : std::filesystem::recursive_directory_iterator(root)) {
+      const std::string extension = entry.path().extension().string();
+      if (!entry.is_regular_file() || (extension != ".h" && extension != ".cpp")) continue;
+      if (entry.path().filename() == "cie1931.cpp") continue;  // the observer's table: data, not code
+      ++files;
+      std::ifstream in(entry.path());
+      int lines = 0;
+      for (std::string line; std::getline(in, line);) ++lines;
+      EXPECT_LE(lines, kMaxLines) << entry.path() << ": split it, one method per file";
+    }
+  }
+  EXPECT_GT(files, 100u);
 }
 
 }  // namespace

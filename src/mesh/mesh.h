@@ -14,6 +14,7 @@
 // front (counter-clockwise) side.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -47,6 +48,12 @@ struct MeshTreeNode {
   std::array<Vec3, 4> corners{};
   double area = 0;
   bool isLeaf() const { return children[0] < 0; }
+  /// The longest of its edges: what the refinements compare with their smallest size.
+  double longestEdge() const {
+    double longest = 0;
+    for (int k = 0; k < vertexCount; ++k) longest = std::max(longest, length(corners[(k + 1) % vertexCount] - corners[k]));
+    return longest;
+  }
 };
 
 struct Patch {

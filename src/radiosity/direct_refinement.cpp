@@ -58,17 +58,8 @@ void DirectLightField::evaluate(const RadiosityMesh &mesh, const std::vector<std
   for (size_t i = 0; i < missing.size(); ++i) values_[keyOf(missing[i].first, missing[i].second)] = results[i];
 }
 
-namespace {
-double longestEdgeOf(const MeshTreeNode &node) {
-  double longest = 0;
-  for (int k = 0; k < node.vertexCount; ++k)
-    longest = std::max(longest, length(node.corners[(k + 1) % node.vertexCount] - node.corners[k]));
-  return longest;
-}
-}  // namespace
-
 bool DirectLightField::cornersOnly(const MeshTreeNode &node) const {
-  return smallestSplit_ > 0 && longestEdgeOf(node) < 2 * smallestSplit_;
+  return smallestSplit_ > 0 && node.longestEdge() < 2 * smallestSplit_;
 }
 
 void DirectLightField::testPoints(const MeshTreeNode &node, std::vector<Vec3> &out, bool cornersOnly) {
