@@ -17,7 +17,7 @@
 //               meshed and solved with SolverOptions{} changed by --solver,
 //               --set key=value and --mesh-size (none given: the same solve
 //               as `default`), then createRenderer(METHOD) on that solution;
-//               with :Q (draft, normal, high, best) the solve takes that
+//               with :Q (draft, low, normal, high, best) the solve takes that
 //               --quality preset (radiosity/solver.h qualityLevels).
 //
 // Each run: meshAndSolve() and createRenderer() timed together ("solve s"),
