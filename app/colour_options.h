@@ -11,8 +11,8 @@
 namespace radiant {
 
 struct ColourCommandOptions {
-  std::string colour = "spectral";       ///< spectral | rgb
-  std::string whiteBalance = "none";     ///< none | equal-energy
+  std::string colour = "spectral";    ///< spectral | rgb
+  std::string whiteBalance = "none";  ///< none | equal-energy
 };
 
 void addColourOptions(CLI::App &app, ColourCommandOptions &options);

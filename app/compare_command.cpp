@@ -25,8 +25,7 @@ CommandRunner addCompareCommand(CLI::App &app) {
   app.add_option("reference", options->reference, "Reference image (.exr or .pfm, linear)")->required();
   app.add_option("--diff", options->differencePath,
                  "Write a false-colour PNG of the relative luminance difference (blue: darker, red: brighter)");
-  app.add_option("--diff-range", options->differenceRange,
-                 "Relative difference at which the false colour saturates")
+  app.add_option("--diff-range", options->differenceRange, "Relative difference at which the false colour saturates")
       ->default_val(0.2)
       ->check(CLI::PositiveNumber);
   app.add_option("--test-variance", options->testVariance,
@@ -56,15 +55,17 @@ CommandRunner addCompareCommand(CLI::App &app) {
       fmt::print("{{\"pixels\": {}, \"non_finite_pixels\": {}", c.pixels, c.nonFinitePixels);
       for (int i = 0; i < 4; ++i) {
         const ChannelComparison &ch = i < 3 ? c.channels[i] : c.average;
-        fmt::print(", \"{}\": {{\"mean_test\": {:.9g}, \"mean_reference\": {:.9g}, \"mean_ratio\": {:.9g}, "
-                   "\"rmse\": {:.9g}, \"relmse\": {:.9g}}}",
-                   names[i], ch.meanTest, ch.meanReference, ch.meanRatio, ch.rmse, ch.relativeMse);
+        fmt::print(
+            ", \"{}\": {{\"mean_test\": {:.9g}, \"mean_reference\": {:.9g}, \"mean_ratio\": {:.9g}, "
+            "\"rmse\": {:.9g}, \"relmse\": {:.9g}}}",
+            names[i], ch.meanTest, ch.meanReference, ch.meanRatio, ch.rmse, ch.relativeMse);
       }
       if (noise)
-        fmt::print(", \"z\": [{:.4g}, {:.4g}, {:.4g}], \"blocks\": {}, \"block_rms_z\": {:.4g}, "
-                   "\"block_max_abs_z\": {:.4g}, \"blocks_beyond_4\": {}",
-                   noise->imageZ[0], noise->imageZ[1], noise->imageZ[2], noise->blocks, noise->blockRmsZ,
-                   noise->blockMaxAbsZ, noise->blocksBeyond4);
+        fmt::print(
+            ", \"z\": [{:.4g}, {:.4g}, {:.4g}], \"blocks\": {}, \"block_rms_z\": {:.4g}, "
+            "\"block_max_abs_z\": {:.4g}, \"blocks_beyond_4\": {}",
+            noise->imageZ[0], noise->imageZ[1], noise->imageZ[2], noise->blocks, noise->blockRmsZ, noise->blockMaxAbsZ,
+            noise->blocksBeyond4);
       fmt::print("}}\n");
     } else {
       fmt::print("{:<8}{:>14}{:>14}{:>12}{:>14}{:>14}\n", "channel", "mean test", "mean ref", "ratio", "RMSE",
@@ -77,12 +78,12 @@ CommandRunner addCompareCommand(CLI::App &app) {
       if (noise) {
         fmt::print("difference of means in standard errors: R {:+.2f}  G {:+.2f}  B {:+.2f}\n", noise->imageZ[0],
                    noise->imageZ[1], noise->imageZ[2]);
-        fmt::print("16x16 blocks x channels: {}; RMS z {:.3f} (about 1 when the images agree within noise), "
-                   "max |z| {:.2f}, {} beyond 4\n",
-                   noise->blocks, noise->blockRmsZ, noise->blockMaxAbsZ, noise->blocksBeyond4);
+        fmt::print(
+            "16x16 blocks x channels: {}; RMS z {:.3f} (about 1 when the images agree within noise), "
+            "max |z| {:.2f}, {} beyond 4\n",
+            noise->blocks, noise->blockRmsZ, noise->blockMaxAbsZ, noise->blocksBeyond4);
       }
-      if (c.nonFinitePixels)
-        fmt::print("warning: {} pixels with NaN or Inf were left out\n", c.nonFinitePixels);
+      if (c.nonFinitePixels) fmt::print("warning: {} pixels with NaN or Inf were left out\n", c.nonFinitePixels);
     }
     if (!options->differencePath.empty())
       writePngBytes(differenceImage(test, reference, options->differenceRange), test.width, test.height,

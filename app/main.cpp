@@ -10,8 +10,7 @@
 #include "util/error.h"
 
 int main(int argc, char **argv) {
-  CLI::App app{"Radiant — a global-illumination renderer built around radiosity (Cohen & Wallace, ch. 9)",
-               "radiant"};
+  CLI::App app{"Radiant — a global-illumination renderer built around radiosity (Cohen & Wallace, ch. 9)", "radiant"};
   app.set_version_flag("--version", std::string("radiant ") + RADIANT_VERSION);
   app.require_subcommand(1);
   CLI::App *render = app.add_subcommand("render", "Render a scene (JSON or OBJ) to EXR/PFM/PNG images");

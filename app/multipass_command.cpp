@@ -37,8 +37,7 @@ void runMultipass(const RayTracer &tracer, const PinholeCamera &camera, int widt
     for (const std::string &path : command.outputs) paths.push_back(passOutputPath(path, pass.index));
     for (const std::string &path : command.outputs) paths.push_back(path);  // the latest pass
     Image image = mean;
-    writeRenderOutputs(image, paths, command.display, command.describeDisplay && pass.index == 1, tracer, camera,
-                       true);
+    writeRenderOutputs(image, paths, command.display, command.describeDisplay && pass.index == 1, tracer, camera, true);
     if (!command.variancePath.empty()) writeImage(variance, command.variancePath);
     if (!command.quiet)
       fmt::print(stderr, "radiant: multipass {} ({}): {} spp, {:.2f} s{}{}; wrote {}\n", pass.index, pass.name,
@@ -46,11 +45,11 @@ void runMultipass(const RayTracer &tracer, const PinholeCamera &camera, int widt
                  pass.causticPhotons ? fmt::format(", {} caustic photons within {:.1f} mm", pass.causticPhotons,
                                                    pass.photonRadius * 1e3)
                                      : std::string(),
-                 pass.index >= 3 ? fmt::format("; so far {} spp reading the solution, {} of them paired with the unbiased "
-                                               "path, which weighs {:.2f} (the solution's bias {:.3g} W/(sr m²) RMS)",
-                                               pass.controlSamples, pass.pairedSamples, pass.unbiasedWeight,
-                                               pass.estimatedBias)
-                                 : std::string(),
+                 pass.index >= 3
+                     ? fmt::format("; so far {} spp reading the solution, {} of them paired with the unbiased "
+                                   "path, which weighs {:.2f} (the solution's bias {:.3g} W/(sr m²) RMS)",
+                                   pass.controlSamples, pass.pairedSamples, pass.unbiasedWeight, pass.estimatedBias)
+                     : std::string(),
                  fmt::join(paths, ", "));
   };
   MultipassProgress progress;

@@ -14,7 +14,8 @@
 namespace radiant {
 
 void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &o) {
-  std::string solvers = fmt::format("\n  {:<13} {}", "auto", "hierarchical-exact up to 150 000 input faces (256 emitting), else stochastic");
+  std::string solvers = fmt::format("\n  {:<13} {}", "auto",
+                                    "hierarchical-exact up to 150 000 input faces (256 emitting), else stochastic");
   for (const SolverInfo &info : solverRegistry()) solvers += fmt::format("\n  {:<13} {}", info.name, info.summary);
   app.add_option("--solver", o.solver.solver, "Radiosity solver:" + solvers)->default_val("auto");
   app.add_option("--mesh-size", o.meshSize,
@@ -24,9 +25,10 @@ void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &o) {
                  "Refuse uniform meshes with more elements than this; hierarchical stops refining there")
       ->default_val(2'000'000)
       ->check(CLI::Range(size_t(1), size_t(100'000'000)));
-  app.add_option("--tolerance", o.solver.tolerance,
-                 "Convergence in (0, 1]: unshot power over emitted power (progressive, stochastic), or the largest change "
-                 "of B in a sweep over the largest reflected radiosity (gauss-seidel, hierarchical)")
+  app.add_option(
+         "--tolerance", o.solver.tolerance,
+         "Convergence in (0, 1]: unshot power over emitted power (progressive, stochastic), or the largest change "
+         "of B in a sweep over the largest reflected radiosity (gauss-seidel, hierarchical)")
       ->default_val(1e-3)
       ->check(CLI::Validator(
           [](std::string &text) {
@@ -37,7 +39,8 @@ void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &o) {
   app.add_option("--max-iterations", o.solver.maxIterations, "Stop after this many shots or sweeps (0: no limit)")
       ->default_val(0)
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--ff-samples", o.solver.visibilitySamples, "Shadow rays per form factor, rounded to a square number k x k (stratified)")
+  app.add_option("--ff-samples", o.solver.visibilitySamples,
+                 "Shadow rays per form factor, rounded to a square number k x k (stratified)")
       ->default_val(4)
       ->check(CLI::Range(1, 1024));
   app.add_option("--form-factor", o.solver.formFactor,
@@ -76,8 +79,8 @@ void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &o) {
 
 void rejectUnusedRadiosityOptions(const CLI::App &app, bool solving, const std::string &reason,
                                   const RadiosityCommandOptions &options) {
-  const char *all[] = {"--solver",      "--mesh-size",           "--max-elements",   "--tolerance",
-                       "--max-iterations", "--ff-samples",    "--form-factor",      "--hemicube-resolution",
+  const char *all[] = {"--solver",         "--mesh-size",        "--max-elements",    "--tolerance",
+                       "--max-iterations", "--ff-samples",       "--form-factor",     "--hemicube-resolution",
                        "--link-threshold", "--rays-per-element", "--adaptive-rounds", "--adaptive-threshold",
                        "--importance",     "--quality"};
   for (const char *name : all) {
@@ -96,11 +99,13 @@ void rejectUnusedRadiosityOptions(const CLI::App &app, bool solving, const std::
     if (flag == "--quality") only("hierarchical-exact", true);
     if (flag == "--ff-samples" && (options.solver.solver == "auto" || options.solver.solver == "hierarchical-exact" ||
                                    options.solver.solver == "stochastic"))
-      throw InputError(InputLocation{name}, "applies only to --solver gauss-seidel, progressive or hierarchical "
-                                            "(hierarchical-exact computes visibility exactly, stochastic by its rays)");
+      throw InputError(InputLocation{name},
+                       "applies only to --solver gauss-seidel, progressive or hierarchical "
+                       "(hierarchical-exact computes visibility exactly, stochastic by its rays)");
     if ((flag == "--adaptive-rounds" || flag == "--adaptive-threshold") && options.solver.solver == "hierarchical")
-      throw InputError(InputLocation{name}, "the hierarchical solver refines by itself; use --solver gauss-seidel, "
-                                            "progressive or stochastic");
+      throw InputError(InputLocation{name},
+                       "the hierarchical solver refines by itself; use --solver gauss-seidel, "
+                       "progressive or stochastic");
     if (flag == "--adaptive-threshold" && app.get_option("--adaptive-rounds")->count() == 0)
       throw InputError(InputLocation{name}, "needs --adaptive-rounds");
   }
@@ -159,10 +164,12 @@ Solution solveScene(const Scene &scene, const RayTracer &tracer, const Radiosity
 
 void printSolveSummary(const Solution &s) {
   const SolveStats &st = s.stats;
-  fmt::print(stderr, "radiant: {} solved {} elements in {:.2f} s: {} iterations, residual {:.3g}, {:.3g} M shadow rays\n",
+  fmt::print(stderr,
+             "radiant: {} solved {} elements in {:.2f} s: {} iterations, residual {:.3g}, {:.3g} M shadow rays\n",
              st.solver, s.elementCount(), st.seconds, st.iterations, st.residual, st.formFactorRays * 1e-6);
   if (st.links > 0)
-    fmt::print(stderr, "radiant: {} links, {} of them with a cluster of patches at an end\n", st.links, st.clusterLinks);
+    fmt::print(stderr, "radiant: {} links, {} of them with a cluster of patches at an end\n", st.links,
+               st.clusterLinks);
   fmt::print(stderr, "radiant: power (W, band average): emitted {:.6g}, absorbed {:.6g}, escaped {:.6g}\n",
              st.emittedPower.average(), st.absorbedPower.average(), st.escapedPower.average());
 }

@@ -16,7 +16,7 @@ namespace radiant {
 struct RadiosityCommandOptions {
   SolverOptions solver;
   std::optional<double> meshSize;  ///< scene units
-  std::string quality = "high";  ///< hierarchical-exact's preset (radiosity/solver.h qualityLevels)
+  std::string quality = "high";    ///< hierarchical-exact's preset (radiosity/solver.h qualityLevels)
 };
 
 void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &options);
@@ -28,8 +28,8 @@ void rejectUnusedRadiosityOptions(const CLI::App &app, bool solving, const std::
                                   const RadiosityCommandOptions &options);
 
 /// Meshes and solves the scene, printing progress and a summary unless quiet.
-Solution solveScene(const Scene &scene, const RayTracer &tracer, const RadiosityCommandOptions &options,
-                    uint64_t seed, int threads, bool quiet);
+Solution solveScene(const Scene &scene, const RayTracer &tracer, const RadiosityCommandOptions &options, uint64_t seed,
+                    int threads, bool quiet);
 
 /// The solution's figures, for a person: solver, iterations, residual, energy balance.
 void printSolveSummary(const Solution &solution);

@@ -2,7 +2,6 @@
 // overrides, renders with the chosen method and writes the images.
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -13,8 +12,8 @@
 #include "colour_options.h"
 #include "commands.h"
 #include "display_options.h"
-#include "multipass_command.h"
 #include "io/solution_file.h"
+#include "multipass_command.h"
 #include "radiosity_options.h"
 #include "raytrace/ray_tracer.h"
 #include "render/driver.h"
@@ -45,11 +44,13 @@ struct RenderCommandOptions {
   RendererOptions twoPass;  ///< the two-pass methods' flags
   std::string selectiveMapPath;
   DisplayCommandOptions display;  ///< the PNG outputs' display mapping
-  ColourCommandOptions colour;     ///< spectral scenes
+  ColourCommandOptions colour;    ///< spectral scenes
   std::string quantity = "radiance";
 };
 
-InputLocation flag(const std::string &name) { return InputLocation{name}; }
+InputLocation flag(const std::string &name) {
+  return InputLocation{name};
+}
 
 Vec3 parseVector(const std::string &text, const std::string &flagName) {
   Vec3 v;
@@ -92,7 +93,8 @@ void writeSelectiveMap(const Renderer &renderer, const PinholeCamera &camera, in
   if (!twoPass) return;
   std::vector<double> work(size_t(width) * height);
   tbb::parallel_for(0, height, [&](int y) {
-    for (int x = 0; x < width; ++x) work[size_t(y) * width + x] = twoPass->selectiveWork(camera.generateRay(x + 0.5, y + 0.5));
+    for (int x = 0; x < width; ++x)
+      work[size_t(y) * width + x] = twoPass->selectiveWork(camera.generateRay(x + 0.5, y + 0.5));
   });
   double most = 0;
   for (double w : work) most = std::max(most, w);
@@ -114,8 +116,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
   auto o = std::make_shared<RenderCommandOptions>();
   app.add_option("scene", o->scenePath, "Scene file: JSON (docs/scene-format.md) or a bare .obj model")->required();
   std::string methods;
-  for (const RendererInfo &info : rendererRegistry())
-    methods += fmt::format("\n  {:<12} {}", info.name, info.summary);
+  for (const RendererInfo &info : rendererRegistry()) methods += fmt::format("\n  {:<12} {}", info.name, info.summary);
   app.add_option("-m,--method", o->method, "Rendering method:" + methods)->default_val("path");
   app.add_option("-o,--output", o->outputs,
                  "Output image; repeat for several. Format by extension: .exr (linear float), .pfm (linear), "
@@ -185,8 +186,9 @@ CommandRunner addRenderCommand(CLI::App &app) {
       const RendererInfo &method = findRenderer(o->method);
       bool solving = method.needsSolution && o->solutionPath.empty();
       rejectUnusedRadiosityOptions(app, solving,
-                                   method.needsSolution ? "the solution comes from --solution"
-                                                        : "--method " + o->method + " does not read a radiosity solution",
+                                   method.needsSolution
+                                       ? "the solution comes from --solution"
+                                       : "--method " + o->method + " does not read a radiosity solution",
                                    o->radiosity);
       if (!o->solutionPath.empty() && !method.needsSolution)
         throw InputError(InputLocation{"--solution"}, "--method " + o->method + " does not read a radiosity solution");
@@ -194,13 +196,14 @@ CommandRunner addRenderCommand(CLI::App &app) {
       if (app.count("--bump-orientations") > 0 &&
           ((o->method != "interpolate" && o->method != "shirley" && o->method != "kok" && o->method != "multipass") ||
            o->quantity == "irradiance"))
-        throw InputError(flag("--bump-orientations"), "only interpolate, shirley, kok and multipass (of radiance) use it, not --method " +
-                                                          o->method + (o->quantity == "irradiance" ? " --quantity irradiance" : ""));
+        throw InputError(flag("--bump-orientations"),
+                         "only interpolate, shirley, kok and multipass (of radiance) use it, not --method " +
+                             o->method + (o->quantity == "irradiance" ? " --quantity irradiance" : ""));
       if (o->twoPass.bumpOrientations % 2 != 0)
         throw InputError(flag("--bump-orientations"), "must be even (two tilts × azimuths)");
       if (o->quantity == "irradiance" && !method.supportsIrradiance)
-        throw InputError(flag("--quantity"), "irradiance images come from --method path, flat or interpolate, not " +
-                                                 o->method);
+        throw InputError(flag("--quantity"),
+                         "irradiance images come from --method path, flat or interpolate, not " + o->method);
       if (!o->selectiveMapPath.empty() && !o->twoPass.selective)
         throw InputError(flag("--selective-map"), "needs --selective");
       if (!o->selectiveMapPath.empty() && std::filesystem::path(o->selectiveMapPath).extension() != ".png")
@@ -279,8 +282,9 @@ CommandRunner addRenderCommand(CLI::App &app) {
         throw InputError(flag("--method"), "multipass does not run spectral scenes yet: use --colour rgb");
       if (!o->solutionPath.empty())
         throw InputError(flag("--solution"), "multipass solves itself: a progressive preview, then --solver");
-      MultipassCommand command{outputs, display, app.count("--tonemap") > 0, o->variancePath, o->radiosity,
-                               o->twoPass, r.samplesPerPixel, r.timeBudgetSeconds, r.seed, o->threads, o->quiet};
+      MultipassCommand command{outputs,    display,           app.count("--tonemap") > 0, o->variancePath, o->radiosity,
+                               o->twoPass, r.samplesPerPixel, r.timeBudgetSeconds,        r.seed,          o->threads,
+                               o->quiet};
       command.renderer.maxDepth = r.maxDepth;
       command.renderer.pixelSpreadAngle = texturePixelSpread(scene.camera, r.height, 4);  // its filtered passes: 4 spp
       runMultipass(tracer, camera, r.width, r.height, command);
@@ -313,8 +317,8 @@ CommandRunner addRenderCommand(CLI::App &app) {
       std::unique_ptr<Renderer> renderer = createRenderer(o->method, tracer, rendererOptions);
       DriverOptions passDriver = driver;
       passDriver.timeBudgetSeconds = driver.timeBudgetSeconds / passes;  // --time covers all passes
-      RenderStats passStats = renderImage(camera, *renderer, passDriver, film,
-                                          o->quiet ? ProgressCallback{} : makeConsoleProgress(label));
+      RenderStats passStats =
+          renderImage(camera, *renderer, passDriver, film, o->quiet ? ProgressCallback{} : makeConsoleProgress(label));
       stats.samplesPerPixel = std::max(stats.samplesPerPixel, passStats.samplesPerPixel);
       stats.seconds += passStats.seconds;
       stats.cameraSamples += passStats.cameraSamples;

@@ -35,8 +35,8 @@ inline double loadAverage() {
 
 /// Parses `[scene.json] [--flag VALUE]` into `scenePath` and `value`; prints
 /// the usage and returns false on anything else.
-inline bool parseSceneAndNumber(int argc, char **argv, const char *flag, const char *valueName,
-                                std::string &scenePath, double &value) {
+inline bool parseSceneAndNumber(int argc, char **argv, const char *flag, const char *valueName, std::string &scenePath,
+                                double &value) {
   for (int i = 1; i < argc; ++i) {
     std::string arg = argv[i];
     if (arg == flag && i + 1 < argc) {

@@ -87,8 +87,8 @@ int main(int argc, char **argv) {
   }
   line(canvas, left, bottom, right, bottom, black), line(canvas, left, top, left, bottom, black);
   drawText(canvas, left, 15, argc > 3 ? argv[3] : "RMSE against the converged image, equal time", 2, black);
-  static const unsigned char palette[][3] = {{31, 119, 180}, {255, 127, 14}, {44, 160, 44}, {214, 39, 40},
-                                             {148, 103, 189}, {140, 86, 75}, {227, 119, 194}};
+  static const unsigned char palette[][3] = {{31, 119, 180},  {255, 127, 14}, {44, 160, 44},  {214, 39, 40},
+                                             {148, 103, 189}, {140, 86, 75},  {227, 119, 194}};
   int index = 0;
   for (const auto &[name, points] : series) {
     const unsigned char *colour = palette[index % 7];
@@ -96,7 +96,8 @@ int main(int argc, char **argv) {
       if (points[i].rmse > 0 && points[i + 1].rmse > 0)
         line(canvas, X(points[i].seconds), Y(points[i].rmse), X(points[i + 1].seconds), Y(points[i + 1].rmse), colour);
     for (const Point &p : points)
-      if (p.rmse > 0) canvas.fill(int(X(p.seconds)) - 4, int(Y(p.rmse)) - 4, int(X(p.seconds)) + 5, int(Y(p.rmse)) + 5, colour);
+      if (p.rmse > 0)
+        canvas.fill(int(X(p.seconds)) - 4, int(Y(p.rmse)) - 4, int(X(p.seconds)) + 5, int(Y(p.rmse)) + 5, colour);
     canvas.fill(right + 20, top + 30 * index + 4, right + 50, top + 30 * index + 10, colour);
     drawText(canvas, right + 58, top + 30 * index, name, 2, black);
     ++index;

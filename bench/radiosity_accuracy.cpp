@@ -84,7 +84,7 @@ namespace {
 
 constexpr int kSize = 256;                    // pixels, both sides
 constexpr uint64_t kReferenceSeed = 1000003;  // not one of the test seeds 1..repeats
-constexpr double kLightThreshold = 1.0;       // W·sr⁻¹·m⁻²: a reference pixel above this in any channel is the light
+constexpr double kLightThreshold = 1.0;  // W·sr⁻¹·m⁻²: a reference pixel above this in any channel is the light
 
 // RenderPark (rpkCpp at 37e5ff4e, hierarchical Galerkin, one thread, solution
 // ray cast at 1024² box-filtered to 256²), measured by the project on the
@@ -108,8 +108,8 @@ double renderParkRmse(double budget) {
 }
 
 // --set key=value: the SolverOptions fields by name.
-using SolverField = std::variant<std::string SolverOptions::*, double SolverOptions::*, int SolverOptions::*,
-                                 size_t SolverOptions::*>;
+using SolverField =
+    std::variant<std::string SolverOptions::*, double SolverOptions::*, int SolverOptions::*, size_t SolverOptions::*>;
 const std::map<std::string, SolverField> &solverFields() {
   static const std::map<std::string, SolverField> fields = {
       {"solver", &SolverOptions::solver},
@@ -138,7 +138,8 @@ const std::map<std::string, SolverField> &solverFields() {
 /// else a value must satisfy the solver checks.
 bool applySetting(const std::string &setting, SolverOptions &options) {
   const size_t equals = setting.find('=');
-  const std::string key = setting.substr(0, equals), value = equals == std::string::npos ? "" : setting.substr(equals + 1);
+  const std::string key = setting.substr(0, equals),
+                    value = equals == std::string::npos ? "" : setting.substr(equals + 1);
   auto found = solverFields().find(key);
   if (equals == std::string::npos || value.empty() || found == solverFields().end()) {
     std::string known;
@@ -183,7 +184,7 @@ struct Mask {
   std::vector<size_t> pixels;    ///< indices y·width + x of the included pixels
   std::vector<int> pixelObject;  ///< per included pixel: index into names, −1 for none
   std::vector<std::string> names;
-  double referenceNoise = 0;     ///< mean variance of the reference pixel means over them and the channels
+  double referenceNoise = 0;  ///< mean variance of the reference pixel means over them and the channels
 };
 
 struct Measurement {
@@ -229,10 +230,10 @@ void measure(const Image &test, const Image &reference, const Mask &mask, Measur
 }
 
 struct Pipeline {
-  std::string name;      ///< "default" or a method
-  std::string renderer;  ///< the method rendered
-  bool pristine = false; ///< default: SolverOptions{} and MeshOptions{}, nothing from the command line
-  std::string quality;   ///< METHOD:QUALITY: hierarchical-exact's --quality preset for its solve
+  std::string name;       ///< "default" or a method
+  std::string renderer;   ///< the method rendered
+  bool pristine = false;  ///< default: SolverOptions{} and MeshOptions{}, nothing from the command line
+  std::string quality;    ///< METHOD:QUALITY: hierarchical-exact's --quality preset for its solve
 };
 
 struct Row {
@@ -257,20 +258,31 @@ int main(int argc, char **argv) {
   for (int i = 1; i < argc; ++i) {
     std::string arg = argv[i];
     bool hasValue = i + 1 < argc;
-    if (arg == "--reference" && hasValue) referencePath = argv[++i];
-    else if (arg == "--reference-variance" && hasValue) referenceVariancePath = argv[++i];
-    else if (arg == "--reference-spp" && hasValue) referenceSpp = std::atoi(argv[++i]);
-    else if (arg == "--budgets" && hasValue) budgetList = argv[++i];
-    else if (arg == "--solver" && hasValue) configured.solver = argv[++i];
+    if (arg == "--reference" && hasValue)
+      referencePath = argv[++i];
+    else if (arg == "--reference-variance" && hasValue)
+      referenceVariancePath = argv[++i];
+    else if (arg == "--reference-spp" && hasValue)
+      referenceSpp = std::atoi(argv[++i]);
+    else if (arg == "--budgets" && hasValue)
+      budgetList = argv[++i];
+    else if (arg == "--solver" && hasValue)
+      configured.solver = argv[++i];
     else if (arg == "--set" && hasValue) {
       settings.push_back(argv[++i]);
       if (!applySetting(settings.back(), configured)) return 2;
-    } else if (arg == "--methods" && hasValue) methodList = argv[++i];
-    else if (arg == "--mesh-size" && hasValue) meshSizeMetres = std::atof(argv[++i]);
-    else if (arg == "--threads" && hasValue) threads = std::atoi(argv[++i]);
-    else if (arg == "--repeats" && hasValue) repeats = std::atoi(argv[++i]);
-    else if (arg == "--csv" && hasValue) csvPath = argv[++i];
-    else if (arg.rfind("--", 0) != 0) scenePath = arg;
+    } else if (arg == "--methods" && hasValue)
+      methodList = argv[++i];
+    else if (arg == "--mesh-size" && hasValue)
+      meshSizeMetres = std::atof(argv[++i]);
+    else if (arg == "--threads" && hasValue)
+      threads = std::atoi(argv[++i]);
+    else if (arg == "--repeats" && hasValue)
+      repeats = std::atoi(argv[++i]);
+    else if (arg == "--csv" && hasValue)
+      csvPath = argv[++i];
+    else if (arg.rfind("--", 0) != 0)
+      scenePath = arg;
     else {
       std::fprintf(stderr,
                    "usage: %s [scene.json] [--budgets 0.25,0.5,1,2,5,10,30] [--repeats 3] [--threads 2] "
@@ -341,8 +353,8 @@ int main(int argc, char **argv) {
       writeImage(referenceVariance, referenceVariancePath);
       std::fprintf(stderr, "reference: %d spp in %.1f s, wrote %s and %s\n", stats.samplesPerPixel, stats.seconds,
                    referencePath.c_str(), referenceVariancePath.c_str());
-      std::printf("reference rendered: %d spp of path in %.1f s on %d threads\n", stats.samplesPerPixel,
-                  stats.seconds, threads);
+      std::printf("reference rendered: %d spp of path in %.1f s on %d threads\n", stats.samplesPerPixel, stats.seconds,
+                  threads);
     }
     if (reference.width != kSize || reference.height != kSize || referenceVariance.width != kSize ||
         referenceVariance.height != kSize)
@@ -358,9 +370,8 @@ int main(int argc, char **argv) {
         if (!(r[0] <= kLightThreshold && r[1] <= kLightThreshold && r[2] <= kLightThreshold)) continue;
         mask.pixels.push_back(i);
         Hit hit;
-        sceneObjectOf.push_back(tracer.intersect(camera.generateRay(x + 0.5, y + 0.5), hit)
-                                    ? int(scene.faces[hit.face].object)
-                                    : -1);
+        sceneObjectOf.push_back(
+            tracer.intersect(camera.generateRay(x + 0.5, y + 0.5), hit) ? int(scene.faces[hit.face].object) : -1);
         for (int c = 0; c < 3; ++c) mask.referenceNoise += referenceVariance.rgb[i * 3 + c];
       }
     std::map<int, int> objectIndex;  // Scene::objects index → Mask::names index, in scene order
@@ -423,8 +434,10 @@ int main(int argc, char **argv) {
           driver.seed = uint64_t(repeat);
           driver.threads = threads;
           // The driver takes 0 as "no budget": a solve that used the whole budget gets exactly 1 spp.
-          if (budget > m.solveSeconds) driver.timeBudgetSeconds = budget - m.solveSeconds;
-          else driver.samplesPerPixel = 1;
+          if (budget > m.solveSeconds)
+            driver.timeBudgetSeconds = budget - m.solveSeconds;
+          else
+            driver.samplesPerPixel = 1;
           Film film(kSize, kSize);
           RenderStats stats = renderImage(camera, *renderer, driver, film);
           m.totalSeconds = secondsSince(start);
@@ -464,8 +477,9 @@ int main(int argc, char **argv) {
                                          : ", mesh size default (1/8 of the largest side)";
     std::printf("\nradiosity_accuracy: %s at %dx%d, %d threads, median of %d repeats\n", scenePath.c_str(), kSize,
                 kSize, threads, repeats);
-    std::printf("pipelines: default = `radiant render --method interpolate` with no flags (SolverOptions{}, "
-                "MeshOptions{});");
+    std::printf(
+        "pipelines: default = `radiant render --method interpolate` with no flags (SolverOptions{}, "
+        "MeshOptions{});");
     for (size_t p = 1; p < pipelines.size(); ++p) std::printf(" %s", pipelines[p].name.c_str());
     std::printf(" = %s\n", configuredText.c_str());
     for (const Pipeline &pipeline : pipelines)
@@ -475,18 +489,21 @@ int main(int argc, char **argv) {
                       row.elements);
           break;
         }
-    std::printf("reference: %s (variance %s); %zu of %d pixels measured (every channel ≤ %g W·sr⁻¹·m⁻²); noise "
-                "removed: mean variance of its pixel means %.3g (RMSE floor %.3g)\n\n",
-                referencePath.c_str(), referenceVariancePath.c_str(), mask.pixels.size(), kSize * kSize,
-                kLightThreshold, mask.referenceNoise, std::sqrt(mask.referenceNoise));
-    std::printf("| budget s | pipeline | solve s | total s | spp | mean R | mean G | mean B | RMSE | RenderPark RMSE | "
-                "ours / RenderPark |\n");
+    std::printf(
+        "reference: %s (variance %s); %zu of %d pixels measured (every channel ≤ %g W·sr⁻¹·m⁻²); noise "
+        "removed: mean variance of its pixel means %.3g (RMSE floor %.3g)\n\n",
+        referencePath.c_str(), referenceVariancePath.c_str(), mask.pixels.size(), kSize * kSize, kLightThreshold,
+        mask.referenceNoise, std::sqrt(mask.referenceNoise));
+    std::printf(
+        "| budget s | pipeline | solve s | total s | spp | mean R | mean G | mean B | RMSE | RenderPark RMSE | "
+        "ours / RenderPark |\n");
     std::printf("|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     FILE *csv = csvPath.empty() ? nullptr : std::fopen(csvPath.c_str(), "w");
     if (!csvPath.empty() && !csv) throw InputError(where(csvPath), "cannot open for writing");
     if (csv)
-      std::fprintf(csv, "budget_s,pipeline,solver,elements,solve_s,total_s,spp,mean_ratio_r,mean_ratio_g,mean_ratio_b,"
-                        "rmse,renderpark_rmse,rmse_over_renderpark,over_budget,non_finite_pixels\n");
+      std::fprintf(csv,
+                   "budget_s,pipeline,solver,elements,solve_s,total_s,spp,mean_ratio_r,mean_ratio_g,mean_ratio_b,"
+                   "rmse,renderpark_rmse,rmse_over_renderpark,over_budget,non_finite_pixels\n");
     for (const Row &row : rows) {
       const Measurement &m = row.median;
       const double rp = renderParkRmse(row.budget), ratio = std::isnan(rp) ? NAN : m.rmse / rp;
@@ -506,11 +523,13 @@ int main(int argc, char **argv) {
                      row.nonFinitePixels);
     }
     if (csv) std::fclose(csv);
-    std::printf("\n* over budget by more than 10%%: the solve or the single sample per pixel the driver always takes "
-                "did not fit\n");
-    std::printf("RenderPark (rpkCpp at 37e5ff4e, hierarchical Galerkin, one thread): its best RMSE within the budget; "
-                "its mean ratios at 0.58 s were %.3f, %.3f, %.3f\n",
-                kRenderParkMeanRatios[0], kRenderParkMeanRatios[1], kRenderParkMeanRatios[2]);
+    std::printf(
+        "\n* over budget by more than 10%%: the solve or the single sample per pixel the driver always takes "
+        "did not fit\n");
+    std::printf(
+        "RenderPark (rpkCpp at 37e5ff4e, hierarchical Galerkin, one thread): its best RMSE within the budget; "
+        "its mean ratios at 0.58 s were %.3f, %.3f, %.3f\n",
+        kRenderParkMeanRatios[0], kRenderParkMeanRatios[1], kRenderParkMeanRatios[2]);
 
     // Per pipeline, at its largest budget: where the light is missing or extra.
     const double largest = *std::max_element(budgets.begin(), budgets.end());

@@ -49,10 +49,10 @@
 #include "raytrace/ray_tracer.h"
 #include "render/driver.h"
 #include "render/renderer.h"
-#include "util/sampling.h"
 #include "scene/camera.h"
 #include "scene/load_scene.h"
 #include "util/random.h"
+#include "util/sampling.h"
 
 using namespace radiant;
 
@@ -337,7 +337,8 @@ int main(int argc, char **argv) {
       std::printf("%-10d %14.3f %12.2f %9.2fx\n", threads, rate, medianRenderSeconds, rate / singleThreadRate);
     }
 
-    std::printf("\nchecksum %.6g; load average (1 min) %.2f before, %.2f after\n", checksum, loadBefore, bench::loadAverage());
+    std::printf("\nchecksum %.6g; load average (1 min) %.2f before, %.2f after\n", checksum, loadBefore,
+                bench::loadAverage());
   } catch (const std::exception &error) {
     std::fprintf(stderr, "ray_throughput: %s\n", error.what());
     return 1;

@@ -49,8 +49,8 @@
 #include "raytrace/ray_tracer.h"
 #include "render/driver.h"
 #include "render/film_image.h"
-#include "render/renderer.h"
 #include "render/multipass.h"
+#include "render/renderer.h"
 #include "scene/camera.h"
 #include "scene/load_scene.h"
 #include "util/error.h"
@@ -89,16 +89,26 @@ int main(int argc, char **argv) {
   for (int i = 1; i < argc; ++i) {
     std::string arg = argv[i];
     bool hasValue = i + 1 < argc;
-    if (arg == "--reference" && hasValue) referencePath = argv[++i];
-    else if (arg == "--reference-spp" && hasValue) referenceSpp = std::atoi(argv[++i]);
-    else if (arg == "--budgets" && hasValue) budgetList = argv[++i];
-    else if (arg == "--solver" && hasValue) solverName = argv[++i];
-    else if (arg == "--methods" && hasValue) methodList = argv[++i];
-    else if (arg == "--mesh-size" && hasValue) meshSizeMetres = std::atof(argv[++i]);
-    else if (arg == "--threads" && hasValue) threads = std::atoi(argv[++i]);
-    else if (arg == "--repeats" && hasValue) repeats = std::atoi(argv[++i]);
-    else if (arg == "--csv" && hasValue) csvPath = argv[++i];
-    else if (arg.rfind("--", 0) != 0) scenePath = arg;
+    if (arg == "--reference" && hasValue)
+      referencePath = argv[++i];
+    else if (arg == "--reference-spp" && hasValue)
+      referenceSpp = std::atoi(argv[++i]);
+    else if (arg == "--budgets" && hasValue)
+      budgetList = argv[++i];
+    else if (arg == "--solver" && hasValue)
+      solverName = argv[++i];
+    else if (arg == "--methods" && hasValue)
+      methodList = argv[++i];
+    else if (arg == "--mesh-size" && hasValue)
+      meshSizeMetres = std::atof(argv[++i]);
+    else if (arg == "--threads" && hasValue)
+      threads = std::atoi(argv[++i]);
+    else if (arg == "--repeats" && hasValue)
+      repeats = std::atoi(argv[++i]);
+    else if (arg == "--csv" && hasValue)
+      csvPath = argv[++i];
+    else if (arg.rfind("--", 0) != 0)
+      scenePath = arg;
     else {
       std::fprintf(stderr,
                    "usage: %s [scene.json] [--budgets 1,2,5,10] [--repeats 3] [--threads 2] [--solver auto] "
@@ -155,8 +165,8 @@ int main(int argc, char **argv) {
       writeImage(referenceVariance, variancePath);
       std::fprintf(stderr, "reference: %d spp in %.1f s, wrote %s and %s\n", stats.samplesPerPixel, stats.seconds,
                    referencePath.c_str(), variancePath.c_str());
-      std::printf("reference rendered: %d spp of path in %.1f s on %d threads\n", stats.samplesPerPixel,
-                  stats.seconds, threads);
+      std::printf("reference rendered: %d spp of path in %.1f s on %d threads\n", stats.samplesPerPixel, stats.seconds,
+                  threads);
     }
     if (reference.width != kSize || reference.height != kSize || referenceVariance.width != kSize ||
         referenceVariance.height != kSize)
@@ -201,9 +211,12 @@ int main(int argc, char **argv) {
             m.totalSeconds = secondsSince(start);
             ImageComparison c = compareImages(last, reference);
             m.rmse = std::sqrt(std::max(0.0, c.average.rmse * c.average.rmse - referenceNoise));
-            for (const ChannelComparison &channel : c.channels) m.biasPercent += 100 * std::abs(channel.meanRatio - 1) / 3;
+            for (const ChannelComparison &channel : c.channels)
+              m.biasPercent += 100 * std::abs(channel.meanRatio - 1) / 3;
             m.nonFinitePixels = c.nonFinitePixels;
-            std::fprintf(stderr, "[%gs] %-11s %d/%d: %g spp reading the solution, %d of them paired, total %.2f s, RMSE %.4g, bias %.2f%%\n",
+            std::fprintf(stderr,
+                         "[%gs] %-11s %d/%d: %g spp reading the solution, %d of them paired, total %.2f s, RMSE %.4g, "
+                         "bias %.2f%%\n",
                          budget, method.c_str(), repeat, repeats, m.spp, pairs, m.totalSeconds, m.rmse, m.biasPercent);
             runs.push_back(m);
             continue;
@@ -227,8 +240,10 @@ int main(int argc, char **argv) {
           driver.seed = uint64_t(repeat);
           driver.threads = threads;
           // The driver takes 0 as "no budget": a solve that used the whole budget gets exactly 1 spp.
-          if (budget > m.solveSeconds) driver.timeBudgetSeconds = budget - m.solveSeconds;
-          else driver.samplesPerPixel = 1;
+          if (budget > m.solveSeconds)
+            driver.timeBudgetSeconds = budget - m.solveSeconds;
+          else
+            driver.samplesPerPixel = 1;
           Film film(kSize, kSize);
           RenderStats stats = renderImage(camera, *renderer, driver, film);
           m.totalSeconds = secondsSince(start);
@@ -236,11 +251,12 @@ int main(int argc, char **argv) {
 
           ImageComparison c = compareImages(meanImage(film), reference);
           m.rmse = std::sqrt(std::max(0.0, c.average.rmse * c.average.rmse - referenceNoise));
-          for (const ChannelComparison &channel : c.channels) m.biasPercent += 100 * std::abs(channel.meanRatio - 1) / 3;
+          for (const ChannelComparison &channel : c.channels)
+            m.biasPercent += 100 * std::abs(channel.meanRatio - 1) / 3;
           m.nonFinitePixels = c.nonFinitePixels;
           std::fprintf(stderr, "[%gs] %-11s %d/%d: solve %.3f s, %d spp, total %.2f s, RMSE %.4g, bias %.2f%%%s\n",
-                       budget, method.c_str(), repeat, repeats, m.solveSeconds, stats.samplesPerPixel, m.totalSeconds, m.rmse,
-                       m.biasPercent, c.nonFinitePixels ? " (NON-FINITE PIXELS)" : "");
+                       budget, method.c_str(), repeat, repeats, m.solveSeconds, stats.samplesPerPixel, m.totalSeconds,
+                       m.rmse, m.biasPercent, c.nonFinitePixels ? " (NON-FINITE PIXELS)" : "");
           runs.push_back(m);
         }
         Row row{budget, method};
@@ -262,17 +278,19 @@ int main(int argc, char **argv) {
 
     const std::string meshSize =
         meshSizeMetres > 0 ? std::to_string(meshSizeMetres) + " m" : "default (1/8 of the largest side)";
-    std::printf("\ntwo_pass_equal_time: %s at %dx%d, %d threads, solver '%s' (ran %s, %zu elements), mesh size %s, "
-                "median of %d repeats\n",
-                scenePath.c_str(), kSize, kSize, threads, solverName.c_str(), solvedWith.c_str(), solvedElements,
-                meshSize.c_str(), repeats);
+    std::printf(
+        "\ntwo_pass_equal_time: %s at %dx%d, %d threads, solver '%s' (ran %s, %zu elements), mesh size %s, "
+        "median of %d repeats\n",
+        scenePath.c_str(), kSize, kSize, threads, solverName.c_str(), solvedWith.c_str(), solvedElements,
+        meshSize.c_str(), repeats);
     std::printf("reference: %s, noise removed: mean variance of its pixel means %.3g (RMSE floor %.3g)\n\n",
                 referencePath.c_str(), referenceNoise, std::sqrt(referenceNoise));
     std::printf("| budget s | method | solve s | total s | spp | RMSE | RMSE / path | mean bias %% |\n");
     std::printf("|---:|---|---:|---:|---:|---:|---:|---:|\n");
     FILE *csv = csvPath.empty() ? nullptr : std::fopen(csvPath.c_str(), "w");
     if (!csvPath.empty() && !csv) throw InputError(InputLocation{csvPath}, "cannot open for writing");
-    if (csv) std::fprintf(csv, "budget_s,method,solve_s,total_s,spp,rmse,rmse_over_path,mean_bias_percent,over_budget\n");
+    if (csv)
+      std::fprintf(csv, "budget_s,method,solve_s,total_s,spp,rmse,rmse_over_path,mean_bias_percent,over_budget\n");
     for (const Row &row : rows) {
       double pathRmse = 0;
       for (const Row &other : rows)
@@ -287,8 +305,9 @@ int main(int argc, char **argv) {
                      m.totalSeconds, m.spp, m.rmse, ratio, m.biasPercent, int(row.overBudget));
     }
     if (csv) std::fclose(csv);
-    std::printf("\n* over budget by more than 10%%: the solve or the single sample per pixel the driver always takes "
-                "did not fit\n");
+    std::printf(
+        "\n* over budget by more than 10%%: the solve or the single sample per pixel the driver always takes "
+        "did not fit\n");
     std::printf("load average (1 min) %.2f before, %.2f after\n", loadBefore, bench::loadAverage());
   } catch (const std::exception &error) {
     std::fprintf(stderr, "two_pass_equal_time: %s\n", error.what());

@@ -1,8 +1,9 @@
 // Exact direct light by backprojection (radiosity/backprojection.h), against
 // closed forms and against an unbiased count of cosine-distributed rays.
+#include "radiosity/backprojection.h"
+
 #include <gtest/gtest.h>
 
-#include "radiosity/backprojection.h"
 #include "radiosity/form_factor.h"
 #include "raytrace/ray_tracer.h"
 #include "test_scenes.h"
@@ -123,8 +124,9 @@ TEST(Backprojection, AWallThroughThePointHidesWhatIsBehindIt) {
   addQuad(s, {0, -2, 0}, {0, 2, 0}, {0, 2, 0.9}, {0, -2, 0.9});
   DirectIrradiance direct(s);
   const double f = direct.visibleFormFactor({-1e-4, 0, 0}, {0, 0, 1}, 0);
-  EXPECT_NEAR(f, formFactorPointToPolygon({-1e-4, 0, 0}, {0, 0, 1},
-                                          std::vector<Vec3>{{-0.5, -0.5, 1}, {-0.5, 0.5, 1}, {0, 0.5, 1}, {0, -0.5, 1}}),
+  EXPECT_NEAR(f,
+              formFactorPointToPolygon({-1e-4, 0, 0}, {0, 0, 1},
+                                       std::vector<Vec3>{{-0.5, -0.5, 1}, {-0.5, 0.5, 1}, {0, 0.5, 1}, {0, -0.5, 1}}),
               1e-4);
   // On the other side it sees the half x > 0, and the two halves make the whole.
   EXPECT_NEAR(f + direct.visibleFormFactor({1e-4, 0, 0}, {0, 0, 1}, 0), kUnitSquareAtHeightOne, 1e-4);
@@ -144,7 +146,8 @@ TEST(Backprojection, AgreesWithShadowRaysAmongRandomOccluders) {
   for (Vec3 x : {Vec3{0, 0, 0}, Vec3{0.3, -0.2, 0.05}}) {
     const Vec3 n = normalize(Vec3{0.2, -0.1, 1});
     const double exact = direct.visibleFormFactor(x, n, 0);
-    EXPECT_LT(exact, direct.unoccludedFormFactor(x, n, 0) * 0.85) << "the occluders must matter for the test to mean anything";
+    EXPECT_LT(exact, direct.unoccludedFormFactor(x, n, 0) * 0.85)
+        << "the occluders must matter for the test to mean anything";
     EXPECT_NEAR(exact, areaSampledFormFactor(s, x, n, 1000), 1e-4);
   }
 }

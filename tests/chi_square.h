@@ -72,6 +72,8 @@ inline ChiSquareResult chiSquare(const std::vector<double> &observed, const std:
 }
 
 /// Significance for one test of `testCount` run together (Šidák correction of 1%).
-inline double significanceLevel(int testCount) { return 1 - std::pow(1 - 0.01, 1.0 / testCount); }
+inline double significanceLevel(int testCount) {
+  return 1 - std::pow(1 - 0.01, 1.0 / testCount);
+}
 
 }  // namespace radiant::test

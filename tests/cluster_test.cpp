@@ -16,16 +16,18 @@
 #include "radiosity/solver.h"
 #include "radiosity/spherical_harmonics.h"
 #include "raytrace/ray_tracer.h"
+#include "sanitizer.h"
 #include "scene/load_scene.h"
 #include "util/random.h"
-#include "sanitizer.h"
 
 namespace radiant {
 namespace {
 
 /// The truncation of max(0, cos θ) to l ≤ 2 (Ramamoorthi & Hanrahan 2001):
 /// 1/4 + cos θ/2 + 5/16·(3cos²θ − 1)/2.
-double clampedCosineTruncation(double c) { return 0.25 + 0.5 * c + 5.0 / 32 * (3 * c * c - 1); }
+double clampedCosineTruncation(double c) {
+  return 0.25 + 0.5 * c + 5.0 / 32 * (3 * c * c - 1);
+}
 
 Vec3 randomDirection(Pcg32 &rng) {
   const double z = 2 * rng.next() - 1, phi = 2 * kPi * rng.next(), r = std::sqrt(std::max(0.0, 1 - z * z));
@@ -224,7 +226,8 @@ TEST(ClusterLinkEstimate, FromAClusterTheKernelIsItsPatchesFormFactors) {
       if (dot(d, d) > 16 * patch.area)
         sum += patch.area * std::max(0.0, d.y) * std::max(0.0, -dot(d, patch.normal)) / (kPi * dot(d, d) * dot(d, d));
       else
-        sum += formFactorPointToPolygon(x, {0, 1, 0}, std::span<const Vec3>(patch.corners.data(), size_t(patch.vertexCount)));
+        sum += formFactorPointToPolygon(x, {0, 1, 0},
+                                        std::span<const Vec3>(patch.corners.data(), size_t(patch.vertexCount)));
     }
     expected += q.weight * sum;
   }
@@ -251,8 +254,9 @@ TEST(ClusterLinkEstimate, IntoAClusterItsSurfacesTakeOnAverageWhatTheirFormFacto
     Vec3 centroid;
     for (int k = 0; k < patch.vertexCount; ++k) centroid += patch.corners[k];
     centroid = centroid / double(patch.vertexCount);
-    exact += patch.area * formFactorPointToPolygon(centroid, patch.normal,
-                                                   std::span<const Vec3>(floor.corners.data(), size_t(floor.vertexCount)));
+    exact +=
+        patch.area * formFactorPointToPolygon(centroid, patch.normal,
+                                              std::span<const Vec3>(floor.corners.data(), size_t(floor.vertexCount)));
     model += patch.area * source.projectedArea(e.direction) / kPi * e.kernel.c[0] *
              std::max(0.0, -dot(patch.normal, e.direction));
     area += patch.area;
@@ -304,13 +308,15 @@ TEST(DirectIrradiance, SampledPastManyOccludersAgreesWithBackprojection) {
     for (int j = 0; j < 20; ++j) {
       const double x = 0.05 + 0.09 * i, z = 0.025 + 0.047 * j, y = 0.5 + 0.01 * ((i + j) % 3);
       char tile[256];
-      std::snprintf(tile, sizeof tile,
-                    R"(,{"name": "t%d_%d", "type": "quad", "vertices": [[%g,%g,%g],[%g,%g,%g],[%g,%g,%g],[%g,%g,%g]], "material": "white"})",
-                    i, j, x, y, z, x, y + 0.01, z + 0.03, x + 0.05, y + 0.01, z + 0.03, x + 0.05, y, z);
+      std::snprintf(
+          tile, sizeof tile,
+          R"(,{"name": "t%d_%d", "type": "quad", "vertices": [[%g,%g,%g],[%g,%g,%g],[%g,%g,%g],[%g,%g,%g]], "material": "white"})",
+          i, j, x, y, z, x, y + 0.01, z + 0.03, x + 0.05, y + 0.01, z + 0.03, x + 0.05, y, z);
       objects += tile;
     }
   const Scene scene = parseSceneJson(R"({"units": "metres", "materials": {"white": {"reflectance": 0.5},
-      "light": {"reflectance": 0.5, "emission": 10.0}}, "objects": [)" + objects + "]}",
+      "light": {"reflectance": 0.5, "emission": 10.0}}, "objects": [)" +
+                                         objects + "]}",
                                      "tiles.json");
   const RayTracer tracer(scene);
   const DirectIrradiance exact(scene), sampled(scene, tracer, 0);
@@ -321,7 +327,8 @@ TEST(DirectIrradiance, SampledPastManyOccludersAgreesWithBackprojection) {
       const Vec3 x{0.025 + 0.05 * i, 0.0, 0.025 + 0.05 * j}, n{0, 1, 0};
       const double unoccluded = kPi * 10.0 * exact.unoccludedFormFactor(x, n, 0);
       const double a = exact.irradiance(x, n)[0], b = sampled.irradiance(x, n)[0];
-      EXPECT_LE(std::abs(a - b), 0.1 * unoccluded) << "at " << x.x << " " << x.z << ": exact " << a << ", sampled " << b;
+      EXPECT_LE(std::abs(a - b), 0.1 * unoccluded)
+          << "at " << x.x << " " << x.z << ": exact " << a << ", sampled " << b;
       sumError += std::abs(a - b);
       sumUnoccluded += unoccluded;
       ++points;

@@ -1,18 +1,19 @@
 // The solution as a control variate (render/control_variate.h): the weight of
 // the pairs' correction, the combined image and the error forecast, on
 // synthetic samples whose truth, bias and variances are known.
+#include "render/control_variate.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "render/control_variate.h"
 #include "util/math.h"
 #include "util/random.h"
 
 namespace radiant {
 namespace {
 
-constexpr int kSize = 32;      // 2 × 2 tiles of 16 pixels
+constexpr int kSize = 32;       // 2 × 2 tiles of 16 pixels
 constexpr double kTruth = 1.0;  // every pixel, every band
 
 /// Samples of R = truth + bias + e and P = truth + a·e + s·g (e ~ N(0, σ_R²),
@@ -152,7 +153,8 @@ TEST(ControlVariate, TheForecastIsTheExpectedError) {
   EXPECT_NEAR(measuredNow / runs, predictedNow / runs, 0.1 * predictedNow / runs);
   EXPECT_NEAR(measuredLater / runs, predictedLater / runs, 0.1 * predictedLater / runs);
   std::cout << "squared error: predicted " << predictedNow / runs << ", measured " << measuredNow / runs
-            << "; after more samples predicted " << predictedLater / runs << ", measured " << measuredLater / runs << "\n";
+            << "; after more samples predicted " << predictedLater / runs << ", measured " << measuredLater / runs
+            << "\n";
 }
 
 }  // namespace

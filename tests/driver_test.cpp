@@ -1,9 +1,9 @@
 // The render driver (render/driver.h): converged pixels stop, for the
 // renderers whose estimate varies only across the pixel, and the image still
 // depends on nothing but the seed and the sample count.
-#include <gtest/gtest.h>
-
 #include "render/driver.h"
+
+#include <gtest/gtest.h>
 
 namespace radiant {
 namespace {

@@ -3,13 +3,14 @@
 // The expected answers are geometry computed from the scene itself (areas,
 // footprints), so the tolerances are round-off on metre-sized polygons, plus
 // the cutter's own snapping of 1e-7 of the scene's extent where stated.
+#include "mesh/face_split.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 #include <vector>
 
-#include "mesh/face_split.h"
 #include "mesh/mesh.h"
 #include "radiosity/solution.h"
 #include "raytrace/ray_tracer.h"
@@ -153,10 +154,9 @@ TEST(FaceSplit, CornellFloorHidesExactlyTheBlockFootprints) {
     EXPECT_TRUE(convexAbout(piece, n, 1e-12)) << "a piece is not convex and counter-clockwise";
   }
   EXPECT_NEAR(visible, floorArea - footprints, 1e-6 * floorArea);
-  expectPiecesTileTheFaceAroundHoles(
-      scene, floor, split,
-      {onFloor(facePolygon(scene, faceOf(scene, "short-block-top"))),
-       onFloor(facePolygon(scene, faceOf(scene, "tall-block-top")))});
+  expectPiecesTileTheFaceAroundHoles(scene, floor, split,
+                                     {onFloor(facePolygon(scene, faceOf(scene, "short-block-top"))),
+                                      onFloor(facePolygon(scene, faceOf(scene, "tall-block-top")))});
 }
 
 TEST(FaceSplit, CornellCeilingHidesTheLightsOutline) {
@@ -278,7 +278,7 @@ TEST(FaceSplit, ABoxStandingOnAFloorHidesExactlyItsFootprint) {
   addQuad(scene, at(-a, h, -b), at(-a, h, b), at(a, h, b), at(a, h, -b));  // top, facing up
   addQuad(scene, at(a, 0, -b), at(a, h, -b), at(a, h, b), at(a, 0, b));    // +x side
   addQuad(scene, at(-a, 0, -b), at(-a, 0, b), at(-a, h, b), at(-a, h, -b));
-  addQuad(scene, at(-a, 0, b), at(a, 0, b), at(a, h, b), at(-a, h, b));    // +z side
+  addQuad(scene, at(-a, 0, b), at(a, 0, b), at(a, h, b), at(-a, h, b));  // +z side
   addQuad(scene, at(-a, 0, -b), at(-a, h, -b), at(a, h, -b), at(a, 0, -b));
   const Vec3 centre = at(0, h / 2, 0);
   for (uint32_t f = 1; f < 6; ++f) {  // all face outwards
@@ -312,7 +312,8 @@ TEST(FaceSplit, AQuadJustAboveALargerOneHidesItsOutlinesPart) {
   double visible = 0;
   for (const auto &piece : splits[0].pieces) visible += polygonArea(piece);
   EXPECT_NEAR(visible, 1.0 - 0.15, 1e-9);
-  expectPiecesTileTheFaceAroundHoles(scene, 0, splits[0], {{{0.3, 0, 0.2}, {0.3, 0, 0.7}, {0.6, 0, 0.7}, {0.6, 0, 0.2}}});
+  expectPiecesTileTheFaceAroundHoles(scene, 0, splits[0],
+                                     {{{0.3, 0, 0.2}, {0.3, 0, 0.7}, {0.6, 0, 0.7}, {0.6, 0, 0.2}}});
   EXPECT_FALSE(splits[1].split());
 }
 
@@ -391,10 +392,11 @@ TEST(FaceSplit, PatchAtOnTheCornellFloorFindsThePatchContainingThePoint) {
   const uint32_t floor = faceOf(scene, "floor");
   ASSERT_GT(mesh.facePatchCount[floor], 4u);
   const Vec3 n = scene.faceNormal(scene.faces[floor]);
-  const std::vector<std::vector<Vec3>> footprints = {
-      onFloor(facePolygon(scene, faceOf(scene, "short-block-top"))),
-      onFloor(facePolygon(scene, faceOf(scene, "tall-block-top")))};
-  auto polygonOf = [&](const Patch &p) { return std::vector<Vec3>(p.corners.begin(), p.corners.begin() + p.vertexCount); };
+  const std::vector<std::vector<Vec3>> footprints = {onFloor(facePolygon(scene, faceOf(scene, "short-block-top"))),
+                                                     onFloor(facePolygon(scene, faceOf(scene, "tall-block-top")))};
+  auto polygonOf = [&](const Patch &p) {
+    return std::vector<Vec3>(p.corners.begin(), p.corners.begin() + p.vertexCount);
+  };
   auto check = [&](const Vec3 &x, int32_t expected) {
     const int32_t p = mesh.patchAt(floor, x);
     ASSERT_GE(p, 0);
@@ -407,7 +409,8 @@ TEST(FaceSplit, PatchAtOnTheCornellFloorFindsThePatchContainingThePoint) {
     EXPECT_EQ(mesh.elements[l.element].patch, uint32_t(p));
     const std::array<double, 4> w = mesh.nodeWeights(l);
     Vec3 back;
-    for (int k = 0; k < mesh.elements[l.element].vertexCount; ++k) back += mesh.nodes[mesh.elements[l.element].nodes[k]] * w[k];
+    for (int k = 0; k < mesh.elements[l.element].vertexCount; ++k)
+      back += mesh.nodes[mesh.elements[l.element].nodes[k]] * w[k];
     EXPECT_LT(length(back - x), 1e-9);
   };
   Pcg32 rng(21, 2);

@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "radiosity/hemicube.h"
+#include "test_scenes.h"
 #include "util/fast_angle.h"
 #include "util/random.h"
-#include "test_scenes.h"
 
 namespace radiant {
 namespace {

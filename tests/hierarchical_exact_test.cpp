@@ -19,9 +19,9 @@
 #include "radiosity/solver.h"
 #include "render/driver.h"
 #include "render/renderer.h"
+#include "sanitizer.h"
 #include "scene/load_scene.h"
 #include "test_scenes.h"
-#include "sanitizer.h"
 
 namespace radiant {
 namespace {
@@ -177,7 +177,8 @@ TEST(HierarchicalExact, UnitCubeFaceMeansMatchFineGaussSeidel) {
   const auto expected = faceMeans(reference), got = faceMeans(s);
   for (int f = 0; f < 6; ++f) {
     EXPECT_NEAR(got[f], expected[f], 0.003 * expected[f]) << "face " << f;
-    std::cout << "unit cube face " << f << ": hierarchical-exact " << got[f] << ", gauss-seidel " << expected[f] << "\n";
+    std::cout << "unit cube face " << f << ": hierarchical-exact " << got[f] << ", gauss-seidel " << expected[f]
+              << "\n";
   }
   EXPECT_NEAR(expected[2], 0.15511, 0.0012 * 0.15511) << "the Gauss–Seidel reference moved";
   EXPECT_NEAR(reference.stats.absorbedPower[0], 1.0, 1e-3);  // the reference balances (§8.9)
@@ -224,8 +225,7 @@ TEST(HierarchicalExact, DirectLightIsExactAtTheNodesAndInterpolatesWithinToleran
   for (uint32_t v = 0; v < s.mesh.nodes.size(); ++v) {
     const Patch &patch = s.mesh.patches[s.mesh.nodePatch[v]];
     const Bands h = direct.irradiance(nudged(patch, s.mesh.nodes[v]), patch.normal);
-    for (int b = 0; b < kBandCount; ++b)
-      ASSERT_NEAR(s.nodeDirectIrradiance[v][b], h[b], 1e-9 * h[b]) << "node " << v;
+    for (int b = 0; b < kBandCount; ++b) ASSERT_NEAR(s.nodeDirectIrradiance[v][b], h[b], 1e-9 * h[b]) << "node " << v;
   }
   // The tolerance, as solveHierarchicalExact computes it on the starting mesh.
   const std::vector<FaceSplit> splits = splitFaces(c.scene, c.tracer);
@@ -267,11 +267,13 @@ TEST(HierarchicalExact, DirectLightIsExactAtTheNodesAndInterpolatesWithinToleran
     for (int k = 0; k < n; ++k) longest = std::max(longest, length(poly[(k + 1) % n] - poly[k]));
     auto compare = [&](const Vec3 &x, const Bands &interpolated) {
       const Bands h = direct.irradiance(nudged(patch, x), patch.normal);
-      for (int b = 0; b < kBandCount; ++b) error = std::max(error, s.reflectance[e][b] * std::abs(h[b] - interpolated[b]));
+      for (int b = 0; b < kBandCount; ++b)
+        error = std::max(error, s.reflectance[e][b] * std::abs(h[b] - interpolated[b]));
     };
     auto corner = [&](int k) { return s.nodeDirectIrradiance[element.nodes[k]]; };
     for (int k = 0; k < n; ++k) compare((poly[k] + poly[(k + 1) % n]) * 0.5, (corner(k) + corner((k + 1) % n)) * 0.5);
-    if (n == 4) compare((poly[0] + poly[1] + poly[2] + poly[3]) * 0.25, (corner(0) + corner(1) + corner(2) + corner(3)) * 0.25);
+    if (n == 4)
+      compare((poly[0] + poly[1] + poly[2] + poly[3]) * 0.25, (corner(0) + corner(1) + corner(2) + corner(3)) * 0.25);
     if (longest < 2 * minimumEdge) {
       smallest += error > tolerance;
       continue;
@@ -364,7 +366,8 @@ TEST(HierarchicalExact, NoLightLeaksIntoTheClosedDarkRoom) {
   int darkElements = 0, darkNodes = 0;
   for (uint32_t e = 0; e < s.elementCount(); ++e) {
     const Vec3 &centre = s.mesh.elements[e].centre;
-    if (centre.x < r.lit - eps) litPower += s.radiosity[e].average() * s.mesh.elements[e].area, litArea += s.mesh.elements[e].area;
+    if (centre.x < r.lit - eps)
+      litPower += s.radiosity[e].average() * s.mesh.elements[e].area, litArea += s.mesh.elements[e].area;
     if (centre.x > r.dark - eps) {
       ++darkElements;
       ASSERT_EQ(s.radiosity[e].max(), 0.0) << "element at " << centre.x << " " << centre.y << " " << centre.z;
@@ -461,8 +464,8 @@ TEST(HierarchicalExact, CornellBoxAgreesWithThePathTracerPerObject) {
     }
   const auto start = std::chrono::steady_clock::now();
   const ImageSums path = sums(render(c.scene.camera, c.tracer, "path", nullptr, size, 2048), objectOfPixel);
-  std::cout << "path, 2048 spp at " << size << "²: "
-            << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s\n";
+  std::cout << "path, 2048 spp at " << size
+            << "²: " << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s\n";
   for (const char *method : {"interpolate", "shirley"}) {
     const ImageSums m = sums(render(c.scene.camera, c.tracer, method, &c.solution, size, 64), objectOfPixel);
     for (const auto &[object, reference] : path.perObject) {

@@ -57,7 +57,7 @@ TEST(Irradiance, TheFurnaceReceivesPiTimesItsRadiance) {
 TEST(Irradiance, UnderASquareLightItIsTheContourFormula) {
   Scene scene;
   scene.objects.push_back({"floor and light", "test"});
-  scene.positions = {{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1},                  // floor, facing +y
+  scene.positions = {{-1, 0, -1},       {-1, 0, 1},       {1, 0, 1},       {1, 0, -1},         // floor, facing +y
                      {-0.2, 0.5, -0.2}, {0.2, 0.5, -0.2}, {0.2, 0.5, 0.2}, {-0.2, 0.5, 0.2}};  // light, facing −y
   Material white, light;
   white.name = "white";

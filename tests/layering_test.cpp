@@ -15,8 +15,8 @@
 namespace {
 
 // In include order, as README.md's layout table lists them.
-const std::vector<std::string> kStages = {"util", "colour", "texture", "scene", "raytrace",
-                                          "mesh", "radiosity", "io",   "render", "display"};
+const std::vector<std::string> kStages = {"util", "colour",    "texture", "scene",  "raytrace",
+                                          "mesh", "radiosity", "io",      "render", "display"};
 
 int stageIndex(const std::string &folder) {
   auto it = std::find(kStages.begin(), kStages.end(), folder);
@@ -46,8 +46,8 @@ TEST(Layering, EveryStageIncludesOnlyEarlierStages) {
       const int target = stageIndex(m[1].str());
       if (target < 0) continue;  // a library's header ("stb/…"), not a stage
       if (target > own)
-        backwards.push_back(std::filesystem::relative(entry.path(), src).string() + ":" +
-                            std::to_string(lineNumber) + " includes " + m[1].str() + "/");
+        backwards.push_back(std::filesystem::relative(entry.path(), src).string() + ":" + std::to_string(lineNumber) +
+                            " includes " + m[1].str() + "/");
     }
   }
   EXPECT_GT(files, 100u);  // the scan found the sources

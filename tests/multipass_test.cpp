@@ -1,6 +1,8 @@
 // The progressive multi-pass method (Chen et al. 1991; render/multipass.h,
 // docs/multipass.md): every light path counted once, convergence to the path
 // tracer, and the caustic map's brightness.
+#include "render/multipass.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,21 +12,20 @@
 #include "radiosity/solver.h"
 #include "render/caustic_photons.h"
 #include "render/driver.h"
-#include "render/multipass.h"
-#include "util/sampling.h"
-#include "util/random.h"
-#include "scene/load_scene.h"
 #include "render_helpers.h"
-#include "test_scenes.h"
 #include "sanitizer.h"
+#include "scene/load_scene.h"
+#include "test_scenes.h"
+#include "util/random.h"
+#include "util/sampling.h"
 
 namespace radiant {
 namespace {
 
 const std::string kSpecularBox = std::string(RADIANT_SOURCE_DIR) + "/scenes/cornell-specular/scene.json";
 
-Film renderWith(const RayTracer &tracer, const RendererOptions &options, const std::string &method, int size,
-                int spp, uint64_t seed = 1) {
+Film renderWith(const RayTracer &tracer, const RendererOptions &options, const std::string &method, int size, int spp,
+                uint64_t seed = 1) {
   PinholeCamera camera(tracer.scene().camera, size, size);
   Film film(size, size);
   DriverOptions driver;
@@ -124,7 +125,8 @@ void expectMapAgreesWithPath(const std::string &json, const std::string &what) {
   RendererOptions plain, withMap;
   withMap.caustics = &map;
   const int size = 24;
-  const Film path = renderWith(tracer, plain, "path", size, 2048), multipass = renderWith(tracer, withMap, "path", size, 512, 5);
+  const Film path = renderWith(tracer, plain, "path", size, 2048),
+             multipass = renderWith(tracer, withMap, "path", size, 512, 5);
   const Mean a = regionMean(path, allPixels(size)), b = regionMean(multipass, allPixels(size));
   EXPECT_NEAR(b.value, a.value, 4 * std::hypot(a.error, b.error) + 0.02 * a.value) << what;
   std::cout << what << ": path " << a.value << " ± " << a.error << ", with the map " << b.value << " ± " << b.error
@@ -152,13 +154,16 @@ TEST(Multipass, TheMapAgreesWithPathThroughAPaneAndOnAGlossyFloor) {
     return s;
   };
   // The pane at 1 m, between the light (2 m) and the floor; the camera at 1.6 m sees the floor through it.
-  expectMapAgreesWithPath(scene(R"({"reflectance": 0.5})",
-                                R"({"type": "quad", "material": "glass", "vertices": [[-1, 1, -1], [-1, 1, 1], [1, 1, 1], [1, 1, -1]]})"),
-                          "floor behind a pane");
+  expectMapAgreesWithPath(
+      scene(R"({"reflectance": 0.5})",
+            R"({"type": "quad", "material": "glass", "vertices": [[-1, 1, -1], [-1, 1, 1], [1, 1, 1], [1, 1, -1]]})"),
+      "floor behind a pane");
   // A mirror wall beside the light throws its image onto a glossy floor.
-  expectMapAgreesWithPath(scene(R"({"type": "glossy", "reflectance": 0.3, "specular": 0.5, "roughness": 0.05})",
-                                R"({"type": "quad", "material": "mirror", "vertices": [[1, 0, -2], [1, 0, 2], [1, 2.5, 2], [1, 2.5, -2]]})"),
-                          "glossy floor and a mirror");
+  expectMapAgreesWithPath(
+      scene(
+          R"({"type": "glossy", "reflectance": 0.3, "specular": 0.5, "roughness": 0.05})",
+          R"({"type": "quad", "material": "mirror", "vertices": [[1, 0, -2], [1, 0, 2], [1, 2.5, 2], [1, 2.5, -2]]})"),
+      "glossy floor and a mirror");
 }
 
 // The control variate's pairs (render/control_variate.h) are the two
@@ -210,9 +215,9 @@ TEST(Multipass, CausticMapIrradianceMatchesTheMirrorImageOfTheLight) {
   // A small light at height 1 facing up, a mirror ceiling at height 2 facing
   // down, a floor at 0 facing up: the floor sees the light only via the mirror
   // (the light's back is dark), as a light at height 3 facing down.
-  scene.positions = {{-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2},          // floor
+  scene.positions = {{-2, 0, -2},     {-2, 0, 2},     {2, 0, 2},     {2, 0, -2},      // floor
                      {-0.1, 1, -0.1}, {-0.1, 1, 0.1}, {0.1, 1, 0.1}, {0.1, 1, -0.1},  // light, facing +y
-                     {-4, 2, -4}, {4, 2, -4}, {4, 2, 4}, {-4, 2, 4}};          // mirror, facing −y
+                     {-4, 2, -4},     {4, 2, -4},     {4, 2, 4},     {-4, 2, 4}};     // mirror, facing −y
   Material white, light, mirror;
   white.name = "white", white.diffuse = Bands(0.5);
   light.name = "light", light.diffuse = Bands(0.0), light.emission = Bands(10.0);
@@ -290,17 +295,18 @@ TEST(Multipass, TheFurnaceHoldsInEveryPass) {
   options.photonsPerPass = 1000;
   const MultipassSolver solve = progressiveOn(tracer, 0.25, 1e-6);
   int passes = 0;
-  renderMultipass(tracer, camera, 16, 16, options, solve, [&](const MultipassPass &pass, const Image &mean, const Image &variance) {
-    double sum = 0, var = 0;
-    for (size_t i = 1; i < mean.rgb.size(); i += 3) sum += mean.rgb[i], var += variance.rgb[i];
-    const double n = double(mean.rgb.size() / 3);
-    // Later passes read the converged solution (tolerance 1e-6) or nothing: 4σ.
-    // The preview reads a solution stopped after 32 of ~100 shots, whose ambient
-    // term restores the unshot energy on average but not its distribution over
-    // the walls the camera sees: allowed 5 % (measured 1.8 %).
-    EXPECT_NEAR(sum / n, 2.0, pass.index == 1 ? 0.1 : 4 * std::sqrt(var) / n + 1e-3) << pass.name;
-    ++passes;
-  });
+  renderMultipass(tracer, camera, 16, 16, options, solve,
+                  [&](const MultipassPass &pass, const Image &mean, const Image &variance) {
+                    double sum = 0, var = 0;
+                    for (size_t i = 1; i < mean.rgb.size(); i += 3) sum += mean.rgb[i], var += variance.rgb[i];
+                    const double n = double(mean.rgb.size() / 3);
+                    // Later passes read the converged solution (tolerance 1e-6) or nothing: 4σ.
+                    // The preview reads a solution stopped after 32 of ~100 shots, whose ambient
+                    // term restores the unshot energy on average but not its distribution over
+                    // the walls the camera sees: allowed 5 % (measured 1.8 %).
+                    EXPECT_NEAR(sum / n, 2.0, pass.index == 1 ? 0.1 : 4 * std::sqrt(var) / n + 1e-3) << pass.name;
+                    ++passes;
+                  });
   EXPECT_GE(passes, 5);
 }
 
@@ -320,10 +326,11 @@ TEST(Multipass, TheScheduleEndsAndIsDeterministic) {
     const MultipassSolver solve = progressiveOn(t, 0.25);
     Image last;
     int count = 0, units2 = 0;  // work of passes 3… in half units
-    renderMultipass(t, camera, size, size, options, solve, [&](const MultipassPass &pass, const Image &mean, const Image &) {
-      last = mean, ++count;
-      if (pass.index >= 3) units2 += pass.samplesPerPixel * (pass.unbiased ? 2 : 1);
-    });
+    renderMultipass(t, camera, size, size, options, solve,
+                    [&](const MultipassPass &pass, const Image &mean, const Image &) {
+                      last = mean, ++count;
+                      if (pass.index >= 3) units2 += pass.samplesPerPixel * (pass.unbiased ? 2 : 1);
+                    });
     EXPECT_LE(units2, 2 * spp) << "--spp caps the work";
     EXPECT_GE(units2, 2 * spp - 1) << "--spp is used";
     if (passes) *passes = count;
@@ -419,12 +426,14 @@ TEST(Multipass, KeepsConvergingWhereShirleyFlattensOut) {
   options.photonsPerPass = 100000;
   std::vector<double> errors;
   const MultipassSolver solve = progressiveOn(tracer, mesh.maxEdgeLength);
-  renderMultipass(tracer, camera, size, size, options, solve, [&](const MultipassPass &pass, const Image &mean, const Image &) {
-    if (pass.index < 3) return;  // the preview and the high-frequency pass read the coarse solution
-    Film film(size, size);
-    for (size_t p = 0; p < film.pixelCount(); ++p) film.add(p, Bands(mean.rgb[3 * p], mean.rgb[3 * p + 1], mean.rgb[3 * p + 2]));
-    errors.push_back(test::meanBlockError(film, reference, 4));
-  });
+  renderMultipass(tracer, camera, size, size, options, solve,
+                  [&](const MultipassPass &pass, const Image &mean, const Image &) {
+                    if (pass.index < 3) return;  // the preview and the high-frequency pass read the coarse solution
+                    Film film(size, size);
+                    for (size_t p = 0; p < film.pixelCount(); ++p)
+                      film.add(p, Bands(mean.rgb[3 * p], mean.rgb[3 * p + 1], mean.rgb[3 * p + 2]));
+                    errors.push_back(test::meanBlockError(film, reference, 4));
+                  });
   ASSERT_GE(errors.size(), 4u);
   // shirley: 8× the samples barely help — bias dominates.
   EXPECT_GT(shirleyMany, 0.6 * shirleyFew);

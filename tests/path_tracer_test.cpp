@@ -86,8 +86,8 @@ TEST(PathTracer, LosslessSpecularObjectsVanishInTheFurnace) {
     scene.positions.push_back({0.7, 0.75, 0.7});
     scene.positions.push_back({0.8, 0.7, 0.55});
     const uint32_t tetra[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
-    Vec3 centre = (scene.positions[base] + scene.positions[base + 1] + scene.positions[base + 2] +
-                   scene.positions[base + 3]) / 4;
+    Vec3 centre =
+        (scene.positions[base] + scene.positions[base + 1] + scene.positions[base + 2] + scene.positions[base + 3]) / 4;
     for (auto &t : tetra) {
       Face f;
       for (int i = 0; i < 3; ++i) f.vertices[i] = base + t[i];
@@ -164,8 +164,8 @@ TEST(PathTracer, DirectLightOnCornellWallMatchesLambertContourFormula) {
   options.maxDepth = 1;
   auto renderer = createRenderer("path", tracer, options);
   const double lightY = 0.5487;
-  const std::vector<Vec3> light = {{0.343, lightY, 0.227}, {0.343, lightY, 0.332}, {0.213, lightY, 0.332},
-                                   {0.213, lightY, 0.227}};
+  const std::vector<Vec3> light = {
+      {0.343, lightY, 0.227}, {0.343, lightY, 0.332}, {0.213, lightY, 0.332}, {0.213, lightY, 0.227}};
   const Vec3 eye{0.278, 0.273, 0.1};
   for (double y : {0.3, 0.5, 0.545, 0.548}) {
     Vec3 onRightWall{0, y, 0.1};

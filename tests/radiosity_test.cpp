@@ -3,22 +3,22 @@
 
 #include <filesystem>
 #include <fstream>
-#include <map>
-#include <tuple>
 #include <iostream>
+#include <map>
 #include <sstream>
+#include <tuple>
 
+#include "film_metrics.h"
 #include "io/solution_file.h"
 #include "mesh/mesh.h"
 #include "radiosity/report.h"
 #include "radiosity/solver.h"
 #include "render/driver.h"
 #include "render/renderer.h"
+#include "sanitizer.h"
 #include "scene/load_scene.h"
-#include "film_metrics.h"
 #include "test_scenes.h"
 #include "util/error.h"
-#include "sanitizer.h"
 
 namespace radiant {
 namespace {
@@ -245,10 +245,10 @@ TEST(SurfaceReport, FurnaceRowsHaveTheClosedFormPhotometry) {
   std::stringstream fields(row.substr(20));
   for (std::string field; std::getline(fields, field, ',');) values.push_back(std::stod(field));
   ASSERT_EQ(values.size(), 8u);
-  for (int b = 0; b < 3; ++b) EXPECT_NEAR(values[b], 2 * kPi, 1e-6);      // radiosity
-  for (int b = 3; b < 6; ++b) EXPECT_NEAR(values[b], 2 * kPi, 1e-6);      // irradiance
-  EXPECT_NEAR(values[6], 683.0 * 2, 1e-3);                                 // cd/m²
-  EXPECT_NEAR(values[7], 683.0 * 2 * kPi, 1e-3);                           // lux
+  for (int b = 0; b < 3; ++b) EXPECT_NEAR(values[b], 2 * kPi, 1e-6);  // radiosity
+  for (int b = 3; b < 6; ++b) EXPECT_NEAR(values[b], 2 * kPi, 1e-6);  // irradiance
+  EXPECT_NEAR(values[6], 683.0 * 2, 1e-3);                            // cd/m²
+  EXPECT_NEAR(values[7], 683.0 * 2 * kPi, 1e-3);                      // lux
   std::filesystem::remove(path);
 }
 
@@ -544,7 +544,7 @@ Solution solvePatchLevel(const Scene &scene, int receiverGrid = 64, int maxSweep
   Solution s = initialSolution(scene, buildMesh(scene, meshOptions));
   SolverOptions options;
   options.solver = "hierarchical";
-  options.linkThreshold = 1.0;        // every pair links at the root
+  options.linkThreshold = 1.0;                              // every pair links at the root
   options.visibilitySamples = receiverGrid * receiverGrid;  // the receiver grid per link
   options.tolerance = 1e-12;
   options.maxIterations = maxSweeps;
@@ -628,8 +628,8 @@ TEST(ClosedForm, InteriorOfASphere) {
         Face f;
         for (int i = 0; i < 3; ++i) f.vertices[i] = tri[i];
         f.material = static_cast<uint32_t>(r);
-        Vec3 n = scene.faceNormal(f), centroid = (scene.positions[tri[0]] + scene.positions[tri[1]] +
-                                                    scene.positions[tri[2]]) / 3;
+        Vec3 n = scene.faceNormal(f),
+             centroid = (scene.positions[tri[0]] + scene.positions[tri[1]] + scene.positions[tri[2]]) / 3;
         if (dot(n, centroid) > 0) std::swap(f.vertices[1], f.vertices[2]);  // face inwards
         scene.addFace(f);
       }

@@ -1,7 +1,8 @@
 // Embree hits against analytic ray–quad answers, and one-sided emission.
+#include "raytrace/ray_tracer.h"
+
 #include <gtest/gtest.h>
 
-#include "raytrace/ray_tracer.h"
 #include "util/random.h"
 
 namespace radiant {
@@ -41,7 +42,10 @@ TEST(RayTracer, HitsMatchAnalyticRayPlaneIntersection) {
     Hit hit;
     bool found = tracer.intersect({origin, direction}, hit);
     ASSERT_EQ(found, inside) << "ray " << i;
-    if (!found) { ++misses; continue; }
+    if (!found) {
+      ++misses;
+      continue;
+    }
     ++hits;
     EXPECT_NEAR(hit.distance, t, 1e-6);
     EXPECT_NEAR(hit.position.x, p.x, 1e-6);
@@ -78,7 +82,8 @@ TEST(RayTracer, StreamQueriesAgreeWithSingleRays) {
   Pcg32 rng(3, 5);
   std::vector<Ray> rays;
   for (int i = 0; i < 1000; ++i)
-    rays.push_back({{rng.next(), rng.next(), 1}, normalize(Vec3{rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5})});
+    rays.push_back(
+        {{rng.next(), rng.next(), 1}, normalize(Vec3{rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5})});
   std::vector<Hit> hits(rays.size());
   std::vector<uint8_t> found(rays.size());
   tracer.intersectMany(rays, hits, found);
@@ -104,9 +109,13 @@ TEST(RayTracer, DegenerateFacesAreDroppedAndCounted) {
   scene.materials.push_back(Material{});
   scene.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}};
   Face line;  // three collinear points
-  line.vertices[0] = 0; line.vertices[1] = 1; line.vertices[2] = 2;
+  line.vertices[0] = 0;
+  line.vertices[1] = 1;
+  line.vertices[2] = 2;
   Face good;
-  good.vertices[0] = 0; good.vertices[1] = 1; good.vertices[2] = 3;
+  good.vertices[0] = 0;
+  good.vertices[1] = 1;
+  good.vertices[2] = 3;
   EXPECT_FALSE(scene.addFace(line));
   EXPECT_TRUE(scene.addFace(good));
   EXPECT_EQ(scene.droppedDegenerateFaces, 1u);

@@ -2,6 +2,8 @@
 // receiving node that hierarchical-exact gathers into and pushes down its
 // trees. Everything here is exact algebra, so the tolerances are round-off:
 // a few ulps of the values involved (|c| ≤ 1, parameters in [0, 1]).
+#include "radiosity/receiver_polynomial.h"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -10,7 +12,6 @@
 
 #include "mesh/mesh.h"
 #include "radiosity/link_estimate.h"
-#include "radiosity/receiver_polynomial.h"
 #include "util/random.h"
 
 namespace radiant {

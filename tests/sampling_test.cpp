@@ -1,4 +1,6 @@
 // Chi-square goodness-of-fit tests: every sampling routine draws the density it claims.
+#include "util/sampling.h"
+
 #include <gtest/gtest.h>
 
 #include <functional>
@@ -6,7 +8,6 @@
 #include "chi_square.h"
 #include "render/bsdf.h"
 #include "render/light_sampler.h"
-#include "util/sampling.h"
 #include "util/random.h"
 
 namespace radiant {
@@ -48,8 +49,10 @@ void expectDirectionsFollowPdf(const std::function<bool(Pcg32 &, Vec3 &)> &sampl
   Pcg32 rng(12345, 678);
   for (int k = 0; k < n; ++k) {
     Vec3 w;
-    if (sampler(rng, w)) observed[sphereBin(w)] += 1;
-    else observed.back() += 1;
+    if (sampler(rng, w))
+      observed[sphereBin(w)] += 1;
+    else
+      observed.back() += 1;
   }
   std::vector<double> expected = integratePdfOverBins(pdf);
   double total = 0;
@@ -85,7 +88,8 @@ void expectBsdfSamplingMatchesPdf(const Material &material, const Vec3 &wo) {
         w = s.wi;
         // The weight must be f·cos/pdf, the contract the path tracer relies on.
         Bands expectedWeight = bsdf.evaluate(s.wi) * (std::abs(s.wi.z) / bsdf.pdf(s.wi));
-        for (int i = 0; i < kBandCount; ++i) EXPECT_NEAR(s.weight[i], expectedWeight[i], 1e-9 * (1 + expectedWeight[i]));
+        for (int i = 0; i < kBandCount; ++i)
+          EXPECT_NEAR(s.weight[i], expectedWeight[i], 1e-9 * (1 + expectedWeight[i]));
         return true;
       },
       [&](const Vec3 &w) { return bsdf.pdf(w); });
@@ -175,8 +179,14 @@ TEST(Sampling, EmittersChosenByPowerAndPointsUniformByArea) {
   s.materials = {dark, bright};
   s.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {5, 0, 0}, {7, 0, 0}, {5, 1, 0}};
   Face a, b;
-  a.vertices[0] = 0; a.vertices[1] = 1; a.vertices[2] = 2; a.material = 0;
-  b.vertices[0] = 3; b.vertices[1] = 4; b.vertices[2] = 5; b.material = 1;
+  a.vertices[0] = 0;
+  a.vertices[1] = 1;
+  a.vertices[2] = 2;
+  a.material = 0;
+  b.vertices[0] = 3;
+  b.vertices[1] = 4;
+  b.vertices[2] = 5;
+  b.material = 1;
   s.addFace(a);
   s.addFace(b);
   LightSampler lights(s);
@@ -194,8 +204,10 @@ TEST(Sampling, EmittersChosenByPowerAndPointsUniformByArea) {
     LightSample ls;
     double u0 = rng.next(), u1 = rng.next(), u2 = rng.next();
     ASSERT_TRUE(lights.sample(u0, u1, u2, ls));
-    if (ls.triangle == 0) observed[kBins] += 1;
-    else observed[std::min(kBins - 1, static_cast<int>((ls.position.x - 5) / 2 * kBins))] += 1;
+    if (ls.triangle == 0)
+      observed[kBins] += 1;
+    else
+      observed[std::min(kBins - 1, static_cast<int>((ls.position.x - 5) / 2 * kBins))] += 1;
     EXPECT_NEAR(ls.normal.z, 1.0, 1e-12);
   }
   for (int i = 0; i < kBins; ++i) {

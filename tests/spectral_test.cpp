@@ -1,11 +1,10 @@
 // Spectral scenes (docs/spectral.md): loading spectra, running the solution and
 // the renderers per wavelength, and forming colour only at display.
-#include <gtest/gtest.h>
-
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
+#include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
@@ -17,11 +16,10 @@
 #include "render/driver.h"
 #include "render/renderer.h"
 #include "render/spectral_film.h"
+#include "render_helpers.h"
 #include "scene/load_scene.h"
 #include "scene/spectral_scene.h"
 #include "util/error.h"
-
-#include "render_helpers.h"
 
 namespace radiant {
 namespace {
@@ -47,7 +45,8 @@ std::string spectralFurnaceJson(const std::string &spectral) {
 
 /// Solves (for the methods that read a solution) and renders every pass at `spp`.
 SpectralImages render(Scene &scene, const std::string &method, int spp, WhiteBalance balance, int size = 24,
-                      double meshSize = 0.5, double tolerance = 1e-10 /* converged: the furnace's B = 2 to rounding */) {
+                      double meshSize = 0.5,
+                      double tolerance = 1e-10 /* converged: the furnace's B = 2 to rounding */) {
   return renderPasses(scene, size, size, balance, [&](int, Film &film) {
     film = test::solveAndRender(scene, method, RendererOptions{}, spp, size, meshSize, tolerance);
   });
@@ -55,7 +54,8 @@ SpectralImages render(Scene &scene, const std::string &method, int spp, WhiteBal
 
 Vec3 meanColour(const Image &image) {
   Vec3 sum;
-  for (size_t p = 0; p < image.rgb.size() / 3; ++p) sum += Vec3{image.rgb[3 * p], image.rgb[3 * p + 1], image.rgb[3 * p + 2]};
+  for (size_t p = 0; p < image.rgb.size() / 3; ++p)
+    sum += Vec3{image.rgb[3 * p], image.rgb[3 * p + 1], image.rgb[3 * p + 2]};
   return sum / double(image.rgb.size() / 3);
 }
 
@@ -78,9 +78,8 @@ TEST(Spectral, TheCornellBoxLoadsWithItsMeasuredSpectra) {
   EXPECT_EQ(scene.spectral.wavelength(5, 2), 700);  // the last pass repeats 700 nm
   // Outside a pass the bands hold the spectra's sRGB colour: the values of
   // REFERENCE §7.4 (equal-energy, 400–700 nm, no adaptation) to 1e-3, as the issue asks.
-  const std::map<std::string, Bands> expected = {{"white", {0.8862, 0.6993, 0.6666}},
-                                                 {"green", {0.1049, 0.3786, 0.0762}},
-                                                 {"red", {0.5703, 0.0428, 0.0444}}};
+  const std::map<std::string, Bands> expected = {
+      {"white", {0.8862, 0.6993, 0.6666}}, {"green", {0.1049, 0.3786, 0.0762}}, {"red", {0.5703, 0.0428, 0.0444}}};
   for (const Material &m : scene.materials) {
     auto it = expected.find(m.name);
     if (it == expected.end()) continue;
@@ -109,8 +108,8 @@ TEST(Spectral, BadSpectraAreClearErrors) {
   };
   EXPECT_EQ(loadError(base), "");
   // An RGB colour means nothing in a spectral scene.
-  std::string error = loadError(replaced(R"("emission": {"spectrum": [[300, 2], [900, 2]], "scale": 0.5})",
-                             R"("emission": [1, 0.5, 0.2])"));
+  std::string error = loadError(
+      replaced(R"("emission": {"spectrum": [[300, 2], [900, 2]], "scale": 0.5})", R"("emission": [1, 0.5, 0.2])"));
   EXPECT_NE(error.find("/materials/wall/emission"), std::string::npos) << error;
   EXPECT_NE(error.find("spectral"), std::string::npos) << error;
   error = loadError(replaced("[612, 0.5]", "[500, 0.5]"));
@@ -141,19 +140,21 @@ TEST(Spectral, LoaderEdgeCases) {
     EXPECT_NE(at, std::string::npos) << from;
     return text.replace(at, from.size(), to);
   };
-  const std::string glossy = replaced(base, R"("reflectance": {"spectrum": [[380, 0.5], [507.5, 0.5], [612, 0.5], [780, 0.5]]},)",
-                                      R"("type": "glossy", "reflectance": {"spectrum": [[380, 0.9], [420, 0.1], [700, 0.1]]},
+  const std::string glossy =
+      replaced(base, R"("reflectance": {"spectrum": [[380, 0.5], [507.5, 0.5], [612, 0.5], [780, 0.5]]},)",
+               R"("type": "glossy", "reflectance": {"spectrum": [[380, 0.9], [420, 0.1], [700, 0.1]]},
       "specular": {"spectrum": [[400, 0.5], [700, 0.5]]},)");
   EXPECT_EQ(loadError(glossy), "");
   EXPECT_NE(loadError(replaced(glossy, "[700, 0.5]", "[700, 0.95]")).find("exceeds 1"), std::string::npos);
-  std::string error = loadError(replaced(base, R"("range": [400, 700], "samples": 8)",
-                                         R"("wavelengths": [500.1, 500.2, 500.3])"));
+  std::string error =
+      loadError(replaced(base, R"("range": [400, 700], "samples": 8)", R"("wavelengths": [500.1, 500.2, 500.3])"));
   EXPECT_NE(error.find("/spectral/wavelengths: the wavelengths must span"), std::string::npos) << error;
-  Scene narrow = parseSceneJson(replaced(base, R"([[300, 2], [900, 2]], "scale": 0.5)", R"([[545, 0], [550, 50], [555, 0]])"),
-                                "narrow.json");
+  Scene narrow = parseSceneJson(
+      replaced(base, R"([[300, 2], [900, 2]], "scale": 0.5)", R"([[545, 0], [550, 50], [555, 0]])"), "narrow.json");
   ASSERT_FALSE(narrow.warnings.empty());
   EXPECT_NE(narrow.warnings.back().find("between the scene's sample wavelengths"), std::string::npos);
-  Scene grey = parseSceneJson(replaced(base, R"({"spectrum": [[300, 2], [900, 2]], "scale": 0.5})", "1.0"), "grey.json");
+  Scene grey =
+      parseSceneJson(replaced(base, R"({"spectrum": [[300, 2], [900, 2]], "scale": 0.5})", "1.0"), "grey.json");
   Scene flat = parseSceneJson(base, "flat.json");
   for (int b = 0; b < 3; ++b) {
     EXPECT_NEAR(grey.materials[0].emission[b], flat.materials[0].emission[b], 1e-12);
@@ -306,7 +307,8 @@ TEST(Spectral, TheExrHoldsTheSpectralChannels) {
   std::vector<float> pixels(64);
   for (const auto &[name, radiance] : expected) {
     Imf::FrameBuffer frame;
-    frame.insert(name, Imf::Slice(Imf::FLOAT, reinterpret_cast<char *>(pixels.data()), sizeof(float), 8 * sizeof(float)));
+    frame.insert(name,
+                 Imf::Slice(Imf::FLOAT, reinterpret_cast<char *>(pixels.data()), sizeof(float), 8 * sizeof(float)));
     file.setFrameBuffer(frame);
     file.readPixels(0, 7);
     for (float v : pixels) EXPECT_NEAR(v, radiance / cieYIntegral(400, 700), 2e-7) << name;

@@ -1,23 +1,23 @@
 // Texture and bump maps on top of the radiosity solution (C&W §9.4, eq. 9.11;
 // Chen & Wu 1990; docs/textures.md), in every renderer.
+#include "raytrace/surface_detail.h"
+
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
-
-#include <unistd.h>
 
 #include "io/image.h"
 #include "radiosity/solver.h"
 #include "render/bump_gather.h"
 #include "render/driver.h"
 #include "render/renderer.h"
-#include "scene/load_scene.h"
 #include "render_helpers.h"
-#include "test_scenes.h"
-#include "raytrace/surface_detail.h"
-#include "util/error.h"
 #include "sanitizer.h"
+#include "scene/load_scene.h"
+#include "test_scenes.h"
+#include "util/error.h"
 
 namespace radiant {
 namespace {
@@ -161,7 +161,8 @@ TEST(SurfaceDetail, FlatDisplayKeepsEachElementsMean) {
 
 // A bump map with scale 0, and a flat normal map, change nothing.
 TEST(SurfaceDetail, AFlatBumpChangesNoImage) {
-  Scene plain = texturedBox({{R"("bump": "textures/egg-crate.png",)", ""}, {R"("bump_scale": 12)", R"("comment": "-")"}});
+  Scene plain =
+      texturedBox({{R"("bump": "textures/egg-crate.png",)", ""}, {R"("bump_scale": 12)", R"("comment": "-")"}});
   Scene zero = texturedBox({{R"("bump_scale": 12)", R"("bump_scale": 0)"}});
   for (const std::string &method : kMethods) {
     if (method == "reichert") continue;  // slow, and shades with the same VisiblePoint normal as rushmeier
@@ -235,9 +236,10 @@ TEST(SurfaceDetail, CornellTexturedFloorAndBumpedWallAgreeWithPath) {
   const RegionStats shirleyPlainWall = regionStats(render(plain, "shirley", 64, size, 0.05), wall);
   const RegionStats chenWall = regionStats(render(textured, "interpolate", 16, size, 0.05), wall);
   // Mean: shirley's bias on the bumped wall is its bias on the flat wall (the solution's), within 4σ.
-  const double sigma = std::hypot(shirleyWall.standardError / shirleyWall.mean, pathWall.standardError / pathWall.mean) +
-                       std::hypot(shirleyPlainWall.standardError / shirleyPlainWall.mean,
-                                  pathPlainWall.standardError / pathPlainWall.mean);
+  const double sigma =
+      std::hypot(shirleyWall.standardError / shirleyWall.mean, pathWall.standardError / pathWall.mean) +
+      std::hypot(shirleyPlainWall.standardError / shirleyPlainWall.mean,
+                 pathPlainWall.standardError / pathPlainWall.mean);
   EXPECT_NEAR(shirleyWall.mean / pathWall.mean, shirleyPlainWall.mean / pathPlainWall.mean, 4 * sigma + 0.005);
   // Variance of shading across the wall: the bumps' light and shade, noise removed. The
   // estimate's own error (a few % at these sample counts) and the solution's smooth
@@ -335,8 +337,8 @@ TEST(SurfaceDetail, ElementMeansFollowTheTextureAcrossTheQuadsDiagonal) {
   };
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 4; ++j) {
-      const std::array<Vec3, 4> element = {at(i / 3.0, j / 4.0), at(i / 3.0, (j + 1) / 4.0), at((i + 1) / 3.0, (j + 1) / 4.0),
-                                           at((i + 1) / 3.0, j / 4.0)};
+      const std::array<Vec3, 4> element = {at(i / 3.0, j / 4.0), at(i / 3.0, (j + 1) / 4.0),
+                                           at((i + 1) / 3.0, (j + 1) / 4.0), at((i + 1) / 3.0, j / 4.0)};
       double sum = 0, area = 0;
       const int n = 200;
       for (int a = 0; a < n; ++a)
@@ -364,7 +366,8 @@ TEST(SurfaceDetail, HierarchicalSolutionsKeepATexturesBrightHalf) {
       for (int c = 0; c < 3; ++c) half.pixel(x, y)[c] = x < 4 ? 0.0f : 0.8f;
   const std::string texture = (dir / "half.exr").string();
   writeExr(half, texture);
-  Scene scene = texturedBox({{R"("texture": "textures/checker.png")", "\"texture\": \"" + texture + "\", \"texture_wrap\": \"clamp\""}});
+  Scene scene = texturedBox(
+      {{R"("texture": "textures/checker.png")", "\"texture\": \"" + texture + "\", \"texture_wrap\": \"clamp\""}});
   RayTracer tracer(scene);
   MeshOptions mesh;
   SolverOptions solver;
@@ -398,7 +401,8 @@ TEST(SurfaceDetail, LoaderErrorsNameWhereTheMapWasNamed) {
   EXPECT_NE(message.find("/materials/bumpy-white/bump"), std::string::npos) << message;
   message = error({{R"("bump_scale": 12)", R"("bump_scale": 12, "normal_map": "textures/checker.png")"}});
   EXPECT_NE(message.find("not both"), std::string::npos) << message;
-  message = error({{R"("texture": "textures/checker.png")", R"("texture": "textures/checker.png", "texture_wrap": "mirror")"}});
+  message = error(
+      {{R"("texture": "textures/checker.png")", R"("texture": "textures/checker.png", "texture_wrap": "mirror")"}});
   EXPECT_NE(message.find("texture_wrap"), std::string::npos) << message;
   // Quads take texture coordinates, four pairs.
   message = error({{R"("name": "floor",)", R"("name": "floor", "uv": [[0, 0], [1, 0]],)"}});

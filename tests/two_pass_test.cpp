@@ -1,20 +1,21 @@
 // The two-pass methods (C&W §9.3): rushmeier, reichert, shirley, kok and
 // selective re-evaluation, against closed forms (REFERENCE §4.1, §8.5–8.6),
 // the furnace (§8.1) and the path tracer.
+#include "render/two_pass.h"
+
 #include <gtest/gtest.h>
 
 #include <iostream>
 
+#include "film_metrics.h"
 #include "radiosity/form_factor.h"
 #include "radiosity/solver.h"
 #include "render/driver.h"
 #include "render/renderer.h"
 #include "render/secondary_sources.h"
-#include "render/two_pass.h"
-#include "scene/load_scene.h"
-#include "film_metrics.h"
-#include "test_scenes.h"
 #include "sanitizer.h"
+#include "scene/load_scene.h"
+#include "test_scenes.h"
 
 namespace radiant {
 namespace {
@@ -131,7 +132,7 @@ TEST(TwoPass, ReichertCountsTheFrontPartOfACutElement) {
   // the other half would be hidden by the wall itself.
   Scene scene;
   scene.objects.push_back({"test", "test"});
-  scene.positions = {{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1},          // floor, facing +y
+  scene.positions = {{-1, 0, -1},   {-1, 0, 1},     {1, 0, 1},      {1, 0, -1},      // floor, facing +y
                      {0, 0.1, 0.1}, {0, 0.1, -0.1}, {0, 0.3, -0.1}, {0, 0.3, 0.1}};  // wall, facing +x
   Material floor, wall;
   floor.name = "floor";
@@ -143,7 +144,7 @@ TEST(TwoPass, ReichertCountsTheFrontPartOfACutElement) {
   test::addQuads(scene, {0, 1});
   RayTracer tracer(scene);
   MeshOptions meshOptions;
-  meshOptions.maxEdgeLength = 10;  // one element per face
+  meshOptions.maxEdgeLength = 10;                                             // one element per face
   Solution solution = initialSolution(scene, buildMesh(scene, meshOptions));  // B = E: nothing to solve
   ASSERT_EQ(solution.elementCount(), 2u);
   const Vec3 x{0, 0.2, 0}, n{1, 0, 0};
@@ -460,7 +461,8 @@ TEST(TwoPass, KokRemovesTheSameLightFromCoarserSourcePieces) {
             << " leaves, " << trees.piecesPerReceiver() << " pieces\n";
   EXPECT_LT(trees.piecesPerReceiver(), 0.1 * every.piecesPerReceiver());
   double everyTotal = 0, treesTotal = 0, worst = 0, largest = 0;
-  for (uint32_t e = 0; e < solution.elementCount(); ++e) largest = std::max(largest, every.removedRadiosity()[e].average());
+  for (uint32_t e = 0; e < solution.elementCount(); ++e)
+    largest = std::max(largest, every.removedRadiosity()[e].average());
   for (uint32_t e = 0; e < solution.elementCount(); ++e) {
     const double a = solution.mesh.elements[e].area, f = every.removedRadiosity()[e].average(),
                  c = trees.removedRadiosity()[e].average();

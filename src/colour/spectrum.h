@@ -55,7 +55,9 @@ std::array<double, 2> chromaticity(const Vec3 &xyz);
 
 /// A 3×3 matrix as three rows.
 using Matrix3 = std::array<Vec3, 3>;
-inline Vec3 operator*(const Matrix3 &m, const Vec3 &v) { return {dot(m[0], v), dot(m[1], v), dot(m[2], v)}; }
+inline Vec3 operator*(const Matrix3 &m, const Vec3 &v) {
+  return {dot(m[0], v), dot(m[1], v), dot(m[2], v)};
+}
 Matrix3 operator*(const Matrix3 &a, const Matrix3 &b);
 
 /// XYZ of the D65 white with Y = 1, from its chromaticity (0.3127, 0.3290),
@@ -69,7 +71,7 @@ Matrix3 bradfordAdaptation(const Vec3 &sourceWhite, const Vec3 &destinationWhite
 
 /// Whether an equal-energy white is shown as the display's white.
 enum class WhiteBalance {
-  None,         ///< no adaptation: XYZ → sRGB as is (REFERENCE §7.4's values); a constant spectrum looks slightly pink
+  None,  ///< no adaptation: XYZ → sRGB as is (REFERENCE §7.4's values); a constant spectrum looks slightly pink
   EqualEnergy,  ///< Bradford adaptation of the bands' equal-energy white to D65: a constant spectrum is grey
 };
 

@@ -10,8 +10,8 @@ ImageComparison compareImages(const Image &test, const Image &reference, const s
                               const std::string &referenceName) {
   if (test.width != reference.width || test.height != reference.height)
     throw InputError(InputLocation{testName}, "image is " + std::to_string(test.width) + "x" +
-                                                  std::to_string(test.height) + " but the reference '" +
-                                                  referenceName + "' is " + std::to_string(reference.width) + "x" +
+                                                  std::to_string(test.height) + " but the reference '" + referenceName +
+                                                  "' is " + std::to_string(reference.width) + "x" +
                                                   std::to_string(reference.height));
   constexpr double kEpsilon = 0.01;
   ImageComparison result;
@@ -65,7 +65,9 @@ std::vector<unsigned char> differenceImage(const Image &test, const Image &refer
     double fade = 1 - std::abs(s);
     unsigned char *o = &out[3 * p];
     if (!std::isfinite(relative)) {
-      o[0] = 255; o[1] = 0; o[2] = 255;  // magenta: NaN/Inf
+      o[0] = 255;
+      o[1] = 0;
+      o[2] = 255;  // magenta: NaN/Inf
     } else if (s >= 0) {
       o[0] = 255;
       o[1] = o[2] = static_cast<unsigned char>(std::lround(255 * fade));

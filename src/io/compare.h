@@ -12,16 +12,16 @@ namespace radiant {
 
 struct ChannelComparison {
   double meanTest = 0, meanReference = 0;
-  double meanRatio = 0;  ///< meanTest / meanReference (1 is unbiased in mean)
-  double rmse = 0;       ///< √(mean (t − r)²), in the images' units
-  double relativeMse = 0;///< mean (t − r)² / (r² + ε), ε = 0.01 (Rousselle et al. 2011; pbrt's imgtool)
+  double meanRatio = 0;    ///< meanTest / meanReference (1 is unbiased in mean)
+  double rmse = 0;         ///< √(mean (t − r)²), in the images' units
+  double relativeMse = 0;  ///< mean (t − r)² / (r² + ε), ε = 0.01 (Rousselle et al. 2011; pbrt's imgtool)
 };
 
 struct ImageComparison {
   std::array<ChannelComparison, 3> channels;  ///< R, G, B
   ChannelComparison average;                  ///< over all channels together
   size_t pixels = 0;
-  size_t nonFinitePixels = 0;                 ///< NaN/Inf in the test image (counted, excluded)
+  size_t nonFinitePixels = 0;  ///< NaN/Inf in the test image (counted, excluded)
 };
 
 /// Agreement within noise, from the variance of each pixel's mean (radiant
@@ -32,7 +32,7 @@ struct NoiseAgreement {
   size_t blocks = 0;               ///< block × channel z-scores computed
   double blockRmsZ = 0;            ///< ≈ 1 when the images agree within noise
   double blockMaxAbsZ = 0;
-  size_t blocksBeyond4 = 0;        ///< |z| > 4: expect ~0.006% by chance
+  size_t blocksBeyond4 = 0;  ///< |z| > 4: expect ~0.006% by chance
 };
 
 /// `testVariance` and `referenceVariance` hold per-pixel variances of the mean

@@ -6,8 +6,8 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
-#include <png.h>
 #include <fmt/format.h>
+#include <png.h>
 #include <stb/stb_image_write.h>
 
 #include <algorithm>
@@ -84,8 +84,8 @@ void writeExr(const Image &image, const std::string &path) {
         header.channels().insert(spectralNames.back(), Imf::Channel(Imf::FLOAT));
       }
       header.insert("spectralLayoutVersion", Imf::StringAttribute("1.0"));
-      header.insert("emissiveUnits", Imf::StringAttribute(image.quantity == "irradiance" ? "W.m^-2.nm^-1"
-                                                                                          : "W.m^-2.sr^-1.nm^-1"));
+      header.insert("emissiveUnits",
+                    Imf::StringAttribute(image.quantity == "irradiance" ? "W.m^-2.nm^-1" : "W.m^-2.sr^-1.nm^-1"));
     }
     Imf::OutputFile file(temporary.c_str(), header);
     Imf::FrameBuffer frame;
@@ -214,8 +214,8 @@ static Image readExr(const std::string &path) {
     if (!hasRgb && !hasY) throw InputError(where, "EXR file has neither R, G, B nor Y channels");
     Imf::FrameBuffer frame;
     const size_t xStride = 3 * sizeof(float), yStride = xStride * image.width;
-    char *base = reinterpret_cast<char *>(image.rgb.data()) -
-                 (size_t(window.min.x) * xStride + size_t(window.min.y) * yStride);
+    char *base =
+        reinterpret_cast<char *>(image.rgb.data()) - (size_t(window.min.x) * xStride + size_t(window.min.y) * yStride);
     const char *names[3] = {"R", "G", "B"};
     for (int c = 0; c < (hasRgb ? 3 : 1); ++c)
       frame.insert(hasRgb ? names[c] : "Y", Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));

@@ -23,7 +23,9 @@ struct Fingerprint {
     for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 0x100000001b3ULL;
   }
   template <typename T>
-  void value(const T &v) { bytes(&v, sizeof v); }
+  void value(const T &v) {
+    bytes(&v, sizeof v);
+  }
 };
 
 class Writer {
@@ -34,7 +36,9 @@ class Writer {
     data_.append(reinterpret_cast<const char *>(&v), sizeof v);
   }
   void put(const Vec3 &v) { put(v.x), put(v.y), put(v.z); }
-  void put(const Bands &b) { for (int i = 0; i < kBandCount; ++i) put(b[i]); }
+  void put(const Bands &b) {
+    for (int i = 0; i < kBandCount; ++i) put(b[i]);
+  }
   void put(const std::string &s) {
     put(uint32_t(s.size()));
     data_ += s;
@@ -141,7 +145,8 @@ uint64_t sceneFingerprint(const Scene &scene) {
     if (scene.materials[face.material].diffuseTextureIndex >= 0)
       for (int k = 0; k < face.vertexCount; ++k) {
         f.value(face.uvs[k]);
-        if (face.uvs[k] >= 0) f.value(scene.uvs[2 * size_t(face.uvs[k])]), f.value(scene.uvs[2 * size_t(face.uvs[k]) + 1]);
+        if (face.uvs[k] >= 0)
+          f.value(scene.uvs[2 * size_t(face.uvs[k])]), f.value(scene.uvs[2 * size_t(face.uvs[k]) + 1]);
       }
   return f.h;
 }
@@ -258,8 +263,9 @@ std::vector<Solution> readSolutionPasses(const std::string &path, const Scene &s
   const uint32_t expected = scene.spectral.enabled() ? uint32_t(scene.spectral.passCount()) : 1;
   const uint32_t passes = r.get<uint32_t>();
   if (passes != expected)
-    r.fail(fmt::format("the solution has {} spectral passes; the scene needs {} (solve it again, with the same --colour)",
-                       passes, expected));
+    r.fail(
+        fmt::format("the solution has {} spectral passes; the scene needs {} (solve it again, with the same --colour)",
+                    passes, expected));
   std::vector<Solution> solutions;
   for (uint32_t p = 0; p < passes; ++p) solutions.push_back(getSolution(r, scene));
   if (!r.atEnd()) r.fail("unexpected data after the solution");
@@ -371,7 +377,8 @@ Solution getSolution(Reader &r, const Scene &scene) {
   for (int32_t p : m.patchOfFace)
     if (p < -1 || p >= int32_t(m.patches.size())) r.fail("a face refers to a patch that does not exist");
   for (size_t f = 0; f < m.facePatchCount.size(); ++f)
-    if (m.patchOfFace[f] >= 0 && (m.facePatchCount[f] < 1 || uint64_t(m.patchOfFace[f]) + m.facePatchCount[f] > m.patches.size()))
+    if (m.patchOfFace[f] >= 0 &&
+        (m.facePatchCount[f] < 1 || uint64_t(m.patchOfFace[f]) + m.facePatchCount[f] > m.patches.size()))
       r.fail("a face's patches are inconsistent");
   for (const Patch &p : m.patches)
     if (p.vertexCount < 3 || p.vertexCount > 4 || p.divisionsU < 1 || p.divisionsV < 1 ||

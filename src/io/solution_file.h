@@ -2,8 +2,8 @@
 // `radiant solve -o` and reused by `radiant render --solution`.
 #pragma once
 
-#include <string>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "radiosity/solution.h"

@@ -56,8 +56,10 @@ bool clipSegmentToPolygon(const std::vector<Vec3> &polygon, const Vec3 &n, Vec3 
       continue;
     }
     const double t = -start / rate;
-    if (rate > 0) t0 = std::max(t0, t);
-    else t1 = std::min(t1, t);
+    if (rate > 0)
+      t0 = std::max(t0, t);
+    else
+      t1 = std::min(t1, t);
     if (t0 > t1) return false;
   }
   const Vec3 a0 = a;
@@ -82,7 +84,8 @@ void cutsOf(const PlanarFace &f, const PlanarFace &g, double onPlane, double gap
     // Lying on f: its outline, projected onto f's plane, cuts f.
     for (size_t k = 0; k < n; ++k) {
       Vec3 a = g.polygon[k] - f.normal * d[k], b = g.polygon[(k + 1) % n] - f.normal * d[(k + 1) % n];
-      if (clipSegmentToPolygon(f.polygon, f.normal, a, b, -tolerance) && length(b - a) > tolerance) out.push_back({a, b});
+      if (clipSegmentToPolygon(f.polygon, f.normal, a, b, -tolerance) && length(b - a) > tolerance)
+        out.push_back({a, b});
     }
     return;
   }
@@ -117,8 +120,8 @@ void splitPieces(std::vector<std::vector<Vec3>> &pieces, const CutSegment &cut, 
     }
     Vec3 a = cut.a, b = cut.b;
     // The cut must run through the piece, not only along its boundary or past it.
-    const bool crosses = lo < -tolerance && hi > tolerance &&
-                         clipSegmentToPolygon(piece, n, a, b, -tolerance) && length(b - a) > tolerance;
+    const bool crosses = lo < -tolerance && hi > tolerance && clipSegmentToPolygon(piece, n, a, b, -tolerance) &&
+                         length(b - a) > tolerance;
     if (!crosses) {
       result.push_back(std::move(piece));
       continue;
@@ -208,7 +211,8 @@ std::vector<std::vector<Vec3>> convexToPatches(const std::vector<Vec3> &polygon)
 std::vector<FaceSplit> splitFaces(const Scene &scene, const RayTracer &tracer, const FaceSplitOptions &options) {
   const FaceTree tree(scene);
   const Box3 &bounds = tree.sceneBounds();
-  const double extent = std::max({bounds.hi.x - bounds.lo.x, bounds.hi.y - bounds.lo.y, bounds.hi.z - bounds.lo.z, 1e-9});
+  const double extent =
+      std::max({bounds.hi.x - bounds.lo.x, bounds.hi.y - bounds.lo.y, bounds.hi.z - bounds.lo.z, 1e-9});
   const double tolerance = 1e-7 * extent, onPlane = 1e-7 * extent, gap = options.coplanarGap * extent;
   std::vector<FaceSplit> splits(scene.faces.size());
   tbb::parallel_for(size_t(0), scene.faces.size(), [&](size_t f) {
@@ -226,8 +230,10 @@ std::vector<FaceSplit> splitFaces(const Scene &scene, const RayTracer &tracer, c
     FaceSplit &split = splits[f];
     split.cuts = std::move(cuts);
     for (size_t k = 0; k < pieces.size(); ++k) {
-      if (hidden(tracer, pieces[k], face.normal, options, (uint64_t(f) << 20) ^ k)) ++split.hiddenPieces;
-      else split.pieces.push_back(std::move(pieces[k]));
+      if (hidden(tracer, pieces[k], face.normal, options, (uint64_t(f) << 20) ^ k))
+        ++split.hiddenPieces;
+      else
+        split.pieces.push_back(std::move(pieces[k]));
     }
   });
   return splits;

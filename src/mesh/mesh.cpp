@@ -11,7 +11,9 @@ namespace radiant {
 
 namespace {
 
-double cross2(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
+double cross2(double ax, double ay, double bx, double by) {
+  return ax * by - ay * bx;
+}
 
 /// Bilinear point P(u, v) of a quad a=P(0,0), b=P(1,0), c=P(1,1), d=P(0,1).
 Vec3 bilinear(const std::array<Vec3, 4> &q, double u, double v) {
@@ -89,7 +91,8 @@ int32_t RadiosityMesh::patchAt(uint32_t face, const Vec3 &position) const {
     const uint32_t k = candidates[c] - uint32_t(first);
     const Patch &p = patches[first + k];
     double depth = INFINITY;
-    for (int v = 0; v < p.vertexCount; ++v) depth = std::min(depth, dot(position - p.corners[v], p.inwardEdgeNormals[v]));
+    for (int v = 0; v < p.vertexCount; ++v)
+      depth = std::min(depth, dot(position - p.corners[v], p.inwardEdgeNormals[v]));
     if (depth > bestDepth) bestDepth = depth, best = static_cast<int32_t>(first + k);
   }
   return best;
@@ -178,7 +181,8 @@ void RadiosityMesh::addCrossPatchTVertices() {
   for (const Edge &e : edges) mean += e.length;
   const double cell = std::max(mean / double(edges.size()), 1e-9);
   auto key = [&](const Vec3 &x) {
-    return std::array<int64_t, 3>{std::llround(std::floor((x.x - lo.x) / cell)), std::llround(std::floor((x.y - lo.y) / cell)),
+    return std::array<int64_t, 3>{std::llround(std::floor((x.x - lo.x) / cell)),
+                                  std::llround(std::floor((x.y - lo.y) / cell)),
                                   std::llround(std::floor((x.z - lo.z) / cell))};
   };
   struct KeyHash {
@@ -278,7 +282,7 @@ MeshLocation RadiosityMesh::locate(uint32_t face, const Vec3 &position) const {
   uint32_t rowOffset = uint32_t(j * (2 * d - j));
   if (upper) {
     location.element = patch.firstElement + rowOffset + uint32_t(d - j + i);
-    location.t = 1 - fi;           // weights: node0 (i+1, j) 1−s−t, node1 (i+1, j+1) s, node2 (i, j+1) t
+    location.t = 1 - fi;  // weights: node0 (i+1, j) 1−s−t, node1 (i+1, j+1) s, node2 (i, j+1) t
     location.s = fi + fj - 1;
   } else {
     if (fi + fj > 1) {  // on the patch's far edge: project back onto the lower element
@@ -315,9 +319,12 @@ MeshLocation RadiosityMesh::locateInTree(const Patch &patch, const Vec3 &positio
       a = 2 * a - i, b = 2 * b - j;
     } else {
       a = std::clamp(a, 0.0, 1.0), b = std::clamp(b, 0.0, 1.0 - a);
-      if (a >= 0.5) node = t.children[1], a = 2 * a - 1, b = 2 * b;
-      else if (b >= 0.5) node = t.children[2], a = 2 * a, b = 2 * b - 1;
-      else if (a + b <= 0.5) node = t.children[0], a = 2 * a, b = 2 * b;
+      if (a >= 0.5)
+        node = t.children[1], a = 2 * a - 1, b = 2 * b;
+      else if (b >= 0.5)
+        node = t.children[2], a = 2 * a, b = 2 * b - 1;
+      else if (a + b <= 0.5)
+        node = t.children[0], a = 2 * a, b = 2 * b;
       else {
         double s = 2 * a + 2 * b - 1, u = 1 - 2 * a;  // middle child (mab, mbc, mac)
         node = t.children[3], a = s, b = u;
@@ -332,8 +339,7 @@ MeshLocation RadiosityMesh::locateInTree(const Patch &patch, const Vec3 &positio
 }
 
 std::array<double, 4> RadiosityMesh::nodeWeights(const MeshLocation &l) const {
-  if (elements[l.element].vertexCount == 4)
-    return {(1 - l.s) * (1 - l.t), l.s * (1 - l.t), l.s * l.t, (1 - l.s) * l.t};
+  if (elements[l.element].vertexCount == 4) return {(1 - l.s) * (1 - l.t), l.s * (1 - l.t), l.s * l.t, (1 - l.s) * l.t};
   return {1 - l.s - l.t, l.s, l.t, 0.0};
 }
 
@@ -379,8 +385,8 @@ RadiosityMesh buildMesh(const Scene &scene, const MeshOptions &options) {
         divisions[f].push_back({nU, nV});
         totalElements += size_t(nU) * nV;
       } else {
-        int n = steps(std::max({length(corner(1) - corner(0)), length(corner(2) - corner(1)),
-                                length(corner(0) - corner(2))}));
+        int n = steps(
+            std::max({length(corner(1) - corner(0)), length(corner(2) - corner(1)), length(corner(0) - corner(2))}));
         divisions[f].push_back({n, n});
         totalElements += size_t(n) * n;
       }
@@ -400,65 +406,66 @@ RadiosityMesh buildMesh(const Scene &scene, const MeshOptions &options) {
   }
   mesh.elements.reserve(totalElements);
   for (size_t f = 0; f < scene.faces.size(); ++f)
-   for (size_t piece = 0; piece < polygons[f].size(); ++piece) {
-    const Face &face = scene.faces[f];
-    const std::vector<Vec3> &poly = polygons[f][piece];
-    Patch patch;
-    patch.face = static_cast<uint32_t>(f);
-    patch.material = face.material;
-    patch.object = face.object;
-    patch.vertexCount = static_cast<int>(poly.size());
-    for (int k = 0; k < patch.vertexCount; ++k) patch.corners[k] = poly[k];
-    patch.normal = scene.faceNormal(face);
-    patch.area = 0;
-    for (int k = 1; k + 1 < patch.vertexCount; ++k)
-      patch.area += 0.5 * length(cross(poly[k] - poly[0], poly[k + 1] - poly[0]));
-    if (polygons[f].size() == 1 && !(splits && (*splits)[f].split())) patch.area = scene.faceArea(face);
-    patch.divisionsU = divisions[f][piece][0];
-    patch.divisionsV = divisions[f][piece][1];
-    patch.firstElement = static_cast<uint32_t>(mesh.elements.size());
-    patch.firstNode = static_cast<uint32_t>(mesh.nodes.size());
-    const uint32_t patchIndex = static_cast<uint32_t>(mesh.patches.size());
-    auto addElement = [&](int count, std::array<uint32_t, 4> nodes) {
-      Element e;
-      e.patch = patchIndex;
-      e.vertexCount = count;
-      e.nodes = nodes;
-      Vec3 sum;
-      for (int k = 0; k < count; ++k) sum += mesh.nodes[nodes[k]];
-      e.centre = sum / count;
-      for (int k = 1; k + 1 < count; ++k)
-        e.area += 0.5 * length(cross(mesh.nodes[nodes[k]] - mesh.nodes[nodes[0]],
-                                     mesh.nodes[nodes[k + 1]] - mesh.nodes[nodes[0]]));
-      mesh.elements.push_back(e);
-    };
+    for (size_t piece = 0; piece < polygons[f].size(); ++piece) {
+      const Face &face = scene.faces[f];
+      const std::vector<Vec3> &poly = polygons[f][piece];
+      Patch patch;
+      patch.face = static_cast<uint32_t>(f);
+      patch.material = face.material;
+      patch.object = face.object;
+      patch.vertexCount = static_cast<int>(poly.size());
+      for (int k = 0; k < patch.vertexCount; ++k) patch.corners[k] = poly[k];
+      patch.normal = scene.faceNormal(face);
+      patch.area = 0;
+      for (int k = 1; k + 1 < patch.vertexCount; ++k)
+        patch.area += 0.5 * length(cross(poly[k] - poly[0], poly[k + 1] - poly[0]));
+      if (polygons[f].size() == 1 && !(splits && (*splits)[f].split())) patch.area = scene.faceArea(face);
+      patch.divisionsU = divisions[f][piece][0];
+      patch.divisionsV = divisions[f][piece][1];
+      patch.firstElement = static_cast<uint32_t>(mesh.elements.size());
+      patch.firstNode = static_cast<uint32_t>(mesh.nodes.size());
+      const uint32_t patchIndex = static_cast<uint32_t>(mesh.patches.size());
+      auto addElement = [&](int count, std::array<uint32_t, 4> nodes) {
+        Element e;
+        e.patch = patchIndex;
+        e.vertexCount = count;
+        e.nodes = nodes;
+        Vec3 sum;
+        for (int k = 0; k < count; ++k) sum += mesh.nodes[nodes[k]];
+        e.centre = sum / count;
+        for (int k = 1; k + 1 < count; ++k)
+          e.area += 0.5 * length(cross(mesh.nodes[nodes[k]] - mesh.nodes[nodes[0]],
+                                       mesh.nodes[nodes[k + 1]] - mesh.nodes[nodes[0]]));
+        mesh.elements.push_back(e);
+      };
 
-    if (patch.vertexCount == 4) {
-      const int nU = patch.divisionsU, nV = patch.divisionsV;
-      for (int j = 0; j <= nV; ++j)
-        for (int i = 0; i <= nU; ++i) mesh.nodes.push_back(bilinear(patch.corners, double(i) / nU, double(j) / nV));
-      auto node = [&](int i, int j) { return patch.firstNode + uint32_t(j * (nU + 1) + i); };
-      for (int j = 0; j < nV; ++j)
-        for (int i = 0; i < nU; ++i) addElement(4, {node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)});
-    } else {
-      const int n = patch.divisionsU;
-      const Vec3 &a = patch.corners[0], &b = patch.corners[1], &c = patch.corners[2];
-      for (int j = 0; j <= n; ++j)
-        for (int i = 0; i <= n - j; ++i) mesh.nodes.push_back(a + (b - a) * (double(i) / n) + (c - a) * (double(j) / n));
-      auto node = [&](int i, int j) { return patch.firstNode + uint32_t(j * (n + 1) - j * (j - 1) / 2 + i); };
-      // Row j: its n − j lower triangles, then its n − j − 1 upper ones (the order locate() assumes).
-      for (int j = 0; j < n; ++j) {
-        for (int i = 0; i < n - j; ++i) addElement(3, {node(i, j), node(i + 1, j), node(i, j + 1), 0});
-        for (int i = 0; i < n - j - 1; ++i) addElement(3, {node(i + 1, j), node(i + 1, j + 1), node(i, j + 1), 0});
+      if (patch.vertexCount == 4) {
+        const int nU = patch.divisionsU, nV = patch.divisionsV;
+        for (int j = 0; j <= nV; ++j)
+          for (int i = 0; i <= nU; ++i) mesh.nodes.push_back(bilinear(patch.corners, double(i) / nU, double(j) / nV));
+        auto node = [&](int i, int j) { return patch.firstNode + uint32_t(j * (nU + 1) + i); };
+        for (int j = 0; j < nV; ++j)
+          for (int i = 0; i < nU; ++i) addElement(4, {node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)});
+      } else {
+        const int n = patch.divisionsU;
+        const Vec3 &a = patch.corners[0], &b = patch.corners[1], &c = patch.corners[2];
+        for (int j = 0; j <= n; ++j)
+          for (int i = 0; i <= n - j; ++i)
+            mesh.nodes.push_back(a + (b - a) * (double(i) / n) + (c - a) * (double(j) / n));
+        auto node = [&](int i, int j) { return patch.firstNode + uint32_t(j * (n + 1) - j * (j - 1) / 2 + i); };
+        // Row j: its n − j lower triangles, then its n − j − 1 upper ones (the order locate() assumes).
+        for (int j = 0; j < n; ++j) {
+          for (int i = 0; i < n - j; ++i) addElement(3, {node(i, j), node(i + 1, j), node(i, j + 1), 0});
+          for (int i = 0; i < n - j - 1; ++i) addElement(3, {node(i + 1, j), node(i + 1, j + 1), node(i, j + 1), 0});
+        }
       }
+      patch.elementCount = static_cast<uint32_t>(mesh.elements.size()) - patch.firstElement;
+      patch.nodeCount = static_cast<uint32_t>(mesh.nodes.size()) - patch.firstNode;
+      mesh.nodePatch.resize(mesh.nodes.size(), patchIndex);
+      if (mesh.patchOfFace[f] < 0) mesh.patchOfFace[f] = static_cast<int32_t>(patchIndex);
+      ++mesh.facePatchCount[f];
+      mesh.patches.push_back(patch);
     }
-    patch.elementCount = static_cast<uint32_t>(mesh.elements.size()) - patch.firstElement;
-    patch.nodeCount = static_cast<uint32_t>(mesh.nodes.size()) - patch.firstNode;
-    mesh.nodePatch.resize(mesh.nodes.size(), patchIndex);
-    if (mesh.patchOfFace[f] < 0) mesh.patchOfFace[f] = static_cast<int32_t>(patchIndex);
-    ++mesh.facePatchCount[f];
-    mesh.patches.push_back(patch);
-  }
   mesh.markNodesOnCuts();
   mesh.addCrossPatchTVertices();
   mesh.buildPatchLookup();

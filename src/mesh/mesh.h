@@ -51,7 +51,8 @@ struct MeshTreeNode {
   /// The longest of its edges: what the refinements compare with their smallest size.
   double longestEdge() const {
     double longest = 0;
-    for (int k = 0; k < vertexCount; ++k) longest = std::max(longest, length(corners[(k + 1) % vertexCount] - corners[k]));
+    for (int k = 0; k < vertexCount; ++k)
+      longest = std::max(longest, length(corners[(k + 1) % vertexCount] - corners[k]));
     return longest;
   }
 };
@@ -91,9 +92,9 @@ struct MeshLocation {
 struct RadiosityMesh {
   std::vector<Patch> patches;
   std::vector<Element> elements;
-  std::vector<Vec3> nodes;              ///< positions, metres
-  std::vector<uint32_t> nodePatch;      ///< the patch each node belongs to
-  std::vector<int32_t> patchOfFace;     ///< Scene::faces index → its (first) patch, −1 if none
+  std::vector<Vec3> nodes;           ///< positions, metres
+  std::vector<uint32_t> nodePatch;   ///< the patch each node belongs to
+  std::vector<int32_t> patchOfFace;  ///< Scene::faces index → its (first) patch, −1 if none
   /// Patches of each face, consecutive from patchOfFace: 1, or more for a face
   /// cut where other surfaces meet it (mesh/face_split.h). Empty: all 1.
   std::vector<uint32_t> facePatchCount;
@@ -102,7 +103,7 @@ struct RadiosityMesh {
   std::vector<uint8_t> nodeOnCut;
   /// The cuts of each face (empty when no face is cut); what nodeOnCut is computed from.
   std::vector<std::vector<CutSegment>> faceCuts;
-  std::vector<MeshTreeNode> tree;       ///< subdivision trees of hierarchical patches
+  std::vector<MeshTreeNode> tree;  ///< subdivision trees of hierarchical patches
   /// Nodes inside a coarser neighbour's edge, in coarse-to-fine order: their
   /// value must be the edge's interpolation between its ends, (1 − t)·start +
   /// t·end, or interpolation would crack there. Within a patch's tree t is ½
@@ -168,8 +169,7 @@ void makePatchTrees(RadiosityMesh &mesh);
 /// Splits the leaves whose element error estimate exceeds `threshold`, worst
 /// first, while the element count stays within `maxElements`; rebuilds the
 /// elements, nodes and T-vertices. Returns how many elements were split.
-size_t refineMesh(RadiosityMesh &mesh, const std::vector<double> &errorEstimate, double threshold,
-                  size_t maxElements);
+size_t refineMesh(RadiosityMesh &mesh, const std::vector<double> &errorEstimate, double threshold, size_t maxElements);
 /// Splits one tree leaf into four children (elements are not rebuilt).
 void splitTreeNode(RadiosityMesh &mesh, uint32_t node);
 /// The four children's corners of a tree node, in locateInTree's order.

@@ -181,8 +181,7 @@ RadiosityMesh buildTreeMesh(const Scene &scene, const MeshOptions &options) {
   return mesh;
 }
 
-size_t refineMesh(RadiosityMesh &mesh, const std::vector<double> &errorEstimate, double threshold,
-                  size_t maxElements) {
+size_t refineMesh(RadiosityMesh &mesh, const std::vector<double> &errorEstimate, double threshold, size_t maxElements) {
   // The worst elements first, while the bound allows.
   std::vector<uint32_t> candidates;
   for (uint32_t e = 0; e < mesh.elements.size(); ++e)

@@ -136,8 +136,10 @@ double DirectIrradiance::sampledFormFactor(const Vec3 &x, const Vec3 &n, size_t 
         if (!(towards > 0 && from > 0)) continue;
         const double w = towards * from / (r2 * r2);
         all += w;
-        if (tracer_->visible(x, n, y, e.normal)) seen += w, ++shown;
-        else ++hidden;
+        if (tracer_->visible(x, n, y, e.normal))
+          seen += w, ++shown;
+        else
+          ++hidden;
       }
     partial = shown > 0 && hidden > 0;
     return all > 0 ? seen / all : 0.0;
@@ -279,8 +281,8 @@ bool DirectIrradiance::irradianceWithin(const Vec3 &x, const Vec3 &n, size_t max
   for (size_t k = 0; k < emitters_.size(); ++k) {
     const EmitterPolygon &e = emitters_[k];
     const double f = radiant::visibleFormFactor(scene_, &faces_, nullptr, x, n,
-                                                std::span<const Vec3>(e.corners.data(), size_t(e.vertexCount)), e.normal,
-                                                e.face, scale_, nullptr, maxOccluders);
+                                                std::span<const Vec3>(e.corners.data(), size_t(e.vertexCount)),
+                                                e.normal, e.face, scale_, nullptr, maxOccluders);
     if (f < 0) return false;
     if (f > 0) out += scene_.materials[e.material].emission * (kPi * f);
   }

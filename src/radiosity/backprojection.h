@@ -43,8 +43,7 @@ namespace radiant {
 /// subtracting grows with them: a tessellated model between x and a light).
 double visibleFormFactor(const Scene &scene, const FaceTree *tree, const std::vector<uint32_t> *occluders,
                          const Vec3 &x, const Vec3 &n, std::span<const Vec3> polygon, const Vec3 &polygonNormal,
-                         int64_t skipFace, double scale, double *unoccluded = nullptr,
-                         size_t maxOccluders = SIZE_MAX);
+                         int64_t skipFace, double scale, double *unoccluded = nullptr, size_t maxOccluders = SIZE_MAX);
 
 struct EmitterPolygon {
   uint32_t face = 0;

@@ -90,9 +90,12 @@ double formFactorToPatches(const Vec3 &x, const Vec3 &n, const PatchSet &set, do
     // Far from it (over 4 of its sizes away), the patch is a point to 0.5 %;
     // close by, Lambert's contour integral.
     double term;
-    if (d2 > 16 * p->area) term = p->area * std::max(0.0, dot(d, n)) * from / (kPi * d2 * d2);
-    else if (dot(x - p->corners[0], p->normal) <= 0) continue;
-    else term = formFactorPointToPolygon(x, n, std::span<const Vec3>(p->corners.data(), size_t(p->vertexCount)));
+    if (d2 > 16 * p->area)
+      term = p->area * std::max(0.0, dot(d, n)) * from / (kPi * d2 * d2);
+    else if (dot(x - p->corners[0], p->normal) <= 0)
+      continue;
+    else
+      term = formFactorPointToPolygon(x, n, std::span<const Vec3>(p->corners.data(), size_t(p->vertexCount)));
     f += term;
     if (perPatch) perPatch[k] += term * weight;
   }
@@ -117,13 +120,16 @@ bool facesEachOther(const Vec3 &a, const Vec3 &na, const Vec3 &b, const Vec3 &nb
 void addCandidate(const MeshTreeNode &node, const Vec3 &nodeNormal, const Vec3 &point, const Vec3 &pointNormal,
                   size_t start, double weight, bool nodeIsSource, std::vector<RayCandidate> &out) {
   static constexpr double quadAt[4][2] = {{0.25, 0.25}, {0.75, 0.25}, {0.75, 0.75}, {0.25, 0.75}};
-  static constexpr double triangleAt[4][2] = {{1.0 / 6, 1.0 / 6}, {2.0 / 3, 1.0 / 6}, {1.0 / 6, 2.0 / 3}, {1.0 / 3, 1.0 / 3}};
+  static constexpr double triangleAt[4][2] = {
+      {1.0 / 6, 1.0 / 6}, {2.0 / 3, 1.0 / 6}, {1.0 / 6, 2.0 / 3}, {1.0 / 3, 1.0 / 3}};
   for (size_t t = 0; t < 4; ++t) {
     const auto &uv = node.vertexCount == 4 ? quadAt[(start + t) % 4] : triangleAt[(start + t) % 4];
     const Vec3 y = pointOnNode(node, uv[0], uv[1]);
     if (!facesEachOther(y, nodeNormal, point, pointNormal)) continue;
-    if (nodeIsSource) out.push_back({point, pointNormal, y, nodeNormal, weight});
-    else out.push_back({y, nodeNormal, point, pointNormal, weight});
+    if (nodeIsSource)
+      out.push_back({point, pointNormal, y, nodeNormal, weight});
+    else
+      out.push_back({y, nodeNormal, point, pointNormal, weight});
     return;
   }
 }
@@ -241,7 +247,8 @@ ClusterLinkEstimate estimateClusterLink(const RayTracer &tracer, const Hierarchy
     e.kernel = fitReceiverPolynomial(quad, std::span<const double>(values, rule.size()));
     // What the polynomial misses of the kernel, relative to its mean.
     double misfit = 0;
-    for (size_t k = 0; k < rule.size(); ++k) misfit = std::max(misfit, std::abs(values[k] - e.kernel.value(rule[k].u, rule[k].v)));
+    for (size_t k = 0; k < rule.size(); ++k)
+      misfit = std::max(misfit, std::abs(values[k] - e.kernel.value(rule[k].u, rule[k].v)));
     e.spread = e.kernelMean > 0 ? misfit / e.kernelMean : 0.0;
   } else {
     // A cluster receiver: each of its surfaces takes the irradiance from
@@ -254,7 +261,8 @@ ClusterLinkEstimate estimateClusterLink(const RayTracer &tracer, const Hierarchy
     // near field every surface takes that average.
     if (source.node) {
       const MeshTreeNode &s = *source.node;
-      const Vec3 gamma = vectorFormFactor(receiver.centre, std::span<const Vec3>(s.corners.data(), size_t(s.vertexCount)));
+      const Vec3 gamma =
+          vectorFormFactor(receiver.centre, std::span<const Vec3>(s.corners.data(), size_t(s.vertexCount)));
       const double magnitude = length(gamma);
       if (magnitude > 0) e.direction = -gamma / magnitude;
     }
@@ -276,8 +284,10 @@ ClusterLinkEstimate estimateClusterLink(const RayTracer &tracer, const Hierarchy
         share.assign(sourcePatches.patches.size(), 0.0);
         f = formFactorToPatches(x, p->normal, sourcePatches, share.data(), p->area);
         for (size_t j = 0; j < share.size(); ++j)
-          if (share[j] > 0 && facesEachOther(x, p->normal, sourcePatches.centroids[j], sourcePatches.patches[j]->normal))
-            candidates.push_back({x, p->normal, sourcePatches.centroids[j], sourcePatches.patches[j]->normal, share[j]});
+          if (share[j] > 0 &&
+              facesEachOther(x, p->normal, sourcePatches.centroids[j], sourcePatches.patches[j]->normal))
+            candidates.push_back(
+                {x, p->normal, sourcePatches.centroids[j], sourcePatches.patches[j]->normal, share[j]});
       }
       exact += p->area * f;
       cosine += p->area * std::max(0.0, -dot(p->normal, e.direction));
@@ -307,7 +317,8 @@ ClusterLinkEstimate estimateClusterLink(const RayTracer &tracer, const Hierarchy
   // Carried as the source's mean R: as far off as R strays, which the
   // oracle counts; and the receiver's surfaces all take the mean, which this
   // says may be off by all of it.
-  else if (e.isotropic && receiver.cluster) e.spread = std::max(e.spread, 1.0);
+  else if (e.isotropic && receiver.cluster)
+    e.spread = std::max(e.spread, 1.0);
 
   // Visibility, in proportion to the light each pair of points carries.
   if (e.kernelMean > 0) {

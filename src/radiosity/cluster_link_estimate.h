@@ -69,8 +69,8 @@ struct ClusterLinkEstimate {
   /// surface facing the source (its surfaces take it times their cosine).
   /// Isotropic (near field): what turns the source's mean R into irradiance.
   ReceiverPolynomial<double> kernel;
-  Vec3 direction;        ///< unit, from the source's centre to the receiver's
-  double kernelMean = 0; ///< the kernel's mean over the receiver, m⁻²
+  Vec3 direction;         ///< unit, from the source's centre to the receiver's
+  double kernelMean = 0;  ///< the kernel's mean over the receiver, m⁻²
   /// How far the kernel may be off, relative to its mean: over a tree node,
   /// what its polynomial misses at the cubature points; at a cluster
   /// receiver, whose surfaces all take the centre's distance, the point

@@ -47,9 +47,8 @@ struct Builder {
       return false;
     };
     auto begin = tree.order.begin() + first, end = begin + count;
-    uint32_t own = count <= kLeafPatches
-                       ? count
-                       : static_cast<uint32_t>(std::stable_partition(begin, end, large) - begin);
+    uint32_t own =
+        count <= kLeafPatches ? count : static_cast<uint32_t>(std::stable_partition(begin, end, large) - begin);
     if (count - own <= kLeafPatches) own = count;
     c.ownCount = own;
     tree.clusters[index] = c;

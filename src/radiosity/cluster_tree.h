@@ -28,8 +28,8 @@ namespace radiant {
 
 struct Cluster {
   Box3 bounds;
-  Vec3 centre;      ///< area-weighted centroid of its patches
-  double area = 0;  ///< one-sided area of all its patches, m²
+  Vec3 centre;                    ///< area-weighted centroid of its patches
+  double area = 0;                ///< one-sided area of all its patches, m²
   uint32_t first = 0, count = 0;  ///< its patches and its descendants': order[first, first + count)
   uint32_t ownCount = 0;          ///< the first ownCount of them are its own
   int32_t left = -1, right = -1;  ///< child clusters (both or neither)
@@ -38,10 +38,10 @@ struct Cluster {
 };
 
 struct ClusterTree {
-  std::vector<Cluster> clusters;        ///< [0] is the root; a parent precedes its children
-  std::vector<uint32_t> order;          ///< patch indices, grouped by cluster
-  std::vector<uint32_t> positionOf;     ///< per patch: its index in order
-  std::vector<uint32_t> ownerOf;        ///< per patch: the cluster it is an own patch of
+  std::vector<Cluster> clusters;     ///< [0] is the root; a parent precedes its children
+  std::vector<uint32_t> order;       ///< patch indices, grouped by cluster
+  std::vector<uint32_t> positionOf;  ///< per patch: its index in order
+  std::vector<uint32_t> ownerOf;     ///< per patch: the cluster it is an own patch of
 
   bool contains(uint32_t cluster, uint32_t patch) const {
     const Cluster &c = clusters[cluster];

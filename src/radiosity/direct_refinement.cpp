@@ -112,8 +112,8 @@ double DirectLightField::interpolationError(const MeshTreeNode &node, const Band
   if (n == 4) {
     for (int k = 0; k < 4; ++k)
       worst = std::max(worst, error(at(patch, p[4 + k]), (at(patch, p[k]) + at(patch, p[(k + 1) % 4])) * 0.5));
-    worst = std::max(worst, error(at(patch, p[8]),
-                                  (at(patch, p[0]) + at(patch, p[1]) + at(patch, p[2]) + at(patch, p[3])) * 0.25));
+    worst = std::max(
+        worst, error(at(patch, p[8]), (at(patch, p[0]) + at(patch, p[1]) + at(patch, p[2]) + at(patch, p[3])) * 0.25));
   } else {
     // mab, mbc, mac against their edges' ends.
     const int ends[3][2] = {{0, 1}, {1, 2}, {0, 2}};

@@ -76,8 +76,8 @@ class DirectLightField {
 };
 
 struct DirectRefinementOptions {
-  double minimumEdge = 0;   ///< metres: leaves whose longest edge is below twice this are not split
-  double tolerance = 0;     ///< W·m⁻²: the largest interpolation error ρ·|ΔH| a leaf may keep
+  double minimumEdge = 0;  ///< metres: leaves whose longest edge is below twice this are not split
+  double tolerance = 0;    ///< W·m⁻²: the largest interpolation error ρ·|ΔH| a leaf may keep
   size_t maxElements = 2'000'000;
   int threads = 0;
 };

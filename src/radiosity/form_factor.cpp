@@ -18,8 +18,8 @@
 #include <cmath>
 #include <vector>
 
-#include "util/sampling.h"
 #include "util/fast_angle.h"
+#include "util/sampling.h"
 
 namespace radiant {
 

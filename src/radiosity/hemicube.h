@@ -31,13 +31,12 @@ class Hemicube {
   /// factor to `formFactors[target(hit)]`; `target` maps a hit to an index (or
   /// −1 to ignore it). With `randomRotation` the cube is turned by a random
   /// angle about n (rad.c's remedy for aliasing). Returns Σ ΔF that hit nothing.
-  double gather(const RayTracer &tracer, const Vec3 &p, const Vec3 &n,
-                const std::function<int(const Hit &)> &target, std::vector<double> &formFactors, Pcg32 &rng,
-                bool randomRotation = true) const;
+  double gather(const RayTracer &tracer, const Vec3 &p, const Vec3 &n, const std::function<int(const Hit &)> &target,
+                std::vector<double> &formFactors, Pcg32 &rng, bool randomRotation = true) const;
 
  private:
   struct Pixel {
-    Vec3 direction;      ///< in the cube's frame, unnormalised (pixel centre)
+    Vec3 direction;  ///< in the cube's frame, unnormalised (pixel centre)
     double deltaFormFactor;
   };
   int resolution_;

@@ -37,8 +37,8 @@
 #include "radiosity/importance.h"
 #include "radiosity/solver.h"
 #include "raytrace/surface_detail.h"
-#include "util/sampling.h"
 #include "util/error.h"
+#include "util/sampling.h"
 
 namespace radiant {
 
@@ -53,10 +53,10 @@ struct Node {
   int level = 0;
   std::array<int32_t, 4> children{-1, -1, -1, -1};
   Bands emission, reflectance;
-  Bands radiosity;                  ///< B: at a leaf E + ρH, above the area average of the children
-  Bands gathered, gatheredDirect;   ///< Σ F·B_source and Σ F·E_source over this node's links
+  Bands radiosity;                     ///< B: at a leaf E + ρH, above the area average of the children
+  Bands gathered, gatheredDirect;      ///< Σ F·B_source and Σ F·E_source over this node's links
   Bands irradiance, irradianceDirect;  ///< leaves: everything pushed down to them
-  std::vector<uint32_t> links;      ///< incoming links (indices into Hierarchy::links_)
+  std::vector<uint32_t> links;         ///< incoming links (indices into Hierarchy::links_)
   bool isLeaf() const { return children[0] < 0; }
 };
 
@@ -138,8 +138,8 @@ class Hierarchy {
   }
 
   /// Gather + push–pull until B settles; returns the sweeps taken.
-  int solve(double tolerance, int maxSweeps, int &totalSweeps, double &residual,
-            const SolverProgressCallback &progress, std::chrono::steady_clock::time_point start) {
+  int solve(double tolerance, int maxSweeps, int &totalSweeps, double &residual, const SolverProgressCallback &progress,
+            std::chrono::steady_clock::time_point start) {
     int sweeps = 0;
     for (; sweeps < maxSweeps; ++sweeps) {
       for (Node &n : nodes_) {
@@ -151,8 +151,7 @@ class Hierarchy {
         }
       }
       double change = 0, largest = 0;
-      for (uint32_t root = 0; root < patchCount(); ++root)
-        pushPull(root, Bands(0.0), Bands(0.0), change, largest);
+      for (uint32_t root = 0; root < patchCount(); ++root) pushPull(root, Bands(0.0), Bands(0.0), change, largest);
       residual = largest > 0 ? change / largest : 0;
       ++totalSweeps;
       if (progress)
@@ -407,7 +406,7 @@ class Hierarchy {
   double threshold_ = 0, minimumArea_ = 0;
   size_t shadowRays_ = 0;
   uint32_t patchCount_ = 0;
-  size_t leaves_ = 0;  ///< current leaf count, bounded by options.maxElements
+  size_t leaves_ = 0;                                 ///< current leaf count, bounded by options.maxElements
   std::unique_ptr<ImportanceRefinement> importance_;  ///< --importance only
 };
 
@@ -455,11 +454,12 @@ void Hierarchy::writeTo(Solution &s) const {
     out.source = l.source;
     out.formFactor = static_cast<float>(l.formFactor);
     out.visibleFraction = static_cast<float>(l.visibleFraction);
-    out.visibility = l.visibleFraction <= 0 ? LinkVisibility::None
+    out.visibility = l.visibleFraction <= 0   ? LinkVisibility::None
                      : l.visibleFraction >= 1 ? LinkVisibility::Full
                                               : LinkVisibility::Partial;
     const Node &r = nodes_[l.receiver];
-    out.carriedPower = static_cast<float>((r.reflectance * nodes_[l.source].radiosity).average() * l.formFactor * r.area);
+    out.carriedPower =
+        static_cast<float>((r.reflectance * nodes_[l.source].radiosity).average() * l.formFactor * r.area);
     s.links.push_back(out);
   }
   s.mesh = std::move(mesh);

@@ -58,8 +58,8 @@ Vec3 pointOn(const MeshTreeNode &n, double u, double v) {
   return c[0] * (1 - u - v) + c[1] * u + c[2] * v;
 }
 
-
-std::array<double, 2> sourceMoments(const Vec3 &x, const Vec3 &n, const MeshTreeNode &source, const Vec3 &sourceNormal) {
+std::array<double, 2> sourceMoments(const Vec3 &x, const Vec3 &n, const MeshTreeNode &source,
+                                    const Vec3 &sourceNormal) {
   // Kernel weights at the source's moment points; the + a keeps a near
   // point's weights bounded, as in Wallace, Elmquist & Haines 1989.
   const bool quad = source.vertexCount == 4;
@@ -119,13 +119,15 @@ bool LinkEstimator::shaftOccluders(const LinkEnd &receiver, const LinkEnd &sourc
     }
     if (polygon.size() < 3) continue;
     double area = 0;
-    for (size_t k = 1; k + 1 < polygon.size(); ++k) area += length(cross(polygon[k] - polygon[0], polygon[k + 1] - polygon[0]));
+    for (size_t k = 1; k + 1 < polygon.size(); ++k)
+      area += length(cross(polygon[k] - polygon[0], polygon[k + 1] - polygon[0]));
     if (area > 1e-14 * scale_ * scale_) out.push_back(f);
   }
   return out.size() <= limit;
 }
 
-double LinkEstimator::sampledVisibility(const Vec3 &x, const Vec3 &n, const LinkEnd &source, double &uncertainty) const {
+double LinkEstimator::sampledVisibility(const Vec3 &x, const Vec3 &n, const LinkEnd &source,
+                                        double &uncertainty) const {
   const MeshTreeNode &s = source.node;
   constexpr int k = kVisibilityGrid;
   double all = 0, seen = 0;
@@ -161,8 +163,10 @@ LinkEstimate LinkEstimator::estimate(const LinkEnd &receiverEnd, const LinkEnd &
   const std::span<const Vec3> sourcePolygon(source.corners.data(), size_t(source.vertexCount));
   thread_local std::vector<uint32_t> occluders;
   bool sampled = false;
-  if (knownClear) occluders.clear();
-  else sampled = !shaftOccluders(receiverEnd, sourceEnd, occluders, tracer_ ? kMaxExactOccluders : SIZE_MAX);
+  if (knownClear)
+    occluders.clear();
+  else
+    sampled = !shaftOccluders(receiverEnd, sourceEnd, occluders, tracer_ ? kMaxExactOccluders : SIZE_MAX);
   e.clearShaft = !sampled && occluders.empty();
   double uncertainty = 0;
   const int count = static_cast<int>(rule.size());

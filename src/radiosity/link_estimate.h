@@ -30,7 +30,7 @@
 namespace radiant {
 
 struct LinkEstimate {
-  double formFactor = 0;   ///< F(receiver ← source), area mean over the receiver, visibility included
+  double formFactor = 0;  ///< F(receiver ← source), area mean over the receiver, visibility included
   /// The form factor as a polynomial over the receiver (its mean is
   /// formFactor), and where on the source the coupling lies: the
   /// kernel-weighted mean of the source's parameters (u, v) seen from the
@@ -50,7 +50,6 @@ struct LinkEstimate {
   /// between them, nor between any of their children.
   bool clearShaft = false;
 };
-
 
 /// One side of a link: a tree node, its patch's front normal and scene face.
 struct LinkEnd {

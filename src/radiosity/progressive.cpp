@@ -25,8 +25,8 @@
 
 #include "radiosity/form_factor.h"
 #include "radiosity/hemicube.h"
-#include "util/error.h"
 #include "radiosity/solver.h"
+#include "util/error.h"
 
 namespace radiant {
 
@@ -64,7 +64,7 @@ void solveProgressive(const RayTracer &tracer, Solution &s, const SolverOptions 
   const auto start = std::chrono::steady_clock::now();
   std::vector<Bands> unshotEmission = s.emission;  // not yet shot emission: becomes `direct` where it lands
   std::vector<Bands> unshotReflected(n, Bands(0.0));
-  std::vector<Bands> &irradiance = s.irradiance;    // H: what arrived, for reports and the energy balance
+  std::vector<Bands> &irradiance = s.irradiance;  // H: what arrived, for reports and the energy balance
   std::vector<std::vector<Vec3>> polygons(n);
   for (uint32_t j = 0; j < n; ++j) polygons[j] = s.mesh.polygon(j);
   const double emitted = s.stats.emittedPower.average();
@@ -77,11 +77,13 @@ void solveProgressive(const RayTracer &tracer, Solution &s, const SolverOptions 
 
   enum class Estimator { Analytic, RayCast, Hemicube };
   Estimator estimator = Estimator::Analytic;
-  if (options.formFactor == "ray-cast") estimator = Estimator::RayCast;
-  else if (options.formFactor == "hemicube") estimator = Estimator::Hemicube;
+  if (options.formFactor == "ray-cast")
+    estimator = Estimator::RayCast;
+  else if (options.formFactor == "hemicube")
+    estimator = Estimator::Hemicube;
   else if (options.formFactor != "analytic")
-    throw InputError(InputLocation{"--form-factor"},
-                     "unknown form-factor estimator '" + options.formFactor + "' (expected analytic, ray-cast or hemicube)");
+    throw InputError(InputLocation{"--form-factor"}, "unknown form-factor estimator '" + options.formFactor +
+                                                         "' (expected analytic, ray-cast or hemicube)");
   std::optional<Hemicube> hemicube;
   if (estimator == Estimator::Hemicube) hemicube.emplace(options.hemicubeResolution);
   // A hemicube pixel counts for the element it sees, if it sees that element's front.
@@ -135,8 +137,8 @@ void solveProgressive(const RayTracer &tracer, Solution &s, const SolverOptions 
           if (dot(receiver.centre - polygons[shooter][0], shooterNormal) <= 0) return;
           Pcg32 rng = sampleGenerator(options.seed, j, uint64_t(shot) + 1);
           if (estimator == Estimator::RayCast) {
-            formFactor[j] = formFactorRayCast(tracer, receiver.centre, receiverNormal, polygons[shooter],
-                                              shooterNormal, options.visibilitySamples, rng);
+            formFactor[j] = formFactorRayCast(tracer, receiver.centre, receiverNormal, polygons[shooter], shooterNormal,
+                                              options.visibilitySamples, rng);
             ++receiversTraced;
           } else {
             double f = formFactorPointToPolygon(receiver.centre, receiverNormal, polygons[shooter]);
@@ -163,7 +165,8 @@ void solveProgressive(const RayTracer &tracer, Solution &s, const SolverOptions 
     }
     // Shadow rays cast (at most: samples behind a receiver's plane are skipped).
     const size_t k = size_t(std::max(1L, std::lround(std::sqrt(double(options.visibilitySamples)))));
-    s.stats.formFactorRays += estimator == Estimator::Hemicube ? size_t(3) * hemicube->resolution() * hemicube->resolution()
+    s.stats.formFactorRays += estimator == Estimator::Hemicube
+                                  ? size_t(3) * hemicube->resolution() * hemicube->resolution()
                               : estimator == Estimator::RayCast ? receiversTraced * size_t(options.visibilitySamples)
                                                                 : receiversTraced * k * k;
     ++shot;

@@ -40,7 +40,9 @@ struct ReceiverPolynomial {
   }
   T value(double u, double v) const { return c[0] + c[1] * u + c[2] * v + c[3] * (u * v); }
   /// The mean over the node: over the unit square, or over the triangle.
-  T mean(bool quad) const { return quad ? c[0] + c[1] * 0.5 + c[2] * 0.5 + c[3] * 0.25 : c[0] + (c[1] + c[2]) * (1.0 / 3); }
+  T mean(bool quad) const {
+    return quad ? c[0] + c[1] * 0.5 + c[2] * 0.5 + c[3] * 0.25 : c[0] + (c[1] + c[2]) * (1.0 / 3);
+  }
 
   /// The same function in the parameters of child `child` (mesh/tree_mesh.cpp's
   /// layout: quads (0,0), (1,0), (1,1), (0,1); triangles the corners at

@@ -57,7 +57,8 @@ HierarchyEnd ReflectedLightHierarchy::hierarchyEnd(uint32_t id) const {
   if (!isCluster(id)) return HierarchyEnd::of(mesh_.tree[id], normalOf(id));
   const uint32_t c = clusterIndex(id);
   HierarchyEnd e = HierarchyEnd::of(clusters_.clusters[c]);
-  e.patches = std::span<const uint32_t>(clusters_.order.data() + clusters_.clusters[c].first, clusters_.clusters[c].count);
+  e.patches =
+      std::span<const uint32_t>(clusters_.order.data() + clusters_.clusters[c].first, clusters_.clusters[c].count);
   e.mesh = &mesh_;
   if (exactOffset_[c] < 0) e.areaHarmonics = &clusterArea_[c];
   return e;
@@ -214,8 +215,10 @@ void ReflectedLightHierarchy::keepClusterLink(uint32_t r, uint32_t s, const Clus
   record.nearField = nearField;
   const uint32_t index = static_cast<uint32_t>(clusterRecords_.size());
   clusterRecords_.push_back(record);
-  if (isCluster(r)) clusterLinks_[clusterIndex(r)].push_back(index);
-  else links_[r].push_back(index | kClusterBit);
+  if (isCluster(r))
+    clusterLinks_[clusterIndex(r)].push_back(index);
+  else
+    links_[r].push_back(index | kClusterBit);
 }
 
 void ReflectedLightHierarchy::gatherCluster(uint32_t c) {
@@ -229,7 +232,8 @@ void ReflectedLightHierarchy::gatherCluster(uint32_t c) {
     if (link.nearField) {
       // The same irradiance on every surface: R̄ times the mean factor.
       const Bands e = meanReflected(link.source) * double(link.kernel.c[0]);
-      if (offset < 0) field.addIsotropic(e);
+      if (offset < 0)
+        field.addIsotropic(e);
       else
         for (uint32_t k = 0; k < cluster.count; ++k) exactIrradiance_[size_t(offset) + k] += e;
       continue;

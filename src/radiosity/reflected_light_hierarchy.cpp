@@ -30,8 +30,15 @@ Bands nonNegative(Bands b) {
 ReflectedLightHierarchy::ReflectedLightHierarchy(const Scene &scene, const RayTracer &tracer, RadiosityMesh &mesh,
                                                  DirectLightField &field, const SolverOptions &options,
                                                  double minimumEdge)
-    : scene_(scene), tracer_(tracer), mesh_(mesh), field_(field), options_(options), faces_(scene),
-      estimator_(scene, faces_, &tracer), clusters_(buildClusterTree(mesh)), minimumEdge_(minimumEdge),
+    : scene_(scene),
+      tracer_(tracer),
+      mesh_(mesh),
+      field_(field),
+      options_(options),
+      faces_(scene),
+      estimator_(scene, faces_, &tracer),
+      clusters_(buildClusterTree(mesh)),
+      minimumEdge_(minimumEdge),
       arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic) {
   for (uint32_t n = 0; n < mesh_.tree.size(); ++n) {
     addNodeData(n);
@@ -45,7 +52,7 @@ void ReflectedLightHierarchy::addNodeData(uint32_t n) {
   const Patch &patch = mesh_.patches[t.patch];
   const Material &material = scene_.materials[patch.material];
   Bands rho = material.kind == MaterialKind::Lambertian || material.kind == MaterialKind::Glossy ? material.diffuse
-                                                                                                  : Bands(0.0);
+                                                                                                 : Bands(0.0);
   if (material.diffuseTextureIndex >= 0 && rho.max() > 0)
     rho = averageDiffuse(scene_, patch.face, std::span<const Vec3>(t.corners.data(), size_t(t.vertexCount)));
   reflectance_.push_back(rho);
@@ -102,7 +109,8 @@ void ReflectedLightHierarchy::updateVariation() {
   // exact restrictions of their parent's polynomial, which leaves the
   // parent's variation as it was (and a new leaf's is 0).
   arena_.execute([&] {
-    tbb::parallel_for(uint32_t(0), uint32_t(mesh_.tree.size()), [&](uint32_t n) { variation_[n] = computeVariation(n); });
+    tbb::parallel_for(uint32_t(0), uint32_t(mesh_.tree.size()),
+                      [&](uint32_t n) { variation_[n] = computeVariation(n); });
   });
 }
 
@@ -146,7 +154,8 @@ void ReflectedLightHierarchy::measureClosure() {
           if (sum > kClosureSlack) closure_[n] = float(1 / sum);
           return;
         }
-        for (int c = 0; c < 4; ++c) self(self, static_cast<uint32_t>(t.children[c]), down.restrictTo(t.vertexCount == 4, c));
+        for (int c = 0; c < 4; ++c)
+          self(self, static_cast<uint32_t>(t.children[c]), down.restrictTo(t.vertexCount == 4, c));
       };
       ReceiverPolynomial<Bands> down;
       down.c[0] = patchClusterIrradiance_[p];
@@ -197,7 +206,8 @@ int ReflectedLightHierarchy::solve(double tolerance, int maxSweeps, double &resi
     double c = *std::max_element(change.begin(), change.end()), m = *std::max_element(largest.begin(), largest.end());
     residual = m > 0 ? c / m : 0;
     if (progress)
-      progress({total, residual, tolerance, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+      progress({total, residual, tolerance,
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
     if (residual < tolerance) break;
   }
   return sweeps;
@@ -354,7 +364,8 @@ void ReflectedLightHierarchy::writeTo(Solution &s) const {
   // At the nodes: the direct light exact, the reflected light from each
   // leaf's polynomial at its corners, averaged over the leaves around.
   s.nodeDirectIrradiance.resize(mesh_.nodes.size());
-  for (uint32_t v = 0; v < mesh_.nodes.size(); ++v) s.nodeDirectIrradiance[v] = field_.at(mesh_.nodePatch[v], mesh_.nodes[v]);
+  for (uint32_t v = 0; v < mesh_.nodes.size(); ++v)
+    s.nodeDirectIrradiance[v] = field_.at(mesh_.nodePatch[v], mesh_.nodes[v]);
   s.nodeIndirectIrradiance.assign(mesh_.nodes.size(), Bands(0.0));
   std::vector<double> weight(mesh_.nodes.size(), 0.0);
   static constexpr double quadCorner[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
@@ -365,7 +376,8 @@ void ReflectedLightHierarchy::writeTo(Solution &s) const {
     const Element &element = mesh_.elements[e];
     const bool quad = element.vertexCount == 4;
     for (int k = 0; k < element.vertexCount; ++k) {
-      const double u = quad ? quadCorner[k][0] : triangleCorner[k][0], v = quad ? quadCorner[k][1] : triangleCorner[k][1];
+      const double u = quad ? quadCorner[k][0] : triangleCorner[k][0],
+                   v = quad ? quadCorner[k][1] : triangleCorner[k][1];
       s.nodeIndirectIrradiance[element.nodes[k]] += irradiance_[n].value(u, v) * element.area;
       weight[element.nodes[k]] += element.area;
     }

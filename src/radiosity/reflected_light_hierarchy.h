@@ -215,16 +215,16 @@ class ReflectedLightHierarchy {
   size_t leaves_ = 0;
   size_t rays_ = 0;
   // Per cluster.
-  std::vector<Bands> clusterReflectance_;        ///< largest ρ of its patches (at least kLeastReflectance)
+  std::vector<Bands> clusterReflectance_;                 ///< largest ρ of its patches (at least kLeastReflectance)
   std::vector<Bands> clusterReflected_, clusterLargest_;  ///< area mean and largest of its patches' R
-  std::vector<HarmonicBands> clusterIntensity_;  ///< Σ R_i A_i·lobe(n_i) (large clusters)
-  std::vector<HarmonicBands> clusterArea_;       ///< Σ A_i·lobe(n_i), every band alike
-  std::vector<HarmonicBands> clusterField_;      ///< radiance gathered (large clusters)
-  std::vector<HarmonicBands> clusterFieldBelow_; ///< clusterField_ summed from the root down
-  std::vector<int64_t> exactOffset_;             ///< small clusters: offset into exactIrradiance_, else −1
-  std::vector<Bands> exactIrradiance_;           ///< small clusters: per patch of its range, gathered
-  std::vector<std::vector<uint32_t>> clusterLinks_;  ///< incoming links, indices into clusterRecords_
-  std::vector<Bands> patchClusterIrradiance_;    ///< per patch: what the clusters above it pushed down
+  std::vector<HarmonicBands> clusterIntensity_;           ///< Σ R_i A_i·lobe(n_i) (large clusters)
+  std::vector<HarmonicBands> clusterArea_;                ///< Σ A_i·lobe(n_i), every band alike
+  std::vector<HarmonicBands> clusterField_;               ///< radiance gathered (large clusters)
+  std::vector<HarmonicBands> clusterFieldBelow_;          ///< clusterField_ summed from the root down
+  std::vector<int64_t> exactOffset_;                      ///< small clusters: offset into exactIrradiance_, else −1
+  std::vector<Bands> exactIrradiance_;                    ///< small clusters: per patch of its range, gathered
+  std::vector<std::vector<uint32_t>> clusterLinks_;       ///< incoming links, indices into clusterRecords_
+  std::vector<Bands> patchClusterIrradiance_;             ///< per patch: what the clusters above it pushed down
 };
 
 }  // namespace radiant

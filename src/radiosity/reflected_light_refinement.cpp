@@ -148,15 +148,18 @@ void ReflectedLightHierarchy::refine(std::vector<PendingPair> pending) {
       // holds, so split them; when neither can be split (a smallest cluster
       // with itself, or beside a smallest node), the near field.
       const bool splittable = canSplitEnd(r) || canSplitEnd(s);
-      if (r == s || endsOverlap(hierarchyEnd(r), hierarchyEnd(s))) kind[i] = splittable ? kSplitUnseen : kNearField;
-      else kind[i] = kClusterLink;
+      if (r == s || endsOverlap(hierarchyEnd(r), hierarchyEnd(s)))
+        kind[i] = splittable ? kSplitUnseen : kNearField;
+      else
+        kind[i] = kClusterLink;
     }
     estimates.assign(count, LinkEstimate{});
     clusterEstimates.assign(count, ClusterLinkEstimate{});
     arena_.execute([&] {
       tbb::parallel_for(size_t(0), count, [&](size_t i) {
         const uint32_t r = batch[i].receiver, s = batch[i].source;
-        if (kind[i] == kTreeNodes) estimates[i] = estimator_.estimate(end(r), end(s), batch[i].clearShaft);
+        if (kind[i] == kTreeNodes)
+          estimates[i] = estimator_.estimate(end(r), end(s), batch[i].clearShaft);
         else if (kind[i] != kSplitUnseen)
           clusterEstimates[i] = estimateClusterLink(tracer_, hierarchyEnd(r), hierarchyEnd(s), kind[i] == kNearField);
       });

@@ -71,7 +71,8 @@ void writeSurfaceReport(std::span<const Solution> passes, const Scene &scene, co
   std::string csv =
       "object,area_m2,radiosity_R_W_m2,radiosity_G_W_m2,radiosity_B_W_m2,irradiance_R_W_m2,irradiance_G_W_m2,"
       "irradiance_B_W_m2,luminance_cd_m2,illuminance_lux";
-  for (int i = 0; spectral && i < bands; ++i) csv += fmt::format(",radiosity_{:g}nm_W_m2_nm", scene.spectral.wavelengths[i]);
+  for (int i = 0; spectral && i < bands; ++i)
+    csv += fmt::format(",radiosity_{:g}nm_W_m2_nm", scene.spectral.wavelengths[i]);
   csv += "\n";
   for (size_t o = 0; o < scene.objects.size(); ++o) {
     const double area = totals[0][o].area;
@@ -97,9 +98,9 @@ void writeSurfaceReport(std::span<const Solution> passes, const Scene &scene, co
     // Lambertian: radiance = B/π; photometric = 683 lm/W × luminance-weighted
     // radiometric value. For spectral scenes Y is always the unbalanced ȳ
     // integral: a white balance changes colours for display, not photometry.
-    csv += fmt::format("{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}", csvField(scene.objects[o].name),
-                       area, rgbB.x, rgbB.y, rgbB.z, rgbH.x, rgbH.y, rgbH.z, kLuminousEfficacy * yB / kPi,
-                       kLuminousEfficacy * yH);
+    csv += fmt::format("{},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}",
+                       csvField(scene.objects[o].name), area, rgbB.x, rgbB.y, rgbB.z, rgbH.x, rgbH.y, rgbH.z,
+                       kLuminousEfficacy * yB / kPi, kLuminousEfficacy * yH);
     for (int i = 0; spectral && i < bands; ++i) csv += fmt::format(",{:.9g}", b[i] * perNm);
     csv += "\n";
   }

@@ -1,9 +1,9 @@
 #include "radiosity/solution.h"
 
-#include "raytrace/surface_detail.h"
-
 #include <cmath>
 #include <unordered_map>
+
+#include "raytrace/surface_detail.h"
 
 namespace radiant {
 
@@ -153,7 +153,8 @@ void Solution::updateNodesAndErrors() {
 std::vector<Bands> Solution::nodeIndirectRadiosity() const {
   if (!hasNodeIrradiance()) {
     std::vector<Bands> indirectPerElement(elementCount());
-    for (uint32_t e = 0; e < elementCount(); ++e) indirectPerElement[e] = indirect[e] + reflectance[e] * indirectAmbient;
+    for (uint32_t e = 0; e < elementCount(); ++e)
+      indirectPerElement[e] = indirect[e] + reflectance[e] * indirectAmbient;
     return nodeValues(indirectPerElement);
   }
   std::vector<Bands> values(mesh.nodes.size());
@@ -165,7 +166,8 @@ std::vector<Bands> Solution::nodeIndirectRadiosity() const {
 Bands Solution::textureFactor(const MeshLocation &location, const Bands &rho) const {
   Bands average = nodeReflectance.empty() ? reflectance[location.element] : interpolate(nodeReflectance, location);
   Bands factor(0.0);
-  for (int b = 0; b < kBandCount; ++b) factor[b] = average[b] > 0 ? rho[b] / average[b] : 0.0;  // ρ̄ = 0: nothing reflected
+  for (int b = 0; b < kBandCount; ++b)
+    factor[b] = average[b] > 0 ? rho[b] / average[b] : 0.0;  // ρ̄ = 0: nothing reflected
   return factor;
 }
 

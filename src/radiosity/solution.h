@@ -17,12 +17,12 @@ namespace radiant {
 
 struct SolveStats {
   std::string solver;
-  int iterations = 0;            ///< sweeps (Gauss–Seidel) or shots (progressive)
-  double residual = 0;           ///< last sweep's max change of B over the largest B − E, or the unshot power fraction
+  int iterations = 0;   ///< sweeps (Gauss–Seidel) or shots (progressive)
+  double residual = 0;  ///< last sweep's max change of B over the largest B − E, or the unshot power fraction
   double seconds = 0;
-  Bands emittedPower;            ///< Σ A E, W
-  Bands absorbedPower;           ///< Σ A (1−ρ) H, W
-  Bands escapedPower;            ///< emitted − absorbed − still unshot (open scenes), W
+  Bands emittedPower;   ///< Σ A E, W
+  Bands absorbedPower;  ///< Σ A (1−ρ) H, W
+  Bands escapedPower;   ///< emitted − absorbed − still unshot (open scenes), W
   size_t formFactorRays = 0;
   /// Hierarchical solvers: the links at the end, and how many of them have a
   /// cluster at one end (not kept in the solution file).
@@ -36,28 +36,29 @@ enum class LinkVisibility : uint8_t { None = 0, Partial = 1, Full = 2 };
 /// (indices into RadiosityMesh::tree, at any level).
 struct Link {
   uint32_t receiver = 0, source = 0;
-  float formFactor = 0;        ///< F(receiver ← source), visibility included
-  float visibleFraction = 0;   ///< of the shadow rays between them
+  float formFactor = 0;       ///< F(receiver ← source), visibility included
+  float visibleFraction = 0;  ///< of the shadow rays between them
   LinkVisibility visibility = LinkVisibility::Full;
-  float carriedPower = 0;      ///< ρ_r F B_s A_r, W (band average): what the link transports
+  float carriedPower = 0;  ///< ρ_r F B_s A_r, W (band average): what the link transports
 };
 
 struct Solution {
   RadiosityMesh mesh;
-  std::vector<Bands> reflectance;   ///< ρ per element (the diffuse part of its material)
-  std::vector<Bands> emission;      ///< E = π·L_e per element, W·m⁻²
-  std::vector<Bands> radiosity;     ///< B per element, W·m⁻²
-  std::vector<Bands> direct;        ///< received straight from emitters, W·m⁻²
-  std::vector<Bands> indirect;      ///< received after one or more reflections, W·m⁻²
-  std::vector<Bands> unshot;        ///< progressive refinement's unshot radiosity, W·m⁻²
-  std::vector<Bands> irradiance;    ///< H, arriving at the front, W·m⁻² (B = E + ρH)
-  Bands ambient;                    ///< progressive refinement's ambient term (display only)
+  std::vector<Bands> reflectance;  ///< ρ per element (the diffuse part of its material)
+  std::vector<Bands> emission;     ///< E = π·L_e per element, W·m⁻²
+  std::vector<Bands> radiosity;    ///< B per element, W·m⁻²
+  std::vector<Bands> direct;       ///< received straight from emitters, W·m⁻²
+  std::vector<Bands> indirect;     ///< received after one or more reflections, W·m⁻²
+  std::vector<Bands> unshot;       ///< progressive refinement's unshot radiosity, W·m⁻²
+  std::vector<Bands> irradiance;   ///< H, arriving at the front, W·m⁻² (B = E + ρH)
+  Bands ambient;                   ///< progressive refinement's ambient term (display only)
   /// The part of `ambient` that is not the first arrival of still-unshot
   /// emission: what a method that samples the emitters per pixel (shirley,
   /// kok) may add as indirect light without counting direct light twice.
   Bands indirectAmbient;
-  std::vector<double> errorEstimate;///< per element: max relative difference between its nodes and itself
-  std::vector<Bands> nodeRadiosity; ///< display B (ambient included) at mesh nodes: area-weighted average of the elements around
+  std::vector<double> errorEstimate;  ///< per element: max relative difference between its nodes and itself
+  std::vector<Bands>
+      nodeRadiosity;  ///< display B (ambient included) at mesh nodes: area-weighted average of the elements around
   /// When the solver computed them at the nodes themselves (hierarchical-exact):
   /// the irradiance arriving there straight from the emitters, exact
   /// (radiosity/backprojection.h), and after reflections, W·m⁻². nodeRadiosity
@@ -76,8 +77,8 @@ struct Solution {
   /// ρ̄ at the nodes (nodeValues of `reflectance`): with textures, the texture
   /// averaged over each element; recomputed by updateNodesAndErrors and on reading.
   std::vector<Bands> nodeReflectance;
-  std::vector<Link> links;          ///< hierarchical solver only
-  std::vector<Bands> treeRadiosity; ///< B of every mesh.tree node (hierarchical solver only)
+  std::vector<Link> links;           ///< hierarchical solver only
+  std::vector<Bands> treeRadiosity;  ///< B of every mesh.tree node (hierarchical solver only)
   SolveStats stats;
 
   size_t elementCount() const { return mesh.elements.size(); }

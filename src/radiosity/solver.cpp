@@ -4,8 +4,8 @@
 
 #include <chrono>
 
-#include "util/sampling.h"
 #include "util/error.h"
+#include "util/sampling.h"
 
 namespace radiant {
 
@@ -145,8 +145,8 @@ void solveRadiosity(const RayTracer &tracer, Solution &solution, const SolverOpt
     names += std::string(", ") + info.name;
   }
   if (!chosen)
-    throw InputError(InputLocation{"--solver"}, fmt::format("unknown solver '{}'; known solvers: {}", options.solver,
-                                                            names));
+    throw InputError(InputLocation{"--solver"},
+                     fmt::format("unknown solver '{}'; known solvers: {}", options.solver, names));
   auto start = std::chrono::steady_clock::now();
   solution.stats.solver = chosen->name;
   chosen->solve(tracer, solution, options, progress);

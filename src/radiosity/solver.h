@@ -28,8 +28,8 @@ struct SolverOptions {
   /// largest reflected radiosity B − E; progressive: unshot power over
   /// emitted power.
   double tolerance = 1e-3;
-  int maxIterations = 0;         ///< sweeps or shots; 0: no limit beyond the tolerance
-  int visibilitySamples = 4;     ///< shadow rays per form factor
+  int maxIterations = 0;      ///< sweeps or shots; 0: no limit beyond the tolerance
+  int visibilitySamples = 4;  ///< shadow rays per form factor
   /// Progressive: how F(dA_j → A_i) is estimated. "analytic": Lambert's contour
   /// integral × the visible fraction of the shooter; "ray-cast": Wallace et
   /// al.'s disc sum; "hemicube": one hemicube at the shooter, F_ji = F_ij A_i/A_j.
@@ -66,9 +66,9 @@ struct SolverOptions {
   /// meshAndSolve with another solver: rounds of "split the elements whose
   /// error estimate exceeds adaptiveThreshold, solve again" (0: uniform mesh).
   int adaptiveRounds = 0;
-  double adaptiveThreshold = 0.1;      ///< hierarchical: refine, solve, re-refine with the new B, … (at most)
+  double adaptiveThreshold = 0.1;  ///< hierarchical: refine, solve, re-refine with the new B, … (at most)
   uint64_t seed = 1;
-  int threads = 0;               ///< 0: all cores; results do not depend on it
+  int threads = 0;  ///< 0: all cores; results do not depend on it
 };
 
 struct SolverProgress {

@@ -102,8 +102,8 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
             } else {
               double b1, b2;
               sampleUniformTriangle(a, b, b1, b2);
-              origin = s.mesh.nodes[nodes[0]] * (1 - b1 - b2) + s.mesh.nodes[nodes[1]] * b1 +
-                       s.mesh.nodes[nodes[2]] * b2;
+              origin =
+                  s.mesh.nodes[nodes[0]] * (1 - b1 - b2) + s.mesh.nodes[nodes[1]] * b1 + s.mesh.nodes[nodes[2]] * b2;
             }
             Vec3 direction = Frame::fromNormal(normal).toWorld(sampleCosineHemisphere(d1, d2));
             Hit hit;

@@ -25,8 +25,7 @@ RayTracer::RayTracer(const Scene &scene) : scene_(scene) {
   rtcSetSceneFlags(rtcScene_, RTC_SCENE_FLAG_ROBUST);
 
   double extent = 0;
-  for (const Vec3 &p : scene.positions)
-    extent = std::max({extent, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  for (const Vec3 &p : scene.positions) extent = std::max({extent, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
   // Float has 24 bits; 2^-17 of the scene's magnitude is ~100 ulps of it.
   epsilon_ = std::max(1e-9, extent * 7.6e-6);
 

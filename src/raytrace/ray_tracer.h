@@ -16,12 +16,12 @@
 namespace radiant {
 
 struct Hit {
-  double distance = 0;     ///< along the (unit) ray direction, metres
-  uint32_t triangle = 0;   ///< index into Scene::triangles
-  double b1 = 0, b2 = 0;   ///< barycentrics of vertices 1 and 2 (vertex 0 has 1 − b1 − b2)
+  double distance = 0;    ///< along the (unit) ray direction, metres
+  uint32_t triangle = 0;  ///< index into Scene::triangles
+  double b1 = 0, b2 = 0;  ///< barycentrics of vertices 1 and 2 (vertex 0 has 1 − b1 − b2)
   Vec3 position;
-  Vec3 geometricNormal;    ///< unit, the triangle's front side (counter-clockwise winding)
-  Vec3 shadingNormal;      ///< unit, interpolated vertex normals, oriented to the geometric normal's side
+  Vec3 geometricNormal;  ///< unit, the triangle's front side (counter-clockwise winding)
+  Vec3 shadingNormal;    ///< unit, interpolated vertex normals, oriented to the geometric normal's side
   uint32_t material = 0;
   uint32_t face = 0;
 };

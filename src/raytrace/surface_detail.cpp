@@ -111,8 +111,8 @@ Bands averageDiffuse(const Scene &scene, uint32_t face, std::span<const Vec3> po
   // The face's triangles are consecutive in Scene::triangles (Scene::addFace).
   auto first = std::lower_bound(scene.triangles.begin(), scene.triangles.end(), face,
                                 [](const Triangle &t, uint32_t f) { return t.face < f; });
-  auto last = std::upper_bound(first, scene.triangles.end(), face,
-                               [](uint32_t f, const Triangle &t) { return f < t.face; });
+  auto last =
+      std::upper_bound(first, scene.triangles.end(), face, [](uint32_t f, const Triangle &t) { return f < t.face; });
   if (first == last) return m.diffuse;
   // The texture map is affine on each triangle, not across a quad's diagonal
   // (review): cut the polygon by each triangle, average each piece in its
@@ -137,7 +137,8 @@ Bands averageDiffuse(const Scene &scene, uint32_t face, std::span<const Vec3> po
     }
     if (piece.size() < 3) continue;
     double pieceArea = 0;
-    for (size_t i = 1; i + 1 < piece.size(); ++i) pieceArea += 0.5 * length(cross(piece[i] - piece[0], piece[i + 1] - piece[0]));
+    for (size_t i = 1; i + 1 < piece.size(); ++i)
+      pieceArea += 0.5 * length(cross(piece[i] - piece[0], piece[i + 1] - piece[0]));
     if (!(pieceArea > 0)) continue;
     std::vector<std::array<double, 2>> uvPiece;
     for (const Vec3 &q : piece) {

@@ -21,8 +21,8 @@ constexpr double kMaxTexturedReflectance = 0.999;
 struct SurfaceParameterisation {
   double u = 0, v = 0;
   Vec3 dpdu, dpdv;
-  bool hasUv = false;      ///< false: the face has no texture coordinates (u = v = 0)
-  double uvPerMetre = 0;   ///< texture-space length per metre on the surface (for filter widths)
+  bool hasUv = false;     ///< false: the face has no texture coordinates (u = v = 0)
+  double uvPerMetre = 0;  ///< texture-space length per metre on the surface (for filter widths)
 };
 SurfaceParameterisation surfaceParameterisation(const Scene &scene, const Triangle &triangle, double b1, double b2);
 

@@ -13,8 +13,8 @@ namespace radiant {
 
 struct BsdfSample {
   Vec3 wi;
-  Bands weight;        ///< f·|cos θi| / pdf (for delta lobes: the lobe's reflectance or transmittance)
-  double pdf = 0;      ///< solid-angle density; meaningless for delta lobes
+  Bands weight;    ///< f·|cos θi| / pdf (for delta lobes: the lobe's reflectance or transmittance)
+  double pdf = 0;  ///< solid-angle density; meaningless for delta lobes
   bool isDelta = false;
   bool isTransmission = false;
 };
@@ -41,11 +41,11 @@ class Bsdf {
   double specularLobeProbability() const;
 
   const Material &material_;
-  Bands diffuse_;        ///< the Lambertian (or glossy base) reflectance at this point
-  Frame frame_;          ///< shading frame, normal on the side of wo (except for glass)
-  Vec3 geometricNormal_; ///< flipped to the side of wo
+  Bands diffuse_;         ///< the Lambertian (or glossy base) reflectance at this point
+  Frame frame_;           ///< shading frame, normal on the side of wo (except for glass)
+  Vec3 geometricNormal_;  ///< flipped to the side of wo
   Vec3 woLocal_;
-  bool entering_ = true; ///< glass: wo on the front side (outside)
+  bool entering_ = true;  ///< glass: wo on the front side (outside)
 };
 
 /// Fresnel reflectance of a smooth dielectric interface for unpolarised light.

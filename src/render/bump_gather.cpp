@@ -92,7 +92,8 @@ BumpGather::BumpGather(const RayTracer &tracer, const Solution &solution, const 
 Bands BumpGather::nodeRatio(uint32_t node, const Vec3 &bumpedNormal) const {
   if (nodeTable_.empty() || nodeTable_[node] < 0) return Bands(1.0);
   const float *table = &ratios_[size_t(nodeTable_[node]) * kTilts * azimuths_ * kBandCount];
-  const Vec3 local = Frame::fromNormal(solution_.mesh.patches[solution_.mesh.nodePatch[node]].normal).toLocal(bumpedNormal);
+  const Vec3 local =
+      Frame::fromNormal(solution_.mesh.patches[solution_.mesh.nodePatch[node]].normal).toLocal(bumpedNormal);
   // Tilt levels at 0 (the flat normal, ratio 1), 30° and 60°, interpolated in
   // 1 − cos θ', in which a uniform field's ratio (1 + cos θ')/2 is linear;
   // clamped at the last level. Azimuth: linear, wrapping.
@@ -100,7 +101,8 @@ Bands BumpGather::nodeRatio(uint32_t node, const Vec3 &bumpedNormal) const {
   const double c = std::clamp(local.z, -1.0, 1.0);
   double tilt = kTilts;
   for (int t = 1; t <= kTilts; ++t) {
-    const double lo = level(std::cos((t - 1) * kTiltStepDegrees * kPi / 180)), hi = level(std::cos(t * kTiltStepDegrees * kPi / 180));
+    const double lo = level(std::cos((t - 1) * kTiltStepDegrees * kPi / 180)),
+                 hi = level(std::cos(t * kTiltStepDegrees * kPi / 180));
     if (level(c) <= hi) {
       tilt = (t - 1) + (level(c) - lo) / (hi - lo);
       break;

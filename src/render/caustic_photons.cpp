@@ -8,8 +8,8 @@
 
 #include "render/bsdf.h"
 #include "render/light_sampler.h"
-#include "util/sampling.h"
 #include "util/random.h"
+#include "util/sampling.h"
 
 namespace radiant {
 
@@ -55,7 +55,8 @@ CausticPhotonMap::CausticPhotonMap(const RayTracer &tracer, size_t emitted, uint
         if (!material.isDelta()) {
           // L S+ D: stored only after a specular bounce (otherwise it is direct light).
           if (bounce > 0)
-            stored[c].push_back({hit.position, dot(wo, hit.geometricNormal) >= 0 ? hit.geometricNormal : -hit.geometricNormal, power});
+            stored[c].push_back(
+                {hit.position, dot(wo, hit.geometricNormal) >= 0 ? hit.geometricNormal : -hit.geometricNormal, power});
           break;
         }
         Bsdf bsdf(material, hit.shadingNormal, hit.geometricNormal, wo);

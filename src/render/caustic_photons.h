@@ -21,8 +21,8 @@ namespace radiant {
 
 struct CausticPhoton {
   Vec3 position;
-  Vec3 normal;   ///< geometric normal of the surface it landed on, on the side it arrived from
-  Bands power;   ///< W
+  Vec3 normal;  ///< geometric normal of the surface it landed on, on the side it arrived from
+  Bands power;  ///< W
 };
 
 class CausticPhotonMap {
@@ -71,8 +71,8 @@ class CausticPhotonMap {
     float normal[3], power[kBandCount];
   };
   std::vector<GridPhoton> cellPhotons_;  ///< by cell
-  std::vector<Slot> table_;         ///< open addressing, linear probing, power-of-two size
-  std::vector<uint64_t> occupied_;  ///< one bit per hashed cell key
+  std::vector<Slot> table_;              ///< open addressing, linear probing, power-of-two size
+  std::vector<uint64_t> occupied_;       ///< one bit per hashed cell key
   size_t emitted_ = 0;
   double radius_ = 0, cellSize_ = 0;
 };

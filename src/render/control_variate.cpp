@@ -8,9 +8,13 @@
 namespace radiant {
 
 ControlVariateImage::ControlVariateImage(int width, int height, int tileSize)
-    : width_(width), height_(height), tileSize_(std::max(1, tileSize)),
-      tilesX_((width + tileSize_ - 1) / tileSize_), tilesY_((height + tileSize_ - 1) / tileSize_),
-      controls_(width, height), pairs_(width, height) {}
+    : width_(width),
+      height_(height),
+      tileSize_(std::max(1, tileSize)),
+      tilesX_((width + tileSize_ - 1) / tileSize_),
+      tilesY_((height + tileSize_ - 1) / tileSize_),
+      controls_(width, height),
+      pairs_(width, height) {}
 
 void ControlVariateImage::addControls(const Film &controls) {
   controls_.accumulate(controls);

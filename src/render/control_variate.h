@@ -80,8 +80,8 @@ class ControlVariateImage {
   std::vector<double> pixelWeights(const std::vector<TileStats> &tiles) const;
 
   int width_, height_, tileSize_, tilesX_, tilesY_;
-  Film controls_;      ///< every R sample
-  PairedFilm pairs_;   ///< R and D of the paired samples
+  Film controls_;     ///< every R sample
+  PairedFilm pairs_;  ///< R and D of the paired samples
   int controlSpp_ = 0, pairedSpp_ = 0;
 };
 

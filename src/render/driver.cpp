@@ -8,8 +8,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <mutex>
 
@@ -31,8 +31,8 @@ struct Tile {
 /// sample. `stopConverged`, when given, clears between rounds the flags of
 /// the active pixels that may stop (from kMinimumSamples on).
 template <typename Shade>
-RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, int width, int height,
-                  const Shade &shade, const ProgressCallback &progress,
+RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, int width, int height, const Shade &shade,
+                  const ProgressCallback &progress,
                   const std::function<void(std::vector<uint8_t> &active)> &stopConverged = {}) {
   const auto start = Clock::now();
   std::vector<Tile> tiles;
@@ -125,8 +125,8 @@ RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, int
 
 }  // namespace
 
-RenderStats renderImage(const PinholeCamera &camera, const Renderer &renderer, const DriverOptions &options,
-                        Film &film, const ProgressCallback &progress) {
+RenderStats renderImage(const PinholeCamera &camera, const Renderer &renderer, const DriverOptions &options, Film &film,
+                        const ProgressCallback &progress) {
   std::function<void(std::vector<uint8_t> &)> stopConverged;
   if (options.stopConvergedPixels && renderer.variesOnlyAcrossThePixel())
     stopConverged = [&](std::vector<uint8_t> &active) {
@@ -167,8 +167,9 @@ ProgressCallback makeConsoleProgress(const std::string &label) {
   auto lastLine = std::make_shared<Clock::time_point>(Clock::now());
   return [terminal, label, lastLine](const Progress &p) {
     std::string eta = p.etaSeconds >= 0 ? fmt::format("{:.1f}s", p.etaSeconds) : std::string("?");
-    std::string samples = p.timeBudgetSeconds > 0 ? fmt::format("{} spp, budget {:g}s", p.samplesDone, p.timeBudgetSeconds)
-                                                  : fmt::format("{}/{} spp", p.samplesDone, p.samplesTarget);
+    std::string samples = p.timeBudgetSeconds > 0
+                              ? fmt::format("{} spp, budget {:g}s", p.samplesDone, p.timeBudgetSeconds)
+                              : fmt::format("{}/{} spp", p.samplesDone, p.samplesTarget);
     if (terminal) {
       constexpr int kWidth = 30;
       int filled = static_cast<int>(p.fraction * kWidth + 0.5);

@@ -31,7 +31,7 @@ struct DriverOptions {
   int samplesPerPixel = 64;
   double timeBudgetSeconds = 0;  ///< 0: none; else stop after the round that reaches it
   uint64_t seed = 1;
-  int threads = 0;               ///< 0: all hardware threads
+  int threads = 0;  ///< 0: all hardware threads
   int tileSize = 16;
   /// Restrict rendering to one pixel (debugging); −1 for the whole image.
   int onlyPixelX = -1, onlyPixelY = -1;
@@ -43,10 +43,10 @@ constexpr int kMinimumSamples = 8;
 constexpr double kPixelTolerance = 1e-3;
 
 struct Progress {
-  int samplesDone = 0;    ///< complete samples per pixel so far
+  int samplesDone = 0;  ///< complete samples per pixel so far
   int samplesTarget = 0;
   double timeBudgetSeconds = 0;  ///< > 0 when a time budget decides the end
-  double fraction = 0;    ///< of the current estimate of total work
+  double fraction = 0;           ///< of the current estimate of total work
   double elapsedSeconds = 0;
   double etaSeconds = 0;  ///< < 0 when unknown
 };
@@ -61,8 +61,8 @@ using ProgressCallback = std::function<void(const Progress &)>;
 
 /// Renders into `film` (which must be sized already). Calls `progress` from the
 /// calling thread's context, at most a few times a second.
-RenderStats renderImage(const PinholeCamera &camera, const Renderer &renderer, const DriverOptions &options,
-                        Film &film, const ProgressCallback &progress = {});
+RenderStats renderImage(const PinholeCamera &camera, const Renderer &renderer, const DriverOptions &options, Film &film,
+                        const ProgressCallback &progress = {});
 
 /// The same for paired samples (Renderer::pairedRadiance): multipass's control variate.
 RenderStats renderPairedImage(const PinholeCamera &camera, const Renderer &renderer, const DriverOptions &options,

@@ -53,8 +53,13 @@ struct PairedFilm {
 
   PairedFilm() = default;
   PairedFilm(int w, int h)
-      : width(w), height(h), sumControl(size_t(w) * h), sumControlSquares(size_t(w) * h),
-        sumDifference(size_t(w) * h), sumDifferenceSquares(size_t(w) * h), sumProducts(size_t(w) * h),
+      : width(w),
+        height(h),
+        sumControl(size_t(w) * h),
+        sumControlSquares(size_t(w) * h),
+        sumDifference(size_t(w) * h),
+        sumDifferenceSquares(size_t(w) * h),
+        sumProducts(size_t(w) * h),
         samples(size_t(w) * h) {}
 
   size_t pixelCount() const { return size_t(width) * height; }

@@ -14,9 +14,9 @@ namespace radiant {
 
 struct LightSample {
   Vec3 position;
-  Vec3 normal;        ///< the emitter's front side
-  Bands radiance;     ///< emitted radiance towards the front, W·sr⁻¹·m⁻²
-  double pdfArea = 0; ///< density per unit area, m⁻²
+  Vec3 normal;         ///< the emitter's front side
+  Bands radiance;      ///< emitted radiance towards the front, W·sr⁻¹·m⁻²
+  double pdfArea = 0;  ///< density per unit area, m⁻²
   uint32_t triangle = 0;
 };
 
@@ -38,10 +38,10 @@ class LightSampler {
 
  private:
   const Scene &scene_;
-  std::vector<uint32_t> emitters_;       ///< triangle indices
-  std::vector<double> cumulative_;       ///< CDF over emitters_
-  std::vector<double> probability_;      ///< per emitter
-  std::vector<double> pdfAreaByTriangle_;///< per scene triangle
+  std::vector<uint32_t> emitters_;         ///< triangle indices
+  std::vector<double> cumulative_;         ///< CDF over emitters_
+  std::vector<double> probability_;        ///< per emitter
+  std::vector<double> pdfAreaByTriangle_;  ///< per scene triangle
   Bands totalPower_;
 };
 

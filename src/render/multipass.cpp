@@ -19,7 +19,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
 
 /// Shots of the progressive solution before the preview: the first image
 /// comes within a second on the Cornell box.
@@ -138,13 +140,13 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
     // by the forecast, with a floor on the pairs' share.
     const double spentSoFar = controlSpent + pairedSpent;
     const double pairCost = budgeted ? pairedCost : 1.0;
-    const double controlCostNow = budgeted ? (controlCost > 0 ? controlCost : kControlCostRatio * pairedCost)
-                                           : kControlCostRatio;
+    const double controlCostNow =
+        budgeted ? (controlCost > 0 ? controlCost : kControlCostRatio * pairedCost) : kControlCostRatio;
     const double minimumLength = budgeted ? kMinPassSeconds : kMinPassUnits;
     double length = std::max(minimumLength, spentSoFar);
     const double left = budgeted ? options.timeBudgetSeconds - secondsSince(start) : unitsLeft;
     if (budgeted && left < 0.5 * minimumLength) break;  // a sliver of a pass would cost an image for nothing
-    if (left - length < 0.5 * length) length = left;  // no sliver of a pass at the end
+    if (left - length < 0.5 * length) length = left;    // no sliver of a pass at the end
     length = std::min(length, left);
     bool paired = true;
     if (combined.pairedSamples() > 0) {

@@ -52,10 +52,10 @@ struct MultipassPass {
   double seconds = 0;       ///< wall time of this pass, solving included
   bool unbiased = false;    ///< passes 3…: it rendered paired (unbiased) samples, not only R
   // Passes 3…, all passes so far together (render/control_variate.h):
-  int controlSamples = 0;      ///< R samples per pixel (R-only passes and pairs)
-  int pairedSamples = 0;       ///< paired samples per pixel
-  double unbiasedWeight = 0;   ///< λ, the weight of the pairs' correction, averaged over the pixels
-  double estimatedBias = 0;    ///< RMS of R's bias as the pairs measure it, W·sr⁻¹·m⁻²
+  int controlSamples = 0;     ///< R samples per pixel (R-only passes and pairs)
+  int pairedSamples = 0;      ///< paired samples per pixel
+  double unbiasedWeight = 0;  ///< λ, the weight of the pairs' correction, averaged over the pixels
+  double estimatedBias = 0;   ///< RMS of R's bias as the pairs measure it, W·sr⁻¹·m⁻²
   size_t causticPhotons = 0;  ///< stored in this pass's map
   double photonRadius = 0;
 };

@@ -15,12 +15,12 @@
 // the image dark, for debugging only).
 #include "render/path_tracer.h"
 
-#include "render/bsdf.h"
-#include "render/light_sampler.h"
 #include "radiosity/solution.h"
-#include "render/caustic_photons.h"
-#include "util/sampling.h"
 #include "raytrace/surface_detail.h"
+#include "render/bsdf.h"
+#include "render/caustic_photons.h"
+#include "render/light_sampler.h"
+#include "util/sampling.h"
 
 namespace radiant {
 
@@ -29,9 +29,14 @@ namespace {
 class PathTracer final : public Renderer {
  public:
   PathTracer(const RayTracer &tracer, const RendererOptions &options)
-      : tracer_(tracer), scene_(tracer.scene()), lights_(tracer.scene()), maxDepth_(options.maxDepth),
-        irradiance_(options.irradiance), caustics_(options.caustics),
-        solution_(options.solution), readDepth_(options.solution ? options.readSolutionDepth : 0) {
+      : tracer_(tracer),
+        scene_(tracer.scene()),
+        lights_(tracer.scene()),
+        maxDepth_(options.maxDepth),
+        irradiance_(options.irradiance),
+        caustics_(options.caustics),
+        solution_(options.solution),
+        readDepth_(options.solution ? options.readSolutionDepth : 0) {
     meter_.name = "irradiance meter";
     meter_.diffuse = Bands(1.0);
   }
@@ -113,7 +118,8 @@ class PathTracer final : public Renderer {
         // point its lobe's share would be lost, so there the path tracer finds
         // the whole caustic itself, as without a map (review).
         lastUsedMap = caustics_ && (meterHere || material.kind == MaterialKind::Lambertian);
-        if (lastUsedMap) L += throughput * caustics_->reflectedRadiance(hit.position, facing, meterHere ? Bands(1.0) : diffuse);
+        if (lastUsedMap)
+          L += throughput * caustics_->reflectedRadiance(hit.position, facing, meterHere ? Bands(1.0) : diffuse);
       } else {
         ++specularSinceDiffuse;
       }

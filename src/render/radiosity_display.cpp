@@ -15,11 +15,11 @@
 // radiosity mesh does not represent, is black.
 #include "render/radiosity_display.h"
 
+#include <optional>
+
 #include "radiosity/solution.h"
 #include "render/bump_gather.h"
 #include "render/two_pass.h"
-
-#include <optional>
 
 namespace radiant {
 
@@ -28,7 +28,10 @@ namespace {
 class RadiosityDisplay final : public Renderer {
  public:
   RadiosityDisplay(const RayTracer &tracer, const Solution &solution, bool interpolate, const RendererOptions &options)
-      : tracer_(tracer), solution_(solution), interpolate_(interpolate), irradiance_(options.irradiance),
+      : tracer_(tracer),
+        solution_(solution),
+        interpolate_(interpolate),
+        irradiance_(options.irradiance),
         pixelSpread_(options.pixelSpreadAngle) {
     if (interpolate_ && !irradiance_) {
       BumpGatherOptions bump;
@@ -38,7 +41,8 @@ class RadiosityDisplay final : public Renderer {
     }
     if (!irradiance_) return;
     // H per element (the ambient term arrives as irradiance too, as in the report), and at the nodes.
-    for (uint32_t e = 0; e < solution.elementCount(); ++e) elementIrradiance_.push_back(solution.irradiance[e] + solution.ambient);
+    for (uint32_t e = 0; e < solution.elementCount(); ++e)
+      elementIrradiance_.push_back(solution.irradiance[e] + solution.ambient);
     nodeIrradiance_ = solution.nodeValues(elementIrradiance_);
   }
 
@@ -48,8 +52,8 @@ class RadiosityDisplay final : public Renderer {
     if (irradiance_)
       return x.throughput * (interpolate_ ? solution_.interpolate(nodeIrradiance_, x.location)
                                           : elementIrradiance_[x.location.element]);
-    Bands radiosity = interpolate_ ? solution_.interpolatedRadiosity(x.location)
-                                   : solution_.displayRadiosity(x.location.element);
+    Bands radiosity =
+        interpolate_ ? solution_.interpolatedRadiosity(x.location) : solution_.displayRadiosity(x.location.element);
     if (x.textured) {
       // C&W eq. 9.11: B = E + (B(ρ̄) − E)·ρ(x)/ρ̄, with the element's own ρ̄
       // for flat (so an element's mean stays its B) and the interpolated one
@@ -73,7 +77,7 @@ class RadiosityDisplay final : public Renderer {
   bool interpolate_;
   bool irradiance_;
   double pixelSpread_;
-  std::optional<BumpGather> bumps_;  ///< interpolate with bump-mapped patches only
+  std::optional<BumpGather> bumps_;                        ///< interpolate with bump-mapped patches only
   std::vector<Bands> elementIrradiance_, nodeIrradiance_;  ///< H + ambient (irradiance only)
 };
 

@@ -1,10 +1,10 @@
 // The table of rendering methods: name → factory, one line per method.
 #include <fmt/format.h>
 
+#include "render/multipass.h"
 #include "render/path_tracer.h"
 #include "render/radiosity_display.h"
 #include "render/renderer.h"
-#include "render/multipass.h"
 #include "render/two_pass.h"
 #include "util/error.h"
 

@@ -24,9 +24,9 @@
 #include <fmt/format.h>
 
 #include "radiosity/form_factor.h"
-#include "util/sampling.h"
 #include "render/two_pass.h"
 #include "util/error.h"
+#include "util/sampling.h"
 
 namespace radiant {
 

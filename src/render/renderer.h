@@ -104,7 +104,7 @@ struct RendererInfo {
   const char *name;
   const char *summary;
   std::unique_ptr<Renderer> (*create)(const RayTracer &, const RendererOptions &);
-  bool needsSolution = false;  ///< the driver must solve (or load) radiosity first
+  bool needsSolution = false;       ///< the driver must solve (or load) radiosity first
   bool supportsIrradiance = false;  ///< honours RendererOptions::irradiance
 };
 

@@ -1,14 +1,14 @@
 #include "render/secondary_sources.h"
 
+#include <fmt/format.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <fmt/format.h>
 #include <numeric>
 
 #include "radiosity/form_factor.h"
-#include "util/sampling.h"
 #include "util/error.h"
+#include "util/sampling.h"
 
 namespace radiant {
 
@@ -56,7 +56,8 @@ void addTreePieces(const Solution &s, int32_t root, std::vector<SourcePiece> &pi
     const Pending at = stack.back();
     stack.pop_back();
     if (at.depth > kMaxDepth)
-      throw InputError(InputLocation{"solution"}, fmt::format("a patch's subdivision tree is deeper than {}", kMaxDepth));
+      throw InputError(InputLocation{"solution"},
+                       fmt::format("a patch's subdivision tree is deeper than {}", kMaxDepth));
     const MeshTreeNode &n = s.mesh.tree[size_t(at.node)];
     const int32_t index = int32_t(pieces.size());
     SourcePiece piece;
@@ -141,7 +142,8 @@ SecondarySources::SecondarySources(const RayTracer &tracer, const Solution &solu
   }
   if (!cumulative_.empty()) cumulative_.back() = 1.0;
   pdfAreaOfPatch_.assign(mesh.patches.size(), 0.0);
-  for (size_t j = 0; j < patches_.size(); ++j) pdfAreaOfPatch_[patches_[j]] = probability_[j] / mesh.patches[patches_[j]].area;
+  for (size_t j = 0; j < patches_.size(); ++j)
+    pdfAreaOfPatch_[patches_[j]] = probability_[j] / mesh.patches[patches_[j]].area;
   computeRemovedRadiosity(tracer, std::max(1, options.removalVisibilityGrid), openingRatio);
 }
 
@@ -220,7 +222,9 @@ void SecondarySources::computeRemovedRadiosity(const RayTracer &tracer, int grid
   piecesPerReceiver_ = evaluated.empty() ? 0 : sum / double(evaluated.size());
 }
 
-Bands SecondarySources::radiance(uint32_t element) const { return reflectedRadiosity(solution_, element) * kInvPi; }
+Bands SecondarySources::radiance(uint32_t element) const {
+  return reflectedRadiosity(solution_, element) * kInvPi;
+}
 
 bool SecondarySources::sample(double uSelect, double u1, double u2, SecondarySourceSample &out) const {
   if (patches_.empty()) return false;

@@ -18,16 +18,16 @@
 // subtracted before interpolation, so what the shadow rays add is not also
 // read from the solution.
 //
-// Caustics (L S+ D E) are not represented (unless multipass gives a caustic map, RendererOptions::caustics): the solution holds diffuse
-// transport only and shadow rays stop at glass (issue: multi-pass method).
+// Caustics (L S+ D E) are not represented (unless multipass gives a caustic map, RendererOptions::caustics): the
+// solution holds diffuse transport only and shadow rays stop at glass (issue: multi-pass method).
 #include <optional>
 
 #include "radiosity/backprojection.h"
-#include "util/sampling.h"
-#include "render/secondary_sources.h"
 #include "render/bump_gather.h"
 #include "render/caustic_photons.h"
+#include "render/secondary_sources.h"
 #include "render/two_pass.h"
+#include "util/sampling.h"
 
 namespace radiant {
 
@@ -68,7 +68,8 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
     if (x.textured) indirect *= x.textureFactor;  // eq. 9.11 on what is read from the solution
     if (bumps_ && x.textured) indirect *= bumps_->ratio(x.location, x.hit.shadingNormal, x.unbumpedNormal);
     // Multipass: caustics from the light-ray pass (the solution holds none; shadow rays cannot find them).
-    if (options_.caustics) L += options_.caustics->reflectedRadiance(x.hit.position, x.hit.geometricNormal, x.reflectance);
+    if (options_.caustics)
+      L += options_.caustics->reflectedRadiance(x.hit.position, x.hit.geometricNormal, x.reflectance);
     for (int b = 0; b < kBandCount; ++b) indirect[b] = std::max(0.0, indirect[b]);
     return L + indirect;
   }
@@ -127,8 +128,8 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
   }
 
   std::optional<SecondarySources> sources_;
-  std::vector<Bands> remainingIndirect_;  ///< node values of indirect − removed
-  std::optional<BumpGather> bumps_;       ///< bump-mapped patches only
+  std::vector<Bands> remainingIndirect_;         ///< node values of indirect − removed
+  std::optional<BumpGather> bumps_;              ///< bump-mapped patches only
   std::optional<DirectIrradiance> exactDirect_;  ///< scenes with at most kMaxExactEmitters emitting faces
 };
 

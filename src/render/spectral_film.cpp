@@ -21,8 +21,8 @@ SpectralImages combineSpectralFilms(const std::vector<Film> &films, const Spectr
   SpectralImages out{Image(width, height), Image(width, height)};
   // The spectral channels hold spectral radiance per nm (the scene's values
   // divided by ∫ȳ over the range), so that 683·∫L ȳ dλ is the luminance in cd/m².
-  const double perNm = 1.0 / cieYIntegral(int(std::ceil(spectral.wavelengths.front())),
-                                          int(std::floor(spectral.wavelengths.back())));
+  const double perNm =
+      1.0 / cieYIntegral(int(std::ceil(spectral.wavelengths.front())), int(std::floor(spectral.wavelengths.back())));
   out.colour.wavelengths = spectral.wavelengths;
   out.colour.spectral.resize(pixels * bands);
   for (size_t p = 0; p < pixels; ++p) {

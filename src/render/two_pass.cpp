@@ -1,7 +1,7 @@
 #include "render/two_pass.h"
 
-#include "render/bsdf.h"
 #include "raytrace/surface_detail.h"
+#include "render/bsdf.h"
 #include "util/error.h"
 
 namespace radiant {
@@ -38,8 +38,8 @@ bool findVisiblePoint(const RayTracer &tracer, const Solution &solution, Ray ray
       const SurfaceDetail detail = surfaceDetail(scene, out.hit, travelled * pixelSpread);
       out.reflectance = detail.diffuse;
       out.hit.shadingNormal = detail.shadingNormal;
-      out.textureFactor = material.diffuseTextureIndex >= 0 ? solution.textureFactor(out.location, detail.diffuse)
-                                                            : Bands(1.0);
+      out.textureFactor =
+          material.diffuseTextureIndex >= 0 ? solution.textureFactor(out.location, detail.diffuse) : Bands(1.0);
     }
     return true;
   }
@@ -78,7 +78,9 @@ Bands TwoPassRenderer::radiance(const Ray &ray, Sampler &rng) const {
   return L.isFinite() ? L : Bands(0.0);
 }
 
-Bands TwoPassRenderer::reflectedByLinks(const VisiblePoint &x, Sampler &rng) const { return reflected(x, rng); }
+Bands TwoPassRenderer::reflectedByLinks(const VisiblePoint &x, Sampler &rng) const {
+  return reflected(x, rng);
+}
 
 double TwoPassRenderer::selectiveWork(const Ray &ray) const {
   if (!options_.selective) return 0;

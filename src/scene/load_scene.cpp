@@ -134,7 +134,8 @@ Material parseMaterial(const JsonNode &node, const std::string &name, const fs::
     m.kind = MaterialKind::Glossy;
     m.specular = value("specular", Bands(0.2), m.spectra.specular);
     // With a texture and no reflectance, the most a glossy base may reflect: 1 − specular.
-    m.diffuse = value("reflectance", node.has("texture") ? Bands(1.0) - m.specular : defaultReflectance, m.spectra.diffuse);
+    m.diffuse =
+        value("reflectance", node.has("texture") ? Bands(1.0) - m.specular : defaultReflectance, m.spectra.diffuse);
     m.roughness = node.number("roughness", 0.2);
   }
   m.emission = value("emission", Bands(0.0), m.spectra.emission);

@@ -47,8 +47,8 @@ SpectralSettings defaultSpectralSettings() {
 SpectralSettings parseSpectralSettings(const JsonNode &node) {
   node.checkKeys({"wavelengths", "range", "samples"});
   SpectralSettings settings;
-  const std::string where = fmt::format("between {} and {} nm (the CIE 1931 table)", kCieFirstWavelength,
-                                        kCieLastWavelength);
+  const std::string where =
+      fmt::format("between {} and {} nm (the CIE 1931 table)", kCieFirstWavelength, kCieLastWavelength);
   if (node.has("wavelengths")) {
     if (node.has("range") || node.has("samples"))
       node.fail("give either \"wavelengths\" or \"range\" with \"samples\", not both");
@@ -100,8 +100,9 @@ Bands parseBandValue(const JsonNode &material, const std::string &key, const Ban
   }
   Bands b = node.asBands();
   if (spectralScene && (b[0] != b[1] || b[1] != b[2]))
-    node.fail("this scene is spectral, so an RGB colour has no meaning here: give a spectrum "
-              "{\"spectrum\": [[nm, value], …]} or one number for a grey");
+    node.fail(
+        "this scene is spectral, so an RGB colour has no meaning here: give a spectrum "
+        "{\"spectrum\": [[nm, value], …]} or one number for a grey");
   return b;
 }
 
@@ -148,9 +149,10 @@ void checkSpectralScene(Scene &scene, const std::vector<InputLocation> &material
       for (double nm : scene.spectral.wavelengths) sampled = std::max(sampled, m.spectra.emission->at(nm));
       for (double v : m.spectra.emission->values) given = std::max(given, v);
       if (given > 0 && sampled == 0)
-        scene.warnings.push_back(fmt::format("material '{}' emits only between the scene's sample wavelengths: it is "
-                                             "dark in a spectral render (sample more densely, \"spectral\")",
-                                             m.name));
+        scene.warnings.push_back(
+            fmt::format("material '{}' emits only between the scene's sample wavelengths: it is "
+                        "dark in a spectral render (sample more densely, \"spectral\")",
+                        m.name));
     }
   }
   // Each value lies in its range at its samples, so everywhere between; a

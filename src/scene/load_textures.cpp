@@ -30,9 +30,11 @@ void detail::loadTextures(Scene &scene) {
       throw InputError(m.diffuseTextureFrom, "material '" + m.name +
                                                  "': a texture is an sRGB image, and this scene is spectral: "
                                                  "spectral textures are not supported (docs/spectral.md)");
-    m.diffuseTextureIndex = load(m.diffuseTexture, TextureEncoding::Colour, m.textureWrap, m.diffuseTextureFrom, "texture");
+    m.diffuseTextureIndex =
+        load(m.diffuseTexture, TextureEncoding::Colour, m.textureWrap, m.diffuseTextureFrom, "texture");
     m.bumpTextureIndex = load(m.bumpTexture, TextureEncoding::Data, m.textureWrap, m.bumpTextureFrom, "bump map");
-    m.normalTextureIndex = load(m.normalTexture, TextureEncoding::Data, m.textureWrap, m.normalTextureFrom, "normal map");
+    m.normalTextureIndex =
+        load(m.normalTexture, TextureEncoding::Data, m.textureWrap, m.normalTextureFrom, "normal map");
   }
   // A map on a face without texture coordinates shows one texel everywhere: say so.
   std::vector<bool> warned(scene.objects.size());
@@ -40,9 +42,10 @@ void detail::loadTextures(Scene &scene) {
     const Material &m = scene.materials[f.material];
     if (!m.hasSurfaceDetail() || f.uvs[0] >= 0 || f.object >= warned.size() || warned[f.object]) continue;
     warned[f.object] = true;
-    scene.warnings.push_back(fmt::format("object '{}' has no texture coordinates, so the maps of its material '{}' "
-                                         "show their value at (0, 0) everywhere",
-                                         scene.objects[f.object].name, m.name));
+    scene.warnings.push_back(
+        fmt::format("object '{}' has no texture coordinates, so the maps of its material '{}' "
+                    "show their value at (0, 0) everywhere",
+                    scene.objects[f.object].name, m.name));
   }
 }
 

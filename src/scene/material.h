@@ -34,10 +34,10 @@ struct MaterialSpectra {
 struct Material {
   std::string name;
   MaterialKind kind = MaterialKind::Lambertian;
-  Bands diffuse{0.5};    ///< Lambertian reflectance ρ in [0,1)
-  Bands specular{0.0};   ///< mirror / glossy reflectance or glass transmittance filter
-  double ior = 1.5;      ///< index of refraction (Dielectric)
-  double roughness = 0.2;///< GGX α (Glossy), in (0, 1]
+  Bands diffuse{0.5};      ///< Lambertian reflectance ρ in [0,1)
+  Bands specular{0.0};     ///< mirror / glossy reflectance or glass transmittance filter
+  double ior = 1.5;        ///< index of refraction (Dielectric)
+  double roughness = 0.2;  ///< GGX α (Glossy), in (0, 1]
   /// Emitted radiance, W·sr⁻¹·m⁻², uniform over the front hemisphere only.
   Bands emission{0.0};
 

@@ -53,10 +53,14 @@ bool Scene::addFace(const Face &face) {
 
 const char *materialKindName(MaterialKind kind) {
   switch (kind) {
-    case MaterialKind::Lambertian: return "lambertian";
-    case MaterialKind::Mirror: return "mirror";
-    case MaterialKind::Dielectric: return "dielectric";
-    case MaterialKind::Glossy: return "glossy";
+    case MaterialKind::Lambertian:
+      return "lambertian";
+    case MaterialKind::Mirror:
+      return "mirror";
+    case MaterialKind::Dielectric:
+      return "dielectric";
+    case MaterialKind::Glossy:
+      return "glossy";
   }
   return "?";
 }

@@ -20,9 +20,9 @@ namespace radiant {
 /// One input polygon (3 or 4 vertices, counter-clockwise seen from the front).
 struct Face {
   int vertexCount = 3;
-  uint32_t vertices[4] = {0, 0, 0, 0};  ///< indices into Scene::positions
-  int32_t uvs[4] = {-1, -1, -1, -1};    ///< indices into Scene::uvs, or −1
-  int32_t normals[4] = {-1, -1, -1, -1};///< indices into Scene::normals, or −1
+  uint32_t vertices[4] = {0, 0, 0, 0};    ///< indices into Scene::positions
+  int32_t uvs[4] = {-1, -1, -1, -1};      ///< indices into Scene::uvs, or −1
+  int32_t normals[4] = {-1, -1, -1, -1};  ///< indices into Scene::normals, or −1
   uint32_t material = 0;
   uint32_t object = 0;
 };
@@ -53,8 +53,8 @@ struct RenderSettings {
   int samplesPerPixel = 64;
   double timeBudgetSeconds = 0;  ///< 0: no budget
   uint64_t seed = 1;
-  int maxDepth = 0;              ///< 0: unlimited (Russian roulette ends paths)
-  double exposure = 0;           ///< PNG exposure in stops
+  int maxDepth = 0;     ///< 0: unlimited (Russian roulette ends paths)
+  double exposure = 0;  ///< PNG exposure in stops
 };
 
 /// The sample wavelengths of a spectral scene (docs/spectral.md). The solution

@@ -12,8 +12,8 @@ namespace radiant {
 /// JSON path such as /materials/2/reflectance.
 struct InputLocation {
   std::string file;
-  int line = 0;        // 1-based; 0 when unknown
-  int column = 0;      // 1-based; 0 when unknown
+  int line = 0;    // 1-based; 0 when unknown
+  int column = 0;  // 1-based; 0 when unknown
   std::string jsonPath;
 
   std::string toString() const;

@@ -24,28 +24,61 @@ struct Vec3 {
   constexpr double &operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
 
   constexpr Vec3 operator-() const { return {-x, -y, -z}; }
-  constexpr Vec3 &operator+=(const Vec3 &b) { x += b.x; y += b.y; z += b.z; return *this; }
-  constexpr Vec3 &operator-=(const Vec3 &b) { x -= b.x; y -= b.y; z -= b.z; return *this; }
-  constexpr Vec3 &operator*=(double s) { x *= s; y *= s; z *= s; return *this; }
+  constexpr Vec3 &operator+=(const Vec3 &b) {
+    x += b.x;
+    y += b.y;
+    z += b.z;
+    return *this;
+  }
+  constexpr Vec3 &operator-=(const Vec3 &b) {
+    x -= b.x;
+    y -= b.y;
+    z -= b.z;
+    return *this;
+  }
+  constexpr Vec3 &operator*=(double s) {
+    x *= s;
+    y *= s;
+    z *= s;
+    return *this;
+  }
 };
 
-constexpr Vec3 operator+(const Vec3 &a, const Vec3 &b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-constexpr Vec3 operator-(const Vec3 &a, const Vec3 &b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-constexpr Vec3 operator*(const Vec3 &a, double s) { return {a.x * s, a.y * s, a.z * s}; }
-constexpr Vec3 operator*(double s, const Vec3 &a) { return {a.x * s, a.y * s, a.z * s}; }
-constexpr Vec3 operator/(const Vec3 &a, double s) { return {a.x / s, a.y / s, a.z / s}; }
-constexpr bool operator==(const Vec3 &a, const Vec3 &b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+constexpr Vec3 operator+(const Vec3 &a, const Vec3 &b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+constexpr Vec3 operator-(const Vec3 &a, const Vec3 &b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+constexpr Vec3 operator*(const Vec3 &a, double s) {
+  return {a.x * s, a.y * s, a.z * s};
+}
+constexpr Vec3 operator*(double s, const Vec3 &a) {
+  return {a.x * s, a.y * s, a.z * s};
+}
+constexpr Vec3 operator/(const Vec3 &a, double s) {
+  return {a.x / s, a.y / s, a.z / s};
+}
+constexpr bool operator==(const Vec3 &a, const Vec3 &b) {
+  return a.x == b.x && a.y == b.y && a.z == b.z;
+}
 
-constexpr double dot(const Vec3 &a, const Vec3 &b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr double dot(const Vec3 &a, const Vec3 &b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 constexpr Vec3 cross(const Vec3 &a, const Vec3 &b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline double length(const Vec3 &a) { return std::sqrt(dot(a, a)); }
+inline double length(const Vec3 &a) {
+  return std::sqrt(dot(a, a));
+}
 inline Vec3 normalize(const Vec3 &a) {
   double l = length(a);
   return l > 0 ? a / l : a;
 }
-inline bool isFinite(const Vec3 &a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+inline bool isFinite(const Vec3 &a) {
+  return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
+}
 
 /// Orthonormal frame around a unit normal (Duff et al. 2017, "Building an
 /// orthonormal basis, revisited"): no branch on a threshold, no singularity.
@@ -101,12 +134,16 @@ struct Transform {
   }
   static Transform translate(const Vec3 &t) {
     Transform r;
-    r.m[0][3] = t.x; r.m[1][3] = t.y; r.m[2][3] = t.z;
+    r.m[0][3] = t.x;
+    r.m[1][3] = t.y;
+    r.m[2][3] = t.z;
     return r;
   }
   static Transform scale(const Vec3 &s) {
     Transform r;
-    r.m[0][0] = s.x; r.m[1][1] = s.y; r.m[2][2] = s.z;
+    r.m[0][0] = s.x;
+    r.m[1][1] = s.y;
+    r.m[2][2] = s.z;
     return r;
   }
   /// Rotation by `degrees` about `axis` (right-handed).
@@ -114,13 +151,21 @@ struct Transform {
     Vec3 a = normalize(axis);
     double t = degrees * kPi / 180.0, c = std::cos(t), s = std::sin(t), C = 1 - c;
     Transform r;
-    r.m[0][0] = c + a.x * a.x * C;       r.m[0][1] = a.x * a.y * C - a.z * s; r.m[0][2] = a.x * a.z * C + a.y * s;
-    r.m[1][0] = a.y * a.x * C + a.z * s; r.m[1][1] = c + a.y * a.y * C;       r.m[1][2] = a.y * a.z * C - a.x * s;
-    r.m[2][0] = a.z * a.x * C - a.y * s; r.m[2][1] = a.z * a.y * C + a.x * s; r.m[2][2] = c + a.z * a.z * C;
+    r.m[0][0] = c + a.x * a.x * C;
+    r.m[0][1] = a.x * a.y * C - a.z * s;
+    r.m[0][2] = a.x * a.z * C + a.y * s;
+    r.m[1][0] = a.y * a.x * C + a.z * s;
+    r.m[1][1] = c + a.y * a.y * C;
+    r.m[1][2] = a.y * a.z * C - a.x * s;
+    r.m[2][0] = a.z * a.x * C - a.y * s;
+    r.m[2][1] = a.z * a.y * C + a.x * s;
+    r.m[2][2] = c + a.z * a.z * C;
     return r;
   }
 };
 
-inline double sqr(double x) { return x * x; }
+inline double sqr(double x) {
+  return x * x;
+}
 
 }  // namespace radiant

@@ -27,7 +27,9 @@ inline Vec3 sampleCosineHemisphere(double u1, double u2) {
   return {x, y, std::sqrt(std::max(0.0, 1 - x * x - y * y))};
 }
 /// Density per unit solid angle of sampleCosineHemisphere.
-inline double cosineHemispherePdf(double cosTheta) { return cosTheta > 0 ? cosTheta * kInvPi : 0.0; }
+inline double cosineHemispherePdf(double cosTheta) {
+  return cosTheta > 0 ? cosTheta * kInvPi : 0.0;
+}
 
 /// Veach's power heuristic (β = 2): the weight of a sample drawn with density
 /// pdfA when another strategy would have drawn it with density pdfB.
