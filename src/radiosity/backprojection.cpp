@@ -100,6 +100,7 @@ DirectIrradiance::DirectIrradiance(const Scene &scene) : scene_(scene), faces_(s
     for (int k = 0; k < face.vertexCount; ++k) e.corners[k] = scene.positions[face.vertices[k]];
     e.normal = scene.faceNormal(face);
     e.area = scene.faceArea(face);
+    e.warp = polygonWarp(std::span<const Vec3>(e.corners.data(), size_t(e.vertexCount)), e.normal);
     if (e.area > 0) emitters_.push_back(e);
   }
 }
@@ -153,7 +154,7 @@ double DirectIrradiance::sampledFormFactor(const Vec3 &x, const Vec3 &n, size_t 
 
 double DirectIrradiance::unoccludedFormFactor(const Vec3 &x, const Vec3 &n, size_t emitter) const {
   const EmitterPolygon &e = emitters_[emitter];
-  if (dot(x - e.corners[0], e.normal) <= 1e-12 * scale_) return 0;  // behind the emitting side
+  if (dot(x - e.corners[0], e.normal) <= 1e-12 * scale_ + e.warp) return 0;  // behind the emitting side (or on it)
   return formFactorPointToPolygon(x, n, std::span<const Vec3>(e.corners.data(), size_t(e.vertexCount)));
 }
 
@@ -163,7 +164,8 @@ double visibleFormFactor(const Scene &scene, const FaceTree *tree, const std::ve
   if (unoccludedOut) *unoccludedOut = 0;
   const Vec3 origin = polygon[0];
   const double heightOfX = dot(x - origin, polygonNormal);
-  if (heightOfX <= 1e-12 * scale) return 0;  // behind the emitting side (or in its plane)
+  if (heightOfX <= 1e-12 * scale + polygonWarp(polygon, polygonNormal))
+    return 0;  // behind the emitting side (or on it)
   thread_local Scratch s;
 
   // The part of the polygon in front of x's tangent plane: the pyramid's base.
@@ -214,9 +216,12 @@ double visibleFormFactor(const Scene &scene, const FaceTree *tree, const std::ve
     const Vec3 faceNormal = scene.faceNormal(face);
     // A face whose plane passes through x (x's own face, a coplanar
     // neighbour, a wall standing on x's edge) projects to a line: no area.
-    if (std::abs(dot(x - scene.positions[face.vertices[0]], faceNormal)) <= tolerance) continue;
+    // "Passes through" within the face's own warp (polygonWarp): taken as an
+    // occluder, the sliver of a warped own face next to x projects over the
+    // whole emitter and hides it.
     s.clipped.clear();
     for (int k = 0; k < face.vertexCount; ++k) s.clipped.push_back(scene.positions[face.vertices[k]]);
+    if (std::abs(dot(x - s.clipped[0], faceNormal)) <= tolerance + polygonWarp(s.clipped, faceNormal)) continue;
     for (int h = 0; h < planes && s.clipped.size() >= 3; ++h) {
       const bool emitterPlane = h == planes - 1;
       clipToHalfSpace(s.clipped, pyramid[h], emitterPlane ? tolerance : 0.0, s.swap);

@@ -52,6 +52,7 @@ struct EmitterPolygon {
   std::array<Vec3, 4> corners{};
   Vec3 normal;  ///< front (emitting) side, unit
   double area = 0;
+  double warp = 0;  ///< polygonWarp of the corners (form_factor.h)
 };
 
 class RayTracer;

@@ -164,6 +164,12 @@ double formFactorPointToPolygon(const Vec3 &p, const Vec3 &n, std::span<const Ve
   return std::abs(sum) / (2 * kPi);
 }
 
+double polygonWarp(std::span<const Vec3> polygon, const Vec3 &n) {
+  double warp = 0;
+  for (size_t k = 1; k < polygon.size(); ++k) warp = std::max(warp, std::abs(dot(polygon[k] - polygon[0], n)));
+  return warp;
+}
+
 Vec3 vectorFormFactor(const Vec3 &p, std::span<const Vec3> polygon) {
   Vec3 sum, centroid;
   for (size_t k = 0; k < polygon.size(); ++k) {

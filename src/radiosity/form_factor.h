@@ -29,6 +29,16 @@ void clipToFrontHalfSpace(const Vec3 &p, const Vec3 &n, std::span<const Vec3> po
 /// independent of the polygon's winding; `polygon` has 3 or more vertices.
 double formFactorPointToPolygon(const Vec3 &p, const Vec3 &n, std::span<const Vec3> polygon);
 
+/// How far a polygon's vertices stray from the plane through its first vertex
+/// with normal n: 0 for a triangle, about 10⁻⁸ of its size for a quad read
+/// from a file in single precision (tinyobjloader's floats). A point closer
+/// than this to that plane lies on the polygon's surface as far as the tests
+/// "in front of the source" and "in the occluder's plane" can tell; taken as
+/// in front, a point on an emitting quad saw its own quad as a whole
+/// hemisphere of light (F = 1) and a furnace sphere of OBJ quads came out
+/// 40 % too bright.
+double polygonWarp(std::span<const Vec3> polygon, const Vec3 &n);
+
 /// The vector form factor of a polygon at p (Lambert; Arvo 1994's vector
 /// irradiance per unit radiosity): Γ = (1/2π) Σ_k β_k û_k, û_k the unit
 /// normal of the plane through p and edge k, oriented towards the polygon.

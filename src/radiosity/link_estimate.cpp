@@ -161,6 +161,7 @@ LinkEstimate LinkEstimator::estimate(const LinkEnd &receiverEnd, const LinkEnd &
   const bool quad = receiver.vertexCount == 4;
   const std::vector<CubaturePoint> &rule = receiverRule(quad);
   const std::span<const Vec3> sourcePolygon(source.corners.data(), size_t(source.vertexCount));
+  const double sourceWarp = polygonWarp(sourcePolygon, ns);
   thread_local std::vector<uint32_t> occluders;
   bool sampled = false;
   if (knownClear)
@@ -174,7 +175,8 @@ LinkEstimate LinkEstimator::estimate(const LinkEnd &receiverEnd, const LinkEnd &
   for (int k = 0; k < count; ++k) {
     const Vec3 x = pointOn(receiver, rule[k].u, rule[k].v);
     e.pointFactors[k] = 0;
-    if (dot(x - source.corners[0], ns) <= 1e-12 * scale_) continue;  // behind the source's front
+    if (dot(x - source.corners[0], ns) <= 1e-12 * scale_ + sourceWarp)
+      continue;  // behind the source's front (or on it)
     // The part of the source x sees, exactly, past the faces in the shaft
     // (backprojection.h): no shadow ray's noise, and no bias from a link
     // whose few rays all happened to agree.
