@@ -269,6 +269,7 @@ TEST(HierarchicalExact, FurnaceSphereOfSinglePrecisionQuadsAbsorbsWhatItEmits) {
 }
 
 TEST(HierarchicalExact, DirectLightIsExactAtTheNodesAndInterpolatesWithinTolerance) {
+  RADIANT_SKIP_UNDER_SANITIZER();  // 30 s under ASan; the furnace and cube tests run this code there
   // Every node's direct irradiance is the backprojection's exact value at the
   // node (nudged into its patch as direct_refinement.cpp does), to 1e-9; and
   // every leaf's corners interpolate the exact direct light at its edge
@@ -411,6 +412,7 @@ const TwoRoomsSolve &twoRooms() {
 }
 
 TEST(HierarchicalExact, NoLightLeaksIntoTheClosedDarkRoom) {
+  RADIANT_SKIP_UNDER_SANITIZER();  // 30 s under ASan; the furnace and cube tests run this code there
   // The cuts keep every element and node on one side of the divider, the
   // backprojection gives exactly 0 where an emitter is wholly hidden, and a
   // link whose shaft the divider closes has form factor exactly 0 and is not
