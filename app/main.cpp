@@ -35,7 +35,12 @@ int main(int argc, char **argv) {
     if (compare->parsed()) return runCompare();
     if (tonemap->parsed()) return runTonemap();
   } catch (const radiant::InputError &e) {
-    fmt::print(stderr, "radiant: error: {}\n", e.what());
+    // The library names a parameter ("mesh-size"); here it is a flag.
+    const radiant::InputLocation &where = e.location();
+    if (where.file.empty() && !where.parameter.empty())
+      fmt::print(stderr, "radiant: error: --{}: {}\n", where.parameter, e.message());
+    else
+      fmt::print(stderr, "radiant: error: {}\n", e.what());
     return 2;
   } catch (const std::exception &e) {
     fmt::print(stderr, "radiant: error: {}\n", e.what());

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -17,116 +18,51 @@ void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &o) {
   std::string solvers = fmt::format("\n  {:<13} {}", "auto",
                                     "hierarchical-exact up to 150 000 input faces (256 emitting), else stochastic");
   for (const SolverInfo &info : solverRegistry()) solvers += fmt::format("\n  {:<13} {}", info.name, info.summary);
-  app.add_option("--solver", o.solver.solver, "Radiosity solver:" + solvers)->default_val("auto");
-  app.add_option("--mesh-size", o.meshSize,
-                 "Target element edge length in scene units (default: 1/8 of the scene's largest extent)")
-      ->check(CLI::PositiveNumber);
-  app.add_option("--max-elements", o.solver.maxElements,
-                 "Refuse uniform meshes with more elements than this; hierarchical stops refining there")
-      ->default_val(2'000'000)
-      ->check(CLI::Range(size_t(1), size_t(100'000'000)));
-  app.add_option(
-         "--tolerance", o.solver.tolerance,
-         "Convergence in (0, 1]: unshot power over emitted power (progressive, stochastic), or the largest change "
-         "of B in a sweep over the largest reflected radiosity (gauss-seidel, hierarchical)")
-      ->default_val(1e-3)
-      ->check(CLI::Validator(
-          [](std::string &text) {
-            double value = std::strtod(text.c_str(), nullptr);
-            return value > 0 && value <= 1 ? std::string() : "must be in (0, 1], got " + text;
-          },
-          "in (0, 1]"));
-  app.add_option("--max-iterations", o.solver.maxIterations, "Stop after this many shots or sweeps (0: no limit)")
-      ->default_val(0)
-      ->check(CLI::NonNegativeNumber);
-  app.add_option("--ff-samples", o.solver.visibilitySamples,
-                 "Shadow rays per form factor, rounded to a square number k x k (stratified)")
-      ->default_val(4)
-      ->check(CLI::Range(1, 1024));
-  app.add_option("--form-factor", o.solver.formFactor,
-                 "Progressive solver's form factors: analytic (contour integral x visible fraction), ray-cast "
-                 "(Wallace 1989 disc sum), hemicube (Cohen & Greenberg 1985)")
-      ->default_val("analytic")
-      ->check(CLI::IsMember({"analytic", "ray-cast", "hemicube"}));
-  app.add_option("--hemicube-resolution", o.solver.hemicubeResolution, "Hemicube pixels across the top face")
-      ->default_val(64)
-      ->check(CLI::Range(4, 4096));
-  app.add_option("--link-threshold", o.solver.linkThreshold,
-                 "Hierarchical: link when F*B_source is below this fraction of the largest emitted radiosity")
-      ->default_val(1e-4)
-      ->check(CLI::Range(0.0, 1.0));
-  app.add_flag("--importance", o.solver.importance,
-               "Hierarchical: refine for the scene's camera only (render: the camera it renders from); importance "
-               "from the eye weighs each link (Smits, Arvo & Salesin 1992)");
-  app.add_option("--adaptive-rounds", o.solver.adaptiveRounds,
-                 "Gauss-Seidel, progressive, stochastic: rounds of splitting the elements whose error estimate "
-                 "exceeds --adaptive-threshold and solving again (0: uniform mesh)")
-      ->default_val(0)
-      ->check(CLI::Range(0, 20));
-  app.add_option("--adaptive-threshold", o.solver.adaptiveThreshold,
-                 "Split elements whose nodes differ from them by more than this fraction of their radiosity")
-      ->default_val(0.1)
-      ->check(CLI::Range(0.0, 100.0));
-  std::string levels;
-  for (const QualityLevel &level : qualityLevels()) levels += fmt::format("\n  {:<13} {}", level.name, level.summary);
-  app.add_option("--quality", o.quality, "hierarchical-exact (the default solver): accuracy against time:" + levels)
-      ->default_val("high");
-  app.add_option("--rays-per-element", o.solver.raysPerElement,
-                 "Stochastic: rays of the first iteration per element (noise falls as 1/sqrt)")
-      ->default_val(64)
-      ->check(CLI::Range(1, 100000));
+  o.solverOption = app.add_option("--solver", o.solver, "Radiosity solver:" + solvers)->default_val("auto");
+  // The parameters every solver takes first, then each solver's own.
+  static ParameterTable common;
+  const char *names[] = {"auto", "hierarchical-exact", "stochastic", "gauss-seidel", "progressive", "hierarchical"};
+  if (common.empty())
+    for (const ParameterSpec &spec : solverParameters("auto")) {
+      bool everywhere = true;
+      for (const char *name : names) {
+        const ParameterTable &table = solverParameters(name);
+        everywhere &=
+            std::any_of(table.begin(), table.end(), [&](const ParameterSpec &s) { return s.name == spec.name; });
+      }
+      if (everywhere) common.push_back(spec);
+    }
+  std::vector<ParameterGroup> groups = {{"radiosity, every --solver", &common}};
+  for (const char *name : names) groups.push_back({fmt::format("--solver {}", name), &solverParameters(name)});
+  o.parameters.add(app, groups);
 }
 
-void rejectUnusedRadiosityOptions(const CLI::App &app, bool solving, const std::string &reason,
-                                  const RadiosityCommandOptions &options) {
-  const char *all[] = {"--solver",         "--mesh-size",        "--max-elements",    "--tolerance",
-                       "--max-iterations", "--ff-samples",       "--form-factor",     "--hemicube-resolution",
-                       "--link-threshold", "--rays-per-element", "--adaptive-rounds", "--adaptive-threshold",
-                       "--importance",     "--quality"};
-  for (const char *name : all) {
-    if (app.get_option(name)->count() == 0) continue;
-    if (!solving) throw InputError(InputLocation{name}, "has no effect here: " + reason);
-    std::string flag = name;
-    // "auto" may pick hierarchical or stochastic, so their options stay valid with it.
-    auto only = [&](const char *solver, bool autoMayPickIt) {
-      if (options.solver.solver != solver && !(autoMayPickIt && options.solver.solver == "auto"))
-        throw InputError(InputLocation{name}, std::string("applies only to --solver ") + solver);
-    };
-    if (flag == "--form-factor" || flag == "--hemicube-resolution") only("progressive", false);
-    if (flag == "--link-threshold") only("hierarchical", false);
-    if (flag == "--importance") only("hierarchical", true);
-    if (flag == "--rays-per-element") only("stochastic", true);
-    if (flag == "--quality") only("hierarchical-exact", true);
-    if (flag == "--ff-samples" && (options.solver.solver == "auto" || options.solver.solver == "hierarchical-exact" ||
-                                   options.solver.solver == "stochastic"))
-      throw InputError(InputLocation{name},
-                       "applies only to --solver gauss-seidel, progressive or hierarchical "
-                       "(hierarchical-exact computes visibility exactly, stochastic by its rays)");
-    if ((flag == "--adaptive-rounds" || flag == "--adaptive-threshold") && options.solver.solver == "hierarchical")
-      throw InputError(InputLocation{name},
-                       "the hierarchical solver refines by itself; use --solver gauss-seidel, "
-                       "progressive or stochastic");
-    if (flag == "--adaptive-threshold" && app.get_option("--adaptive-rounds")->count() == 0)
-      throw InputError(InputLocation{name}, "needs --adaptive-rounds");
+void checkRadiosityOptions(const RadiosityCommandOptions &options, bool solving, const std::string &reason) {
+  const ParameterValues given = options.parameters.given();
+  if (!solving) {
+    if (options.solverOption->count() > 0) throw InputError(InputLocation{"--solver"}, "has no effect here: " + reason);
+    if (!given.all().empty()) throw InputError(given.all().begin()->second.origin, "has no effect here: " + reason);
+    return;
   }
+  solverParameters(options.solver);  // an unknown name, before any work
+  checkSolverParameters(options.solver, given);
 }
 
 Solution solveScene(const Scene &scene, const RayTracer &tracer, const RadiosityCommandOptions &o, uint64_t seed,
                     int threads, bool quiet) {
   MeshOptions meshOptions;
-  if (o.meshSize) meshOptions.maxEdgeLength = *o.meshSize * scene.metresPerUnit;
-  meshOptions.maxElements = o.solver.maxElements;
-  SolverOptions solverOptions = o.solver;
-  applyQuality(solverOptions, o.quality);
+  SolverOptions solverOptions;
+  solverOptions.solver = o.solver;
+  applySolverParameters(o.parameters.given(), scene, solverOptions, meshOptions);
   solverOptions.seed = seed;
   solverOptions.threads = threads;
-  if (o.solver.importance) {
+  if (solverOptions.importance) {
     // "auto" is settled by the patch count, one patch per face.
-    const std::string resolved = resolveSolverName(o.solver.solver, scene.faces.size(), true);
+    const std::string resolved = resolveSolverName(o.solver, scene.faces.size(), true);
     if (resolved != "hierarchical")
       throw InputError(InputLocation{"--importance"},
-                       fmt::format("applies only to --solver hierarchical; --solver {} runs {} on {} patches",
-                                   o.solver.solver, resolved, scene.faces.size()));
+                       fmt::format("applies only to --solver hierarchical; --solver {} runs {} on {} patches", o.solver,
+                                   resolved, scene.faces.size()));
     // The view importance comes from: the scene's camera, as `render` has set it from --eye, --target, … .
     solverOptions.importanceView.camera = scene.camera;
     solverOptions.importanceView.aspect = double(scene.render.width) / std::max(1, scene.render.height);
@@ -136,7 +72,7 @@ Solution solveScene(const Scene &scene, const RayTracer &tracer, const Radiosity
   if (!quiet) {
     bool terminal = isatty(fileno(stderr));
     auto last = std::make_shared<std::chrono::steady_clock::time_point>(std::chrono::steady_clock::now());
-    std::string name = o.solver.solver;
+    std::string name = o.solver;
     auto first = std::make_shared<SolverProgress>();
     progress = [terminal, last, first, name](const SolverProgress &p) {
       if (first->iteration == 0) *first = p;
@@ -160,6 +96,27 @@ Solution solveScene(const Scene &scene, const RayTracer &tracer, const Radiosity
     printSolveSummary(solution);
   }
   return solution;
+}
+
+Solution solvePreview(const Scene &scene, const RayTracer &tracer, const RadiosityCommandOptions &options, int shots,
+                      uint64_t seed, int threads) {
+  // The preview is always progressive: the given parameters it takes apply
+  // (the mesh's among them), the rest are for the solution the later passes read.
+  ParameterValues meshing;
+  const ParameterTable &progressive = solverParameters("progressive");
+  const ParameterValues given = options.parameters.given();
+  for (const auto &[name, value] : given.all())
+    if (name != "max-iterations" &&
+        std::any_of(progressive.begin(), progressive.end(), [&](const ParameterSpec &s) { return s.name == name; }))
+      meshing.set(name, value.text, value.origin);
+  MeshOptions meshOptions;
+  SolverOptions solverOptions;
+  solverOptions.solver = "progressive";
+  applySolverParameters(meshing, scene, solverOptions, meshOptions);
+  solverOptions.maxIterations = shots;
+  solverOptions.seed = seed;
+  solverOptions.threads = threads;
+  return meshAndSolve(scene, tracer, meshOptions, solverOptions);
 }
 
 void printSolveSummary(const Solution &s) {

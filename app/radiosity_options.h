@@ -2,34 +2,37 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
-#include <optional>
 #include <string>
 
+#include "parameter_flags.h"
 #include "radiosity/solution.h"
 #include "radiosity/solver.h"
 #include "raytrace/ray_tracer.h"
 
 namespace radiant {
 
-/// The flags fill the solver's own options directly; only the mesh size,
-/// given in scene units, waits for the scene to be converted.
+/// --solver and the solvers' parameters, whose flags come from their tables
+/// (radiosity/solver.h solverParameters).
 struct RadiosityCommandOptions {
-  SolverOptions solver;
-  std::optional<double> meshSize;  ///< scene units
-  std::string quality = "high";    ///< hierarchical-exact's preset (radiosity/solver.h qualityLevels)
+  std::string solver = "auto";
+  CLI::Option *solverOption = nullptr;
+  ParameterFlags parameters;
 };
 
 void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &options);
 
 /// An option nothing will use is an error, not a silent no-op (STYLE.md §5):
-/// radiosity options when no solution is computed (`reason` says why), and
-/// progressive-only options with another solver.
-void rejectUnusedRadiosityOptions(const CLI::App &app, bool solving, const std::string &reason,
-                                  const RadiosityCommandOptions &options);
+/// a radiosity option when no solution is computed (`reason` says why), and a
+/// solver's parameter given to another solver (checkSolverParameters).
+void checkRadiosityOptions(const RadiosityCommandOptions &options, bool solving, const std::string &reason);
 
 /// Meshes and solves the scene, printing progress and a summary unless quiet.
 Solution solveScene(const Scene &scene, const RayTracer &tracer, const RadiosityCommandOptions &options, uint64_t seed,
                     int threads, bool quiet);
+/// A progressive solution interrupted after `shots` shots, on the mesh the
+/// options' mesh-size and max-elements ask for (multipass's preview); quiet.
+Solution solvePreview(const Scene &scene, const RayTracer &tracer, const RadiosityCommandOptions &options, int shots,
+                      uint64_t seed, int threads);
 
 /// The solution's figures, for a person: solver, iterations, residual, energy balance.
 void printSolveSummary(const Solution &solution);

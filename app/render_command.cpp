@@ -12,11 +12,13 @@
 #include "colour_options.h"
 #include "commands.h"
 #include "display_options.h"
+#include "image_method_command.h"
 #include "io/solution_file.h"
-#include "multipass_command.h"
+#include "parameter_flags.h"
 #include "radiosity_options.h"
 #include "raytrace/ray_tracer.h"
 #include "render/driver.h"
+#include "render/registry.h"
 #include "render/renderer.h"
 #include "render/spectral_film.h"
 #include "render/two_pass.h"
@@ -33,7 +35,7 @@ struct RenderCommandOptions {
   std::string method = "path";
   std::vector<std::string> outputs;
   std::string variancePath;
-  std::optional<int> spp, width, height, maxDepth;
+  std::optional<int> spp, width, height;
   std::optional<double> time, fov;
   std::optional<uint64_t> seed;
   std::string eye, target, up, pixel;
@@ -41,7 +43,7 @@ struct RenderCommandOptions {
   bool quiet = false;
   std::string solutionPath;
   RadiosityCommandOptions radiosity;
-  RendererOptions twoPass;  ///< the two-pass methods' flags
+  ParameterFlags methodParameters;  ///< every method's own (render/registry.h)
   std::string selectiveMapPath;
   DisplayCommandOptions display;  ///< the PNG outputs' display mapping
   ColourCommandOptions colour;    ///< spectral scenes
@@ -67,23 +69,6 @@ std::string defaultStem(const std::string &scenePath) {
   if (p.stem() == "scene" && p.has_parent_path() && !p.parent_path().filename().empty())
     return p.parent_path().filename().string();
   return p.stem().string();
-}
-
-/// Two-pass flags given to a method that would ignore them are errors (STYLE.md §5).
-void rejectUnusedTwoPassOptions(const CLI::App &app, const std::string &method) {
-  const bool twoPass = method == "rushmeier" || method == "reichert" || method == "shirley" || method == "kok";
-  auto reject = [&](const char *name, bool allowed, const std::string &which) {
-    if (app.count(name) > 0 && !allowed)
-      throw InputError(flag(name), fmt::format("only {} use{} it, not --method {}", which,
-                                               which.find(',') == std::string::npos ? "s" : "", method));
-  };
-  reject("--ff", method == "reichert", "reichert");
-  reject("--sources", method == "kok" || method == "multipass", "kok, multipass");
-  reject("--source-fraction", method == "kok" || method == "multipass", "kok, multipass");
-  for (const char *name : {"--selective", "--selective-threshold", "--selective-power", "--selective-map"})
-    reject(name, twoPass, "the two-pass methods (rushmeier, reichert, shirley, kok)");
-  if (app.count("--sources") > 0 && app.count("--source-fraction") > 0)
-    throw InputError(flag("--source-fraction"), "give --sources or --source-fraction, not both");
 }
 
 /// --selective-map: one ray through each pixel centre, grey by the work it triggers.
@@ -128,11 +113,6 @@ CommandRunner addRenderCommand(CLI::App &app) {
                  "and interpolate")
       ->default_val("radiance")
       ->check(CLI::IsMember({"radiance", "irradiance"}));
-  app.add_option("--bump-orientations", o->twoPass.bumpOrientations,
-                 "interpolate: normal orientations gathered per node of a bump-mapped surface (Chen & Wu 1990), an "
-                 "even number 4…64")
-      ->default_val(16)
-      ->check(CLI::Range(4, 64));
   app.add_option("--variance", o->variancePath, "Also write the variance of each pixel's mean (.exr or .pfm)");
   app.add_option("--spp", o->spp, "Samples per pixel (default: the scene's render.spp, else 64)");
   app.add_option("--time", o->time,
@@ -141,7 +121,6 @@ CommandRunner addRenderCommand(CLI::App &app) {
   app.add_option("--threads", o->threads, "Worker threads (0: all cores); does not change the image")
       ->default_val(0)
       ->check(CLI::Range(0, 4096));
-  app.add_option("--max-depth", o->maxDepth, "Maximum bounces (0: unlimited, Russian roulette ends paths)");
   app.add_option("--eye", o->eye, "Camera position x,y,z in scene units (overrides the scene)");
   app.add_option("--target", o->target, "Camera target x,y,z in scene units");
   app.add_option("--up", o->up, "Camera up vector x,y,z");
@@ -153,31 +132,12 @@ CommandRunner addRenderCommand(CLI::App &app) {
   app.add_option("--solution", o->solutionPath,
                  "Radiosity solution from `radiant solve -o` to display instead of solving (methods that read one)");
   addRadiosityOptions(app, o->radiosity);
-  app.add_option("--ff", o->twoPass.formFactorSampling,
-                 "reichert: visibility of the per-pixel form factors sampled at element centres (point) or at "
-                 "random points (mc)")
-      ->default_val("mc")
-      ->check(CLI::IsMember({"point", "mc"}));
-  app.add_option("--sources", o->twoPass.secondarySources,
-                 "kok: sample this many patches, the brightest reflectors, per pixel like emitters")
-      ->default_val(4)
-      ->check(CLI::Range(0, 100000));
-  app.add_option("--source-fraction", o->twoPass.secondarySourceFraction,
-                 "kok: instead of --sources, the fewest patches carrying this fraction of the reflected power")
-      ->check(CLI::Range(0.0, 1.0));
-  app.add_flag("--selective", o->twoPass.selective,
-               "Two-pass methods: re-evaluate per pixel only where the solution is flagged inaccurate");
-  app.add_option("--selective-threshold", o->twoPass.selectiveThreshold,
-                 "--selective: re-evaluate where the element's error estimate exceeds this")
-      ->default_val(0.1)
-      ->check(CLI::PositiveNumber);
-  app.add_option("--selective-power", o->twoPass.selectiveLinkPower,
-                 "--selective, reichert on a hierarchical solution: re-evaluate partially visible links carrying at "
-                 "least this fraction of the emitted power")
-      ->default_val(1e-4)
-      ->check(CLI::PositiveNumber);
   app.add_option("--selective-map", o->selectiveMapPath,
                  "--selective: write a PNG of the pixels re-evaluated (white) or, in link mode, how many links");
+  std::vector<ParameterGroup> groups;
+  for (const RendererInfo &info : rendererRegistry())
+    groups.push_back({fmt::format("--method {}", info.name), &info.parameters});
+  o->methodParameters.add(app, groups);
   addDisplayOptions(app, o->display);
   addColourOptions(app, o->colour);
 
@@ -185,26 +145,22 @@ CommandRunner addRenderCommand(CLI::App &app) {
     {
       const RendererInfo &method = findRenderer(o->method);
       bool solving = method.needsSolution && o->solutionPath.empty();
-      rejectUnusedRadiosityOptions(app, solving,
-                                   method.needsSolution
-                                       ? "the solution comes from --solution"
-                                       : "--method " + o->method + " does not read a radiosity solution",
-                                   o->radiosity);
+      checkRadiosityOptions(o->radiosity, solving,
+                            method.needsSolution ? "the solution comes from --solution"
+                                                 : "--method " + o->method + " does not read a radiosity solution");
       if (!o->solutionPath.empty() && !method.needsSolution)
         throw InputError(InputLocation{"--solution"}, "--method " + o->method + " does not read a radiosity solution");
-      rejectUnusedTwoPassOptions(app, o->method);
-      if (app.count("--bump-orientations") > 0 &&
-          ((o->method != "interpolate" && o->method != "shirley" && o->method != "kok" && o->method != "multipass") ||
-           o->quantity == "irradiance"))
-        throw InputError(flag("--bump-orientations"),
-                         "only interpolate, shirley, kok and multipass (of radiance) use it, not --method " +
-                             o->method + (o->quantity == "irradiance" ? " --quantity irradiance" : ""));
-      if (o->twoPass.bumpOrientations % 2 != 0)
-        throw InputError(flag("--bump-orientations"), "must be even (two tilts × azimuths)");
-      if (o->quantity == "irradiance" && !method.supportsIrradiance)
+      // Every given method parameter is one the method declares, of its type and in its range.
+      const Parameters parameters = methodParameters(method, o->methodParameters.given());
+      if (o->quantity == "irradiance" && !method.supportsIrradiance) {
+        std::string which;
+        for (const RendererInfo &info : rendererRegistry())
+          if (info.supportsIrradiance) which += (which.empty() ? "" : ", ") + std::string(info.name);
         throw InputError(flag("--quantity"),
-                         "irradiance images come from --method path, flat or interpolate, not " + o->method);
-      if (!o->selectiveMapPath.empty() && !o->twoPass.selective)
+                         fmt::format("irradiance images come from --method {}, not {}", which, o->method));
+      }
+      if (!o->selectiveMapPath.empty() &&
+          !(o->methodParameters.given().has("selective") && parameters.flag("selective")))
         throw InputError(flag("--selective-map"), "needs --selective");
       if (!o->selectiveMapPath.empty() && std::filesystem::path(o->selectiveMapPath).extension() != ".png")
         throw InputError(flag("--selective-map"), "'" + o->selectiveMapPath + "': expected a .png file");
@@ -221,7 +177,6 @@ CommandRunner addRenderCommand(CLI::App &app) {
     if (o->spp) scene.render.samplesPerPixel = *o->spp;
     if (o->time) scene.render.timeBudgetSeconds = *o->time;
     if (o->seed) scene.render.seed = *o->seed;
-    if (o->maxDepth) scene.render.maxDepth = *o->maxDepth;
     if (o->time && !o->spp) scene.render.samplesPerPixel = kMaxSamplesPerPixel;  // the budget decides
 
     // Command-line values get the same checks as the scene file's, before any allocation.
@@ -236,7 +191,6 @@ CommandRunner addRenderCommand(CLI::App &app) {
                                                   r.samplesPerPixel));
     if (!(r.timeBudgetSeconds >= 0) || !std::isfinite(r.timeBudgetSeconds))
       throw InputError(flag("--time"), "the time budget must be a non-negative number of seconds");
-    if (r.maxDepth < 0) throw InputError(flag("--max-depth"), "must be 0 (unlimited) or positive");
     if (!(scene.camera.verticalFovDegrees > 0 && scene.camera.verticalFovDegrees < 180))
       throw InputError(flag("--fov"), "the field of view must be strictly between 0 and 180 degrees");
     Vec3 view = scene.camera.target - scene.camera.eye;
@@ -277,17 +231,33 @@ CommandRunner addRenderCommand(CLI::App &app) {
     const RendererInfo &method = findRenderer(o->method);
     RayTracer tracer(scene);  // geometry only: a spectral pass changes the materials, not the rays
     PinholeCamera camera(scene.camera, r.width, r.height);
-    if (o->method == "multipass") {
+    // The scene file's render.max_depth, for the methods that have the parameter.
+    ParameterValues given = o->methodParameters.given();
+    const bool takesMaxDepth = std::any_of(method.parameters.begin(), method.parameters.end(),
+                                           [](const ParameterSpec &s) { return s.name == "max-depth"; });
+    if (takesMaxDepth && !given.has("max-depth") && r.maxDepth != 0) {
+      InputLocation where{o->scenePath};
+      where.jsonPath = "/render/max_depth";
+      given.set("max-depth", std::to_string(r.maxDepth), where);
+    }
+    const Parameters parameters = methodParameters(method, given);
+    if (method.render) {  // a method that owns its loop: passes, each written as it completes
       if (scene.spectral.enabled())
-        throw InputError(flag("--method"), "multipass does not run spectral scenes yet: use --colour rgb");
+        throw InputError(flag("--method"), o->method + " does not run spectral scenes yet: use --colour rgb");
       if (!o->solutionPath.empty())
-        throw InputError(flag("--solution"), "multipass solves itself: a progressive preview, then --solver");
-      MultipassCommand command{outputs,    display,           app.count("--tonemap") > 0, o->variancePath, o->radiosity,
-                               o->twoPass, r.samplesPerPixel, r.timeBudgetSeconds,        r.seed,          o->threads,
-                               o->quiet};
-      command.renderer.maxDepth = r.maxDepth;
-      command.renderer.pixelSpreadAngle = texturePixelSpread(scene.camera, r.height, 4);  // its filtered passes: 4 spp
-      runMultipass(tracer, camera, r.width, r.height, command);
+        throw InputError(flag("--solution"), o->method + " solves itself: a progressive preview, then --solver");
+      ImageMethodCommand command{outputs, display, app.count("--tonemap") > 0, o->variancePath, o->quiet};
+      ImageJob job{tracer, camera, r.width, r.height};
+      job.pixelAngle = pixelAngle(scene.camera, r.height);
+      job.samplesPerPixel = r.samplesPerPixel;
+      job.timeBudgetSeconds = r.timeBudgetSeconds;
+      job.seed = r.seed;
+      job.threads = o->threads;
+      job.solve = [&](int maxShots) {
+        return maxShots > 0 ? solvePreview(scene, tracer, o->radiosity, maxShots, r.seed, o->threads)
+                            : solveScene(scene, tracer, o->radiosity, r.seed, o->threads, o->quiet);
+      };
+      runImageMethod(method, parameters, job, command);
       return 0;
     }
     std::vector<Solution> solutions;
@@ -302,19 +272,18 @@ CommandRunner addRenderCommand(CLI::App &app) {
       const std::string label =
           spectral ? fmt::format("{} {} ({}/{})", o->method, passWavelengthLabel(scene, pass), pass + 1, passes)
                    : o->method;
-      RendererOptions rendererOptions = o->twoPass;
-      rendererOptions.maxDepth = r.maxDepth;
-      rendererOptions.irradiance = o->quantity == "irradiance";
-      rendererOptions.pixelSpreadAngle = texturePixelSpread(scene.camera, r.height, r.samplesPerPixel);
+      RenderContext context;
+      context.irradiance = o->quantity == "irradiance";
+      context.pixelSpreadAngle = texturePixelSpread(scene.camera, r.height, r.samplesPerPixel);
       Solution solved;
       if (method.needsSolution) {
         if (solutions.empty()) {
           if (!o->quiet && spectral) fmt::print(stderr, "radiant: solving at {}\n", passWavelengthLabel(scene, pass));
           solved = solveScene(scene, tracer, o->radiosity, r.seed, o->threads, o->quiet);
         }
-        rendererOptions.solution = solutions.empty() ? &solved : &solutions[pass];
+        context.solution = solutions.empty() ? &solved : &solutions[pass];
       }
-      std::unique_ptr<Renderer> renderer = createRenderer(o->method, tracer, rendererOptions);
+      std::unique_ptr<Renderer> renderer = createRenderer(o->method, tracer, context, given);
       DriverOptions passDriver = driver;
       passDriver.timeBudgetSeconds = driver.timeBudgetSeconds / passes;  // --time covers all passes
       RenderStats passStats =

@@ -39,7 +39,7 @@ CommandRunner addSolveCommand(CLI::App &app) {
   app.add_flag("-q,--quiet", o->quiet, "No progress or summary on stderr");
 
   return [o, &app]() {
-    rejectUnusedRadiosityOptions(app, true, "", o->radiosity);
+    checkRadiosityOptions(o->radiosity, true, "");
     Scene scene = loadScene(o->scenePath);
     const WhiteBalance balance = applyColourOptions(app, o->colour, scene);
     if (!o->quiet)

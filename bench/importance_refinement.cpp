@@ -62,6 +62,7 @@
 #include "raytrace/ray_tracer.h"
 #include "render/driver.h"
 #include "render/film_image.h"
+#include "render/registry.h"
 #include "render/renderer.h"
 #include "scene/camera.h"
 #include "scene/load_scene.h"
@@ -146,8 +147,7 @@ Solution tunedSolve(const Setup &setup, const CameraSettings &camera, size_t bud
 /// Renders `method` (with `solution` when it reads one) and returns the mean and variance images.
 std::pair<Image, Image> render(const Setup &setup, const CameraSettings &cameraSettings, const std::string &method,
                                const Solution *solution, int spp, uint64_t seed) {
-  RendererOptions options;
-  options.maxDepth = setup.scene.render.maxDepth;
+  RenderContext options;
   options.solution = solution;
   options.pixelSpreadAngle = 2 * std::tan(0.5 * cameraSettings.verticalFovDegrees * kPi / 180) / setup.size;
   auto renderer = createRenderer(method, setup.tracer, options);

@@ -112,7 +112,6 @@ int main(int argc, char **argv) {
         options.samplesPerPixel = kUncappedSamplesPerPixel;
         options.seed = uint64_t(repeat);
         options.threads = threads;
-        options.renderer.maxDepth = scene.render.maxDepth;
         auto solve = [&](int maxShots) {  // as the command line: the preview progressive, then --solver
           SolverOptions solver;
           solver.solver = maxShots > 0 ? "progressive" : solverName;

@@ -11,7 +11,7 @@
 //   default     exactly what `radiant render scenes/cornell-box/scene.json
 //               --method interpolate` does with no flags: MeshOptions{} and
 //               SolverOptions{} ("auto"), seed = the repeat, the `interpolate`
-//               renderer with the command line's RendererOptions. --solver,
+//               renderer with the command line's RenderContext. --solver,
 //               --set and --mesh-size do not touch it: it is the baseline;
 //   METHOD[:Q]  each of --methods (default interpolate,shirley): the scene
 //               meshed and solved with SolverOptions{} changed by --solver,
@@ -70,6 +70,7 @@
 #include "raytrace/ray_tracer.h"
 #include "render/driver.h"
 #include "render/film_image.h"
+#include "render/registry.h"
 #include "render/renderer.h"
 #include "scene/camera.h"
 #include "scene/load_scene.h"
@@ -323,9 +324,8 @@ int main(int argc, char **argv) {
     RayTracer tracer(scene);
     PinholeCamera camera(scene.camera, kSize, kSize);
     // What `radiant render --method interpolate` passes its renderer (app/render_command.cpp): the scene's
-    // max depth, and the texture filter of a time budget (its sample count is then the largest allowed).
-    RendererOptions baseOptions;
-    baseOptions.maxDepth = scene.render.maxDepth;
+    // texture filter of a time budget (its sample count is then the largest allowed).
+    RenderContext baseOptions;
     baseOptions.pixelSpreadAngle = texturePixelSpread(scene.camera, kSize, kMaxSamplesPerPixel);
 
     // The reference: rendered once, then read from its files.
@@ -395,7 +395,7 @@ int main(int argc, char **argv) {
       SolverOptions solverOptions;
       solverOptions.threads = threads;
       Solution solution = meshAndSolve(scene, tracer, MeshOptions{}, solverOptions);
-      RendererOptions options = baseOptions;
+      RenderContext options = baseOptions;
       options.solution = &solution;
       DriverOptions driver;
       driver.samplesPerPixel = 1;
@@ -416,7 +416,7 @@ int main(int argc, char **argv) {
           Measurement m;
           const auto start = std::chrono::steady_clock::now();
           Solution solution;
-          RendererOptions options = baseOptions;
+          RenderContext options = baseOptions;
           if (needsSolution) {
             SolverOptions solverOptions = pipeline.pristine ? SolverOptions{} : configured;
             if (!pipeline.quality.empty()) applyQuality(solverOptions, pipeline.quality);

@@ -48,6 +48,7 @@
 #include "bench_common.h"
 #include "raytrace/ray_tracer.h"
 #include "render/driver.h"
+#include "render/registry.h"
 #include "render/renderer.h"
 #include "scene/camera.h"
 #include "scene/load_scene.h"
@@ -314,7 +315,7 @@ int main(int argc, char **argv) {
     // 3. The path tracer through the driver, as `radiant render --method path` runs it.
     constexpr int kRenderSize = 256, kRenderSpp = 16;
     const int renderReps = std::min(reps, 3);
-    std::unique_ptr<Renderer> renderer = createRenderer("path", tracer, RendererOptions{});
+    std::unique_ptr<Renderer> renderer = createRenderer("path", tracer, RenderContext{});
     PinholeCamera renderCamera(scene.camera, kRenderSize, kRenderSize);
     std::printf("path tracer, %dx%d at %d spp, median of %d reps\n", kRenderSize, kRenderSize, kRenderSpp, renderReps);
     std::printf("%-10s %14s %12s %10s\n", "threads", "Msamples/s", "seconds", "speed-up");

@@ -50,6 +50,7 @@
 #include "render/driver.h"
 #include "render/film_image.h"
 #include "render/multipass.h"
+#include "render/registry.h"
 #include "render/renderer.h"
 #include "scene/camera.h"
 #include "scene/load_scene.h"
@@ -137,8 +138,7 @@ int main(int argc, char **argv) {
     PinholeCamera camera(scene.camera, kSize, kSize);
     MeshOptions meshOptions;
     meshOptions.maxEdgeLength = meshSizeMetres;
-    RendererOptions baseOptions;
-    baseOptions.maxDepth = scene.render.maxDepth;
+    RenderContext baseOptions;
 
     // The reference: rendered once, then read from its file.
     Image reference, referenceVariance;
@@ -191,7 +191,7 @@ int main(int argc, char **argv) {
             options.samplesPerPixel = kMaxSamplesPerPixel;
             options.seed = uint64_t(repeat);
             options.threads = threads;
-            options.renderer = baseOptions;
+            options.context = baseOptions;
             auto solve = [&](int maxShots) {  // the preview progressive, then --solver as the others
               SolverOptions solverOptions;
               solverOptions.solver = maxShots > 0 ? "progressive" : solverName;
@@ -222,7 +222,7 @@ int main(int argc, char **argv) {
             continue;
           }
           Solution solution;
-          RendererOptions options = baseOptions;
+          RenderContext options = baseOptions;
           if (needsSolution) {
             SolverOptions solverOptions;
             solverOptions.solver = solverName;

@@ -99,7 +99,7 @@ done
 printf 'garbage' > bad.rad
 expect_error "not a solution file" "not a Radiant solution" "$radiant" render "$cornell" --method flat --solution bad.rad -q
 expect_error "unused radiosity option" "has no effect" "$radiant" render "$cornell" --mesh-size 50 -q
-expect_error "progressive-only option" "only to --solver progressive" \
+expect_error "progressive-only option" "solver hierarchical does not use it .used by progressive" \
   "$radiant" solve "$cornell" --solver hierarchical --form-factor hemicube -q
 "$radiant" solve "$cornell" --solver gauss-seidel --mesh-size 200 --adaptive-rounds 1 -q && pass || fail "solve --adaptive-rounds"
 expect_error "adaptive with hierarchical" "refines by itself" "$radiant" solve "$cornell" --adaptive-rounds 1 -q
@@ -119,9 +119,9 @@ done
 "$radiant" render "$cornell" --method reichert --solver hierarchical --selective --mesh-size 200 --selective-map links.png --spp 1 \
   --width 16 --height 16 -o r.png 2>err.txt && grep -q "links per pixel" err.txt \
   && pass || { fail "--selective link mode"; cat err.txt; }
-expect_error "--ff for another method" "only reichert" "$radiant" render "$cornell" --method shirley --ff point -q
-expect_error "--ff value" "not in" "$radiant" render "$cornell" --method reichert --ff pt -q
-expect_error "--selective with path" "two-pass methods" "$radiant" render "$cornell" --selective -q
+expect_error "--ff for another method" "method shirley does not use it .used by reichert" "$radiant" render "$cornell" --method shirley --ff point -q
+expect_error "--ff value" "expected one of point, mc" "$radiant" render "$cornell" --method reichert --ff pt -q
+expect_error "--selective with path" "used by rushmeier, reichert, shirley, kok" "$radiant" render "$cornell" --selective -q
 expect_error "--sources and --source-fraction" "not both" \
   "$radiant" render "$cornell" --method kok --sources 2 --source-fraction 0.5 -q
 expect_error "--selective-map without --selective" "needs --selective" \
@@ -173,7 +173,7 @@ for method in path interpolate shirley; do
   "$radiant" render "$textured" --method "$method" --spp 1 --width 16 --height 16 "${mesh[@]}" -o "tex-$method.png" -q \
     && [ -s "tex-$method.png" ] && pass || fail "textured box with --method $method"
 done
-expect_error "--bump-orientations with path" "only interpolate, shirley, kok and multipass" \
+expect_error "--bump-orientations with path" "used by interpolate, shirley, kok, multipass" \
   "$radiant" render "$textured" --bump-orientations 8 -o x.exr -q
 expect_error "odd --bump-orientations" "must be even" \
   "$radiant" render "$textured" --method interpolate --bump-orientations 9 -o x.exr -q

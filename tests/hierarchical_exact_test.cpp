@@ -19,6 +19,7 @@
 #include "radiosity/direct_refinement.h"
 #include "radiosity/solver.h"
 #include "render/driver.h"
+#include "render/registry.h"
 #include "render/renderer.h"
 #include "sanitizer.h"
 #include "scene/load_scene.h"
@@ -46,7 +47,7 @@ const CornellSolve &cornell() {
 
 Film render(const CameraSettings &settings, const RayTracer &tracer, const std::string &method,
             const Solution *solution, int size, int spp) {
-  RendererOptions options;
+  RenderContext options;
   options.solution = solution;
   auto renderer = createRenderer(method, tracer, options);
   PinholeCamera camera(settings, size, size);

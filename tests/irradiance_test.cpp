@@ -22,7 +22,7 @@ struct PixelEstimate {
 /// the pixels and the standard error of that mean.
 PixelEstimate renderIrradiance(const Scene &scene, const std::string &method, int spp, int size,
                                double meshSize = 0.5) {
-  RendererOptions options;
+  RenderContext options;
   options.irradiance = true;
   const Film film = test::solveAndRender(scene, method, options, spp, size, meshSize, 1e-8);
   PixelEstimate e;

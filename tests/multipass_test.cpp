@@ -12,6 +12,7 @@
 #include "radiosity/solver.h"
 #include "render/caustic_photons.h"
 #include "render/driver.h"
+#include "render/registry.h"
 #include "render_helpers.h"
 #include "sanitizer.h"
 #include "scene/load_scene.h"
@@ -24,7 +25,7 @@ namespace {
 
 const std::string kSpecularBox = std::string(RADIANT_SOURCE_DIR) + "/scenes/cornell-specular/scene.json";
 
-Film renderWith(const RayTracer &tracer, const RendererOptions &options, const std::string &method, int size, int spp,
+Film renderWith(const RayTracer &tracer, const RenderContext &options, const std::string &method, int size, int spp,
                 uint64_t seed = 1) {
   PinholeCamera camera(tracer.scene().camera, size, size);
   Film film(size, size);
@@ -96,7 +97,7 @@ TEST(Multipass, EveryLightPathIsCountedOnce) {
   ASSERT_GT(caustic.size(), 20u);
   const CausticPhotonMap map(tracer, 400000, 7, 0.008), none(tracer, 0, 7, 0.008);
   ASSERT_GT(map.stored(), 10000u);
-  RendererOptions plain, withMap, exclusionOnly;
+  RenderContext plain, withMap, exclusionOnly;
   withMap.caustics = &map;
   exclusionOnly.caustics = &none;
   const Film path = renderWith(tracer, plain, "path", size, 1024);
@@ -122,7 +123,7 @@ void expectMapAgreesWithPath(const std::string &json, const std::string &what) {
   Scene scene = parseSceneJson(json, what + ".json");
   RayTracer tracer(scene);
   const CausticPhotonMap map(tracer, 400000, 11, 0.02);
-  RendererOptions plain, withMap;
+  RenderContext plain, withMap;
   withMap.caustics = &map;
   const int size = 24;
   const Film path = renderWith(tracer, plain, "path", size, 2048),
@@ -183,7 +184,7 @@ TEST(Multipass, PairedSamplesAreTheTwoEstimatorsFromTheSameNumbers) {
   const CausticPhotonMap map(tracer, 50000, 7, 0.02);
   const int size = 24, spp = 8;
   PinholeCamera camera(scene.camera, size, size);
-  RendererOptions reading, unbiased;
+  RenderContext reading, unbiased;
   reading.solution = &coarse, reading.caustics = &map, reading.readSolutionDepth = 1;
   unbiased.caustics = &map;
   const Film controls = renderWith(tracer, reading, "path", size, spp, 3);
@@ -408,14 +409,14 @@ TEST(Multipass, KeepsConvergingWhereShirleyFlattensOut) {
   Scene scene = loadScene(kSpecularBox);
   RayTracer tracer(scene);
   const int size = 24;
-  RendererOptions plain;
+  RenderContext plain;
   const Film reference = renderWith(tracer, plain, "path", size, 8192, 99);
   MeshOptions mesh;
   mesh.maxEdgeLength = 0.25;  // coarse: 2 × 2 elements on a wall
   SolverOptions solver;
   solver.solver = "progressive";
   const Solution coarse = meshAndSolve(scene, tracer, mesh, solver);
-  RendererOptions withSolution;
+  RenderContext withSolution;
   withSolution.solution = &coarse;
   const double shirleyFew = test::meanBlockError(renderWith(tracer, withSolution, "shirley", size, 64), reference, 4);
   const double shirleyMany = test::meanBlockError(renderWith(tracer, withSolution, "shirley", size, 512), reference, 4);

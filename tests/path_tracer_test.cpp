@@ -4,7 +4,9 @@
 
 #include "raytrace/ray_tracer.h"
 #include "render/driver.h"
+#include "render/registry.h"
 #include "render/renderer.h"
+#include "render_helpers.h"
 #include "scene/load_scene.h"
 #include "test_scenes.h"
 
@@ -18,7 +20,7 @@ struct ImageEstimate {
 
 Film renderFilm(const Scene &scene, int width, int spp, int threads = 0, uint64_t seed = 1) {
   RayTracer tracer(scene);
-  auto renderer = createRenderer("path", tracer, RendererOptions{});
+  auto renderer = createRenderer("path", tracer, RenderContext{});
   PinholeCamera camera(scene.camera, width, width);
   Film film(width, width);
   DriverOptions options;
@@ -113,7 +115,7 @@ TEST(PathTracer, EmittersAreOneSided) {
   light.emission = Bands(3.0);
   scene.materials = {black, light};
   RayTracer tracer(scene);
-  auto renderer = createRenderer("path", tracer, RendererOptions{});
+  auto renderer = createRenderer("path", tracer, RenderContext{});
   Sampler rng(Pcg32(1, 1));
   Bands inside = renderer->radiance({{0.5, 0.5, 0.5}, {0, 0, 1}}, rng);
   EXPECT_DOUBLE_EQ(inside[0], 3.0);
@@ -133,7 +135,7 @@ TEST(PathTracer, MirrorShowsTheEmitterScaledByItsReflectance) {
   mirror.specular = Bands(0.7, 0.5, 0.3);
   scene.materials = {black, light, mirror};
   RayTracer tracer(scene);
-  auto renderer = createRenderer("path", tracer, RendererOptions{});
+  auto renderer = createRenderer("path", tracer, RenderContext{});
   Sampler rng(Pcg32(1, 1));
   Bands L = renderer->radiance({{0.5, 0.5, 0.5}, normalize(Vec3{0.1, 0.05, -1})}, rng);
   EXPECT_NEAR(L[0], 1.4, 1e-12);
@@ -160,9 +162,7 @@ TEST(PathTracer, DirectLightOnCornellWallMatchesLambertContourFormula) {
   // float round-off there once made the light occlude itself.
   Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
   RayTracer tracer(scene);
-  RendererOptions options;
-  options.maxDepth = 1;
-  auto renderer = createRenderer("path", tracer, options);
+  auto renderer = createRenderer("path", tracer, RenderContext{}, test::parameters({{"max-depth", "1"}}));
   const double lightY = 0.5487;
   const std::vector<Vec3> light = {
       {0.343, lightY, 0.227}, {0.343, lightY, 0.332}, {0.213, lightY, 0.332}, {0.213, lightY, 0.227}};

@@ -14,6 +14,7 @@
 #include "radiosity/report.h"
 #include "radiosity/solver.h"
 #include "render/driver.h"
+#include "render/registry.h"
 #include "render/renderer.h"
 #include "sanitizer.h"
 #include "scene/load_scene.h"
@@ -264,7 +265,7 @@ struct ImageAgainstPath {
   Film reference = render("path", nullptr, 512);
 
   Film render(const std::string &method, const Solution *solution, int spp) const {
-    RendererOptions options;
+    RenderContext options;
     options.solution = solution;
     auto renderer = createRenderer(method, tracer, options);
     Film film(size, size);

@@ -48,6 +48,7 @@
 #include "raytrace/ray_tracer.h"
 #include "render/driver.h"
 #include "render/multipass.h"
+#include "render/registry.h"
 #include "render/renderer.h"
 #include "test_scenes.h"
 
@@ -258,38 +259,29 @@ std::vector<RendererCase> rendererCases() {
   return cases;
 }
 
-/// Entries that are not one Renderer by design (their factory throws), with
-/// the driver that runs them instead. A new entry whose factory throws fails
-/// the table until it is listed here.
-using OwnDriver = std::function<ImageMean(const RayTracer &, const ClosedFormScene &, const RendererOptions &)>;
-
-ImageMean renderThroughMultipass(const RayTracer &tracer, const ClosedFormScene &closed,
-                                 const RendererOptions &renderer) {
-  // The preview reads an interrupted progressive solution, the later passes
-  // the converged one; only the last pass, which combines the later passes'
-  // samples, is checked (Multipass.TheFurnaceHoldsInEveryPass checks them all).
-  const MultipassSolver solve = [&](int maxShots) {
+/// A method that owns its loop (RendererInfo::render: multipass), run as the
+/// command line runs it. The preview reads an interrupted progressive
+/// solution, the later passes the converged one; only the last pass, which
+/// combines the later passes' samples, is checked (Multipass.TheFurnaceHoldsInEveryPass checks them all).
+ImageMean renderThroughItsOwnLoop(const RendererInfo &method, const RayTracer &tracer, const ClosedFormScene &closed,
+                                  const RenderContext &context) {
+  PinholeCamera camera(tracer.scene().camera, kImageSize, kImageSize);
+  ImageJob job{tracer, camera, kImageSize, kImageSize};
+  job.samplesPerPixel = kSamplesPerPixel;
+  job.pixelAngle = context.pixelSpreadAngle;
+  job.solve = [&](int maxShots) {
     if (maxShots == 0) return convergedSolution(tracer.scene(), tracer, closed.meshSize);
     SolverOptions options;
     options.solver = "progressive";
     options.maxIterations = maxShots;
     return solveOnUniformMesh(tracer.scene(), tracer, closed.meshSize, options);
   };
-  MultipassOptions options;
-  options.samplesPerPixel = kSamplesPerPixel;
-  options.photonsPerPass = 1000;  // all walls diffuse: no photon is stored
-  options.renderer = renderer;
-  PinholeCamera camera(tracer.scene().camera, kImageSize, kImageSize);
   ImageMean last;
-  renderMultipass(
-      tracer, camera, kImageSize, kImageSize, options, solve,
-      [&](const MultipassPass &, const Image &mean, const Image &variance) { last = imageMean(mean, variance); });
+  job.output = [&](int, const std::string &, const Image &mean, const Image &variance) {
+    last = imageMean(mean, variance);
+  };
+  method.render(job, methodParameters(method, {}));
   return last;
-}
-
-const std::map<std::string, OwnDriver> &ownDrivers() {
-  static const std::map<std::string, OwnDriver> drivers = {{"multipass", &renderThroughMultipass}};
-  return drivers;
 }
 
 /// Methods whose image differs from the closed form by design, beyond the
@@ -319,7 +311,7 @@ TEST_P(EveryRenderer, ImageMeanIsTheClosedForm) {
   const bool irradiance = c.quantity == Quantity::Irradiance;
   const double expected = (irradiance ? kPi : 1.0) * closed.radiance();
 
-  RendererOptions options;
+  RenderContext options;
   options.irradiance = irradiance;
   Solution solution;
   double allowance = 0;
@@ -330,18 +322,15 @@ TEST_P(EveryRenderer, ImageMeanIsTheClosedForm) {
   }
   if (const auto bias = discretisationBiasFraction().find(c.method); bias != discretisationBiasFraction().end())
     allowance += expected * bias->second;
-  std::unique_ptr<Renderer> renderer;
-  try {
-    renderer = createRenderer(c.method, tracer, options);
-  } catch (const std::exception &error) {
-    const auto own = ownDrivers().find(c.method);
-    ASSERT_NE(own, ownDrivers().end())
-        << c.method << "'s factory threw (" << error.what()
-        << "); if it is not one renderer by design, add the driver that runs it to ownDrivers()";
-    expectCloseToClosedForm(own->second(tracer, closed, options), expected, allowance,
+  const RendererInfo &method = findRenderer(c.method);
+  ASSERT_TRUE((method.create != nullptr) != (method.render != nullptr))
+      << c.method << ": an entry is either a ray-level method (create) or owns its loop (render)";
+  if (method.render) {
+    expectCloseToClosedForm(renderThroughItsOwnLoop(method, tracer, closed, options), expected, allowance,
                             std::string(closed.name) + ", " + c.method);
     return;
   }
+  std::unique_ptr<Renderer> renderer = createRenderer(c.method, tracer, options);
   PinholeCamera camera(scene.camera, kImageSize, kImageSize);
   const RenderedFilm rendered = renderToStandardError(camera, *renderer, expected);
   expectCloseToClosedForm(imageMean(rendered.film), expected, allowance,
@@ -418,7 +407,7 @@ TEST_P(EverySolver, FlatImageMeanIsTheClosedForm) {
   const double scatter = std::sqrt(std::max(0.0, (sumOfSquares - sum * sum / n) / (n - 1)));
   const double solutionError = scatter * std::sqrt(sumOfSquaredPixelShares(scene, tracer, solution));
 
-  RendererOptions rendererOptions;
+  RenderContext rendererOptions;
   rendererOptions.solution = &solution;
   PinholeCamera camera(scene.camera, kImageSize, kImageSize);
   Film film(kImageSize, kImageSize);

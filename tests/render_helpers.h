@@ -7,14 +7,22 @@
 
 #include "radiosity/solver.h"
 #include "render/driver.h"
+#include "render/registry.h"
 #include "render/renderer.h"
 
 namespace radiant::test {
 
+/// Method parameters by name, as a caller other than the command line gives them.
+inline ParameterValues parameters(std::initializer_list<std::pair<std::string, std::string>> values) {
+  ParameterValues given;
+  for (const auto &[name, text] : values) given.set(name, text, InputLocation::ofParameter(name));
+  return given;
+}
+
 /// Solves the scene (Gauss–Seidel on a uniform mesh of `meshSize` metres, to
 /// `tolerance`) when `method` reads a solution, then renders `spp` samples
 /// per pixel at size × size with `options` (its solution is set here).
-inline Film solveAndRender(const Scene &scene, const std::string &method, RendererOptions options, int spp, int size,
+inline Film solveAndRender(const Scene &scene, const std::string &method, RenderContext options, int spp, int size,
                            double meshSize, double tolerance = 1e-3) {
   RayTracer tracer(scene);
   Solution solution;

@@ -48,7 +48,7 @@ SpectralImages render(Scene &scene, const std::string &method, int spp, WhiteBal
                       double meshSize = 0.5,
                       double tolerance = 1e-10 /* converged: the furnace's B = 2 to rounding */) {
   return renderPasses(scene, size, size, balance, [&](int, Film &film) {
-    film = test::solveAndRender(scene, method, RendererOptions{}, spp, size, meshSize, tolerance);
+    film = test::solveAndRender(scene, method, RenderContext{}, spp, size, meshSize, tolerance);
   });
 }
 

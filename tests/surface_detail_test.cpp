@@ -12,6 +12,7 @@
 #include "radiosity/solver.h"
 #include "render/bump_gather.h"
 #include "render/driver.h"
+#include "render/registry.h"
 #include "render/renderer.h"
 #include "render_helpers.h"
 #include "sanitizer.h"
@@ -46,7 +47,7 @@ Scene texturedBox(const std::vector<std::pair<std::string, std::string>> &edits 
 
 /// Renders with the pixel spread the command line gives (textures filtered), solving first if needed.
 Film render(const Scene &scene, const std::string &method, int spp, int size = 32, double meshSize = 0.1) {
-  RendererOptions options;
+  RenderContext options;
   options.pixelSpreadAngle = pixelAngle(scene.camera, size);
   return test::solveAndRender(scene, method, options, spp, size, meshSize);
 }
@@ -131,7 +132,7 @@ TEST(SurfaceDetail, FlatDisplayKeepsEachElementsMean) {
   SolverOptions solver;
   solver.solver = "gauss-seidel";
   Solution solution = meshAndSolve(scene, tracer, mesh, solver);
-  RendererOptions options;
+  RenderContext options;
   options.solution = &solution;
   auto flat = createRenderer("flat", tracer, options);
   // The floor's elements, each sampled by rays straight down on a 64 × 64 grid of its (parallelogram-like) quad.

@@ -11,8 +11,10 @@
 #include "radiosity/form_factor.h"
 #include "radiosity/solver.h"
 #include "render/driver.h"
+#include "render/registry.h"
 #include "render/renderer.h"
 #include "render/secondary_sources.h"
+#include "render_helpers.h"
 #include "sanitizer.h"
 #include "scene/load_scene.h"
 #include "test_scenes.h"
@@ -90,13 +92,14 @@ struct ExactCube {
   Scene scene = unitCubeWithCeilingLight();
   RayTracer tracer{scene};
   Solution solution = exactCubeSolution(scene);
-  RendererOptions options = [this] {
-    RendererOptions o;
+  RenderContext options = [this] {
+    RenderContext o;
     o.solution = &solution;
     return o;
   }();
+  ParameterValues parameters;
   std::unique_ptr<Renderer> renderer(const std::string &method) const {
-    return createRenderer(method, tracer, options);
+    return createRenderer(method, tracer, options, parameters);
   }
 };
 
@@ -117,7 +120,7 @@ TEST(TwoPass, ReichertGathersTheExactFormFactorsAtTheFloorCentre) {
   // integrals make the gather exact, for point and Monte Carlo sampling alike.
   ExactCube cube;
   for (const char *ff : {"point", "mc"}) {
-    cube.options.formFactorSampling = ff;
+    cube.parameters = test::parameters({{"ff", ff}});
     auto renderer = cube.renderer("reichert");
     Sampler rng{Pcg32()};
     EXPECT_NEAR(renderer->radiance(kRayToFloorCentre, rng)[0] * kPi, kGatherAtFloorCentre, 2e-6) << ff;
@@ -152,10 +155,9 @@ TEST(TwoPass, ReichertCountsTheFrontPartOfACutElement) {
   const double expected = 0.5 * kInvPi * formFactorPointToPolygon(x, n, frontHalf);
   ASSERT_GT(expected, 0.01);
   for (const char *ff : {"point", "mc"}) {
-    RendererOptions options;
+    RenderContext options;
     options.solution = &solution;
-    options.formFactorSampling = ff;
-    auto renderer = createRenderer("reichert", tracer, options);
+    auto renderer = createRenderer("reichert", tracer, options, test::parameters({{"ff", ff}}));
     for (int s = 0; s < 16; ++s) {
       Sampler rng(sampleGenerator(5, 0, uint64_t(s)));
       EXPECT_NEAR(renderer->radiance({{1, 0.2, 0}, {-1, 0, 0}}, rng)[0], expected, 1e-9 * expected) << ff;
@@ -179,8 +181,10 @@ TEST(TwoPass, KokRemovesExactlyWhatItSamplesFromTheSecondarySources) {
   // solution leaves shirley's expectation at that point.
   ExactCube cube;
   const Solution &solution = cube.solution;
-  cube.options.secondarySources = 10;
-  SecondarySources sources(cube.tracer, solution, cube.options);
+  SecondarySourceOptions selection;
+  selection.count = 10;
+  selection.visibilityGrid = 2;
+  SecondarySources sources(cube.tracer, solution, selection);
   EXPECT_EQ(sources.patches().size(), 5u);  // 4 walls and the floor; the ceiling reflects nothing
   EXPECT_NEAR(sources.powerFraction(), 1.0, 1e-12);
   for (uint32_t e = 0; e < solution.elementCount(); ++e) {
@@ -189,12 +193,13 @@ TEST(TwoPass, KokRemovesExactlyWhatItSamplesFromTheSecondarySources) {
     }
   }
 
+  cube.parameters = test::parameters({{"sources", "10"}});
   Estimate e = estimateRay(*cube.renderer("kok"), kRayToFloorCentre, 100000);
   EXPECT_NEAR(e.mean, (kDirectAtFloorCentre + kIndirectOfTheFloorElement) / kPi, 4 * e.standardError);
 
   // The fraction rule selects the fewest patches carrying that share of the power.
-  cube.options.secondarySourceFraction = 0.5;
-  SecondarySources half(cube.tracer, solution, cube.options);
+  selection.fraction = 0.5;
+  SecondarySources half(cube.tracer, solution, selection);
   EXPECT_EQ(half.patches().size(), 3u);  // five nearly equal reflectors: three carry over half
 }
 
@@ -215,9 +220,9 @@ Estimate imageMean(const Film &film) {
   return {sum / n, std::sqrt(variance) / n};
 }
 
-Film renderFilm(const Scene &scene, const RayTracer &tracer, const std::string &method, const RendererOptions &options,
-                int size, int spp, int threads = 0) {
-  auto renderer = createRenderer(method, tracer, options);
+Film renderFilm(const Scene &scene, const RayTracer &tracer, const std::string &method, const RenderContext &options,
+                int size, int spp, int threads = 0, const ParameterValues &parameters = {}) {
+  auto renderer = createRenderer(method, tracer, options, parameters);
   PinholeCamera camera(scene.camera, size, size);
   Film film(size, size);
   DriverOptions driver;
@@ -247,11 +252,13 @@ TEST(TwoPass, NoMethodCountsTheEmittersTwice) {
   RayTracer tracer(scene);
   Solution solution = meshAndSolveFor(scene, tracer, "gauss-seidel", 0.125, 1e-6);
   const int size = 24;
-  RendererOptions pathOptions;
+  RenderContext pathOptions;
   Estimate path = imageMean(renderFilm(scene, tracer, "path", pathOptions, size, 1024));
-  pathOptions.maxDepth = 1;  // the camera looks down: no emitter in view, so this is the direct image
-  const double excess = imageMean(renderFilm(scene, tracer, "path", pathOptions, size, 256)).mean;
-  RendererOptions options;
+  // max-depth 1: the camera looks down, no emitter in view, so this is the direct image.
+  const double excess =
+      imageMean(renderFilm(scene, tracer, "path", pathOptions, size, 256, 0, test::parameters({{"max-depth", "1"}})))
+          .mean;
+  RenderContext options;
   options.solution = &solution;
   Estimate interpolated = imageMean(renderFilm(scene, tracer, "interpolate", options, size, 4));
   const double solutionBias = std::abs(interpolated.mean - path.mean);
@@ -273,7 +280,7 @@ TEST(TwoPass, FurnaceGivesEmissionOverOneMinusReflectanceForEveryMethod) {
   Scene scene = test::furnace(1.0, rho);
   RayTracer tracer(scene);
   Solution solution = meshAndSolveFor(scene, tracer, "hierarchical", 0.25, 1e-9);
-  RendererOptions options;
+  RenderContext options;
   options.solution = &solution;
   for (const char *method : kTwoPassMethods) {
     Film film = renderFilm(scene, tracer, method, options, 16, 64);
@@ -287,7 +294,7 @@ TEST(TwoPass, SameImageWithOneAndTwoThreads) {
   Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
   RayTracer tracer(scene);
   Solution solution = meshAndSolveFor(scene, tracer, "progressive", 0.15, 1e-2);
-  RendererOptions options;
+  RenderContext options;
   options.solution = &solution;
   for (const char *method : {"rushmeier", "kok"}) {
     Film one = renderFilm(scene, tracer, method, options, 24, 4, 1);
@@ -302,22 +309,21 @@ TEST(TwoPass, SelectiveReevaluationSpansInterpolationToTheFullMethod) {
   Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
   RayTracer tracer(scene);
   Solution solution = meshAndSolveFor(scene, tracer, "progressive", 0.15, 1e-2);
-  RendererOptions options;
+  RenderContext options;
   options.solution = &solution;
   Film interpolated = renderFilm(scene, tracer, "interpolate", options, 24, 2);
   Film full = renderFilm(scene, tracer, "shirley", options, 24, 2);
-  options.selective = true;
-  options.selectiveThreshold = 1e300;
-  Film none = renderFilm(scene, tracer, "shirley", options, 24, 2);
-  options.selectiveThreshold = -1;
-  Film all = renderFilm(scene, tracer, "shirley", options, 24, 2);
+  Film none = renderFilm(scene, tracer, "shirley", options, 24, 2, 0,
+                         test::parameters({{"selective", "true"}, {"selective-threshold", "1e300"}}));
+  Film all = renderFilm(scene, tracer, "shirley", options, 24, 2, 0,
+                        test::parameters({{"selective", "true"}, {"selective-threshold", "0"}}));
   for (size_t p = 0; p < full.pixelCount(); ++p) {
     ASSERT_TRUE(sameSums(none, interpolated, p)) << p;
     ASSERT_TRUE(sameSums(all, full, p)) << p;
   }
   // In between, the flagged pixels are the ones whose element's error is large.
-  options.selectiveThreshold = 0.1;
-  auto renderer = createRenderer("shirley", tracer, options);
+  auto renderer = createRenderer("shirley", tracer, options,
+                                 test::parameters({{"selective", "true"}, {"selective-threshold", "0.1"}}));
   const auto &twoPass = dynamic_cast<const TwoPassRenderer &>(*renderer);
   PinholeCamera camera(scene.camera, 24, 24);
   int flagged = 0;
@@ -337,22 +343,21 @@ TEST(TwoPass, SelectiveLinksCorrectTheHierarchicalSolutionTowardsThePathTracer) 
   Solution solution = meshAndSolveFor(scene, tracer, "hierarchical", 0.15, 1e-3);
   ASSERT_FALSE(solution.links.empty());
   const int size = 32;
-  RendererOptions options;
+  RenderContext options;
   options.solution = &solution;
   Film interpolated = renderFilm(scene, tracer, "interpolate", options, size, 4);
-  options.selective = true;
-  options.selectiveLinkPower = 1e300;
-  Film none = renderFilm(scene, tracer, "reichert", options, size, 4);
+  Film none = renderFilm(scene, tracer, "reichert", options, size, 4, 0,
+                         test::parameters({{"selective", "true"}, {"selective-power", "1e300"}}));
   for (size_t p = 0; p < none.pixelCount(); ++p) {
     const Bands a = none.mean(p), b = interpolated.mean(p);
     for (int k = 0; k < kBandCount; ++k) ASSERT_NEAR(a[k], b[k], 1e-12 + 1e-12 * b[k]) << p;
   }
-  options.selectiveLinkPower = 1e-6;
-  auto renderer = createRenderer("reichert", tracer, options);
+  const ParameterValues links = test::parameters({{"selective", "true"}, {"selective-power", "1e-6"}});
+  auto renderer = createRenderer("reichert", tracer, options, links);
   const auto &twoPass = dynamic_cast<const TwoPassRenderer &>(*renderer);
   ASSERT_TRUE(twoPass.selectsByLinks());
-  Film corrected = renderFilm(scene, tracer, "reichert", options, size, 16);
-  RendererOptions pathOptions;
+  Film corrected = renderFilm(scene, tracer, "reichert", options, size, 16, 0, links);
+  RenderContext pathOptions;
   Film path = renderFilm(scene, tracer, "path", pathOptions, size, 512);
   // Compare over the pixels that re-evaluate links: the correction must reduce the error there.
   PinholeCamera camera(scene.camera, size, size);
@@ -380,14 +385,14 @@ TEST(TwoPass, ErrorAgainstThePathTracerFallsAsTheMeshIsRefinedAndSamplesGrow) {
   Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
   RayTracer tracer(scene);
   const int size = 48;
-  RendererOptions pathOptions;
+  RenderContext pathOptions;
   Film reference = renderFilm(scene, tracer, "path", pathOptions, size, 1024);
   auto blockError = [&](const Film &film) { return test::meanBlockError(film, reference); };
   Solution coarse = meshAndSolveFor(scene, tracer, "progressive", 0.25, 1e-2);
   Solution fine = meshAndSolveFor(scene, tracer, "progressive", 0.06, 1e-3);
   for (const char *method : kTwoPassMethods) {
     const bool slow = std::string(method) == "reichert";
-    RendererOptions options;
+    RenderContext options;
     options.solution = &coarse;
     double before = blockError(renderFilm(scene, tracer, method, options, size, slow ? 1 : 4));
     options.solution = &fine;
@@ -415,7 +420,7 @@ TEST(TwoPass, ShirleyAndKokDoNotCountUnshotEmissionTwice) {
   solverOptions.maxIterations = 1;
   Solution solution = meshAndSolve(scene, tracer, meshOptions, solverOptions);
   ASSERT_EQ(solution.stats.iterations, 1);
-  RendererOptions options;
+  RenderContext options;
   options.solution = &solution;
   for (const char *method : {"shirley", "kok"}) {
     Estimate e = imageMean(renderFilm(scene, tracer, method, options, 16, 64));
@@ -444,8 +449,9 @@ TEST(TwoPass, KokRemovesTheSameLightFromCoarserSourcePieces) {
   // Coarser than draft: the leaf-by-leaf removal below is 10⁷ form factors at draft.
   solver.linkError = 0.03, solver.directTolerance = 0.05;
   const Solution solution = meshAndSolve(scene, tracer, MeshOptions{}, solver);
-  RendererOptions options;
-  options.secondarySources = 2;  // the two brightest reflectors: the leaf-by-leaf sum stays a few seconds
+  SecondarySourceOptions options;
+  options.count = 2;  // the two brightest reflectors: the leaf-by-leaf sum stays a few seconds
+  options.visibilityGrid = 2;
   // The reference goes the way of a uniform mesh, element by element, not
   // through the trees at all: a tree piece built wrong cannot hide in both.
   Solution flat = solution;

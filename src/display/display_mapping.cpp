@@ -38,9 +38,9 @@ uint16_t quantise(double encoded, int bits) {
 
 DisplayMapping::DisplayMapping(const Image &radiance, const DisplaySettings &settings) : settings_(settings) {
   if (settings.bits != 8 && settings.bits != 16)
-    throw InputError(InputLocation{"--bits"}, "expected 8 or 16, got " + std::to_string(settings.bits));
+    throw InputError(InputLocation::ofParameter("bits"), "expected 8 or 16, got " + std::to_string(settings.bits));
   if (settings.transfer == TransferCurve::Gamma && !(settings.gamma > 0 && std::isfinite(settings.gamma)))
-    throw InputError(InputLocation{"--gamma"}, "must be a positive number");
+    throw InputError(InputLocation::ofParameter("gamma"), "must be a positive number");
   operator_ = findToneOperator(settings.toneOperator).create(radiance, settings.parameters, warnings_);
 }
 

@@ -103,10 +103,11 @@ FalseColourImage falseColour(const Image &image, const FalseColourSettings &sett
     result.minimum = settings.logarithmic ? result.maximum / 1000 : 0;
   }
   if (!(result.minimum < result.maximum) || !std::isfinite(result.maximum))
-    throw InputError(InputLocation{"--range"},
+    throw InputError(InputLocation::ofParameter("range"),
                      fmt::format("MIN must be below MAX, got {:g},{:g}", result.minimum, result.maximum));
   if (settings.logarithmic && !(result.minimum > 0))
-    throw InputError(InputLocation{"--range"}, fmt::format("a --log scale needs MIN > 0, got {:g}", result.minimum));
+    throw InputError(InputLocation::ofParameter("range"),
+                     fmt::format("a --log scale needs MIN > 0, got {:g}", result.minimum));
 
   const bool luminance = settings.quantity == FalseColourQuantity::Luminance;
   const char *unit = luminance ? "cd/m2" : "lux";

@@ -40,7 +40,8 @@ const ToneOperatorInfo &findToneOperator(const std::string &name) {
     if (name == info.name) return info;
     names += names.empty() ? info.name : std::string(", ") + info.name;
   }
-  throw InputError(InputLocation{"--tonemap"}, fmt::format("unknown tone operator '{}'; known: {}", name, names));
+  throw InputError(InputLocation::ofParameter("tonemap"),
+                   fmt::format("unknown tone operator '{}'; known: {}", name, names));
 }
 
 void scaleToLuminance(const float radiance[3], double displayLuminance, double display[3]) {

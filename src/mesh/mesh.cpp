@@ -392,9 +392,9 @@ RadiosityMesh buildMesh(const Scene &scene, const MeshOptions &options) {
       }
     }
     if (totalElements > options.maxElements)
-      throw InputError(InputLocation{"--mesh-size"},
+      throw InputError(InputLocation::ofParameter("mesh-size"),
                        fmt::format("the mesh would have more than {} elements (element edge {:.4g} m); "
-                                   "choose a larger --mesh-size or raise --max-elements",
+                                   "choose a larger mesh-size or raise max-elements",
                                    options.maxElements, edge));
   }
 

@@ -170,9 +170,9 @@ RadiosityMesh buildTreeMesh(const Scene &scene, const MeshOptions &options) {
       longest = std::max(longest, length(node.corners[(k + 1) % node.vertexCount] - node.corners[k]));
     if (longest <= edge * (1 + 1e-9)) continue;
     if (leaves + 3 > options.maxElements)
-      throw InputError(InputLocation{"--mesh-size"},
-                       fmt::format("the mesh would have more than {} elements; choose a larger --mesh-size or raise "
-                                   "--max-elements",
+      throw InputError(InputLocation::ofParameter("mesh-size"),
+                       fmt::format("the mesh would have more than {} elements; choose a larger mesh-size or raise "
+                                   "max-elements",
                                    options.maxElements));
     splitTreeNode(mesh, static_cast<uint32_t>(n));
     leaves += 3;

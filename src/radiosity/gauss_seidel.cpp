@@ -36,9 +36,9 @@ void solveGaussSeidel(const RayTracer &tracer, Solution &s, const SolverOptions 
                       const SolverProgressCallback &progress) {
   const size_t n = s.elementCount();
   if (n > kMaxGaussSeidelElements)
-    throw InputError(InputLocation{"--solver"},
+    throw InputError(InputLocation::ofParameter("solver"),
                      fmt::format("gauss-seidel stores the full form-factor matrix and allows at most {} elements; "
-                                 "this mesh has {} (use --solver progressive, or a larger --mesh-size)",
+                                 "this mesh has {} (use the progressive solver, or a larger mesh-size)",
                                  kMaxGaussSeidelElements, n));
   const auto start = std::chrono::steady_clock::now();
   std::vector<std::vector<Coupling>> rows(n);

@@ -196,7 +196,7 @@ ImportanceRefinement::ImportanceRefinement(const RayTracer &tracer, const Radios
                                            const ImportanceView &view)
     : visual_(tracer, mesh, view) {
   if (!(visual_.totalFraction() > 0))
-    throw InputError(InputLocation{"--importance"},
+    throw InputError(InputLocation::ofParameter("importance"),
                      "the camera sees the front of no surface, so no surface is important; check --eye and --target");
   for (const Patch &p : mesh.patches) area_.push_back(p.area);
   reference_ = visual_.totalFraction() / visual_.visibleArea();

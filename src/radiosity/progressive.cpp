@@ -82,8 +82,8 @@ void solveProgressive(const RayTracer &tracer, Solution &s, const SolverOptions 
   else if (options.formFactor == "hemicube")
     estimator = Estimator::Hemicube;
   else if (options.formFactor != "analytic")
-    throw InputError(InputLocation{"--form-factor"}, "unknown form-factor estimator '" + options.formFactor +
-                                                         "' (expected analytic, ray-cast or hemicube)");
+    throw InputError(InputLocation::ofParameter("form-factor"), "unknown form-factor estimator '" + options.formFactor +
+                                                                    "' (expected analytic, ray-cast or hemicube)");
   std::optional<Hemicube> hemicube;
   if (estimator == Estimator::Hemicube) hemicube.emplace(options.hemicubeResolution);
   // A hemicube pixel counts for the element it sees, if it sees that element's front.

@@ -49,7 +49,7 @@ void applyQuality(SolverOptions &options, const std::string &name) {
     }
     names += names.empty() ? level.name : std::string(", ") + level.name;
   }
-  throw InputError(InputLocation{"--quality"}, fmt::format("unknown quality '{}'; known: {}", name, names));
+  throw InputError(InputLocation::ofParameter("quality"), fmt::format("unknown quality '{}'; known: {}", name, names));
 }
 
 std::string resolveSolverName(const std::string &name, size_t patches, bool importance, size_t emitters) {
@@ -83,7 +83,7 @@ Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOpt
   if (resolveSolverName(options.solver, scene, options.importance) == "hierarchical-exact") {
     // It refines the patches' trees itself, from a uniform start.
     if (options.adaptiveRounds > 0)
-      throw InputError(InputLocation{"--adaptive-rounds"}, "hierarchical-exact refines by itself");
+      throw InputError(InputLocation::ofParameter("adaptive-rounds"), "hierarchical-exact refines by itself");
     // Faces cut where other surfaces meet them, hidden parts left out (mesh/face_split.h).
     const auto splitStart = std::chrono::steady_clock::now();
     const std::vector<FaceSplit> splits = splitFaces(scene, tracer);
@@ -112,7 +112,7 @@ Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOpt
   SolverOptions round = options;
   round.solver = resolveSolverName(options.solver, scene, options.importance);
   if (round.solver == "hierarchical")
-    throw InputError(InputLocation{"--adaptive-rounds"},
+    throw InputError(InputLocation::ofParameter("adaptive-rounds"),
                      "the hierarchical solver refines by itself; adaptive rounds are for --solver gauss-seidel, "
                      "progressive or stochastic");
   Solution s = initialSolution(scene, mesh);
@@ -145,7 +145,7 @@ void solveRadiosity(const RayTracer &tracer, Solution &solution, const SolverOpt
     names += std::string(", ") + info.name;
   }
   if (!chosen)
-    throw InputError(InputLocation{"--solver"},
+    throw InputError(InputLocation::ofParameter("solver"),
                      fmt::format("unknown solver '{}'; known solvers: {}", options.solver, names));
   auto start = std::chrono::steady_clock::now();
   solution.stats.solver = chosen->name;

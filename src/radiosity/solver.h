@@ -8,6 +8,7 @@
 #include "radiosity/solution.h"
 #include "raytrace/ray_tracer.h"
 #include "scene/camera.h"
+#include "util/parameters.h"
 #include "util/random.h"
 
 namespace radiant {
@@ -100,6 +101,19 @@ const std::vector<QualityLevel> &qualityLevels();
 /// Sets options.linkError and options.directTolerance from the named preset;
 /// throws InputError (naming --quality) for an unknown name.
 void applyQuality(SolverOptions &options, const std::string &name);
+
+/// A solver's parameters (util/parameters.h), "auto" included: its table
+/// holds what auto may pick. The meshing parameters (mesh-size, max-elements)
+/// and tolerance and max-iterations are every solver's. Throws InputError
+/// (the parameter "solver") for an unknown name.
+const ParameterTable &solverParameters(const std::string &solver);
+/// Checks `given` against the solver's table before any work (util/parameters.h).
+void checkSolverParameters(const std::string &solver, const ParameterValues &given);
+/// Checks `given` against options.solver's table (util/parameters.h
+/// checkParameters: an error names the solvers that use a misplaced one) and
+/// sets the fields of `options` and `mesh` it names, the others to their
+/// defaults; mesh-size is in scene units.
+void applySolverParameters(const ParameterValues &given, const Scene &scene, SolverOptions &options, MeshOptions &mesh);
 
 /// Builds nothing: solves in place on an initialSolution(). Throws InputError
 /// for an unknown solver name. Fills stats (energy balance, time) and the

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "util/error.h"
 #include "util/random.h"
 
 namespace radiant {
@@ -24,6 +25,25 @@ Bands incidentRadiance(const RayTracer &tracer, const Solution &solution, const 
 }
 
 }  // namespace
+
+const ParameterSpec &bumpOrientationsParameter() {
+  static const ParameterSpec spec = {
+      "bump-orientations",
+      ParameterType::Integer,
+      "16",
+      "normal orientations gathered per node of a bump-mapped surface, an even number (two tilts × azimuths; Chen "
+      "& Wu 1990)",
+      4,
+      64};
+  return spec;
+}
+
+int bumpOrientations(const Parameters &parameters) {
+  const int orientations = int(parameters.integer("bump-orientations"));
+  if (orientations % BumpGather::kTilts != 0)
+    throw InputError(parameters.origin("bump-orientations"), "must be even (two tilts × azimuths)");
+  return orientations;
+}
 
 BumpGather::BumpGather(const RayTracer &tracer, const Solution &solution, const BumpGatherOptions &options)
     : solution_(solution) {

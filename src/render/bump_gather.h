@@ -21,6 +21,7 @@
 
 #include "radiosity/solution.h"
 #include "raytrace/ray_tracer.h"
+#include "util/parameters.h"
 
 namespace radiant {
 
@@ -32,6 +33,12 @@ struct BumpGatherOptions {
   /// shirley's and kok's interpolated indirect light, whose direct part is per pixel.
   bool reflectedOnly = false;
 };
+
+/// bump-orientations: the parameter of the methods that interpolate bumped
+/// radiosity (interpolate, shirley, kok, multipass); even, 4…64.
+const ParameterSpec &bumpOrientationsParameter();
+/// Its value, checked to be even (an InputError at its origin).
+int bumpOrientations(const Parameters &parameters);
 
 class BumpGather {
  public:

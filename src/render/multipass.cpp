@@ -8,9 +8,13 @@
 #include <optional>
 #include <stdexcept>
 
+#include "render/bump_gather.h"
 #include "render/caustic_photons.h"
 #include "render/control_variate.h"
 #include "render/film_image.h"
+#include "render/path_tracer.h"
+#include "render/registry.h"
+#include "render/secondary_sources.h"
 #include "util/random.h"
 
 namespace radiant {
@@ -52,6 +56,16 @@ uint64_t hashSeed(uint64_t seed, uint64_t stream) {
   return mixBits(seed * 0x9e3779b97f4a7c15ULL + stream + 0x632be59bd9b4e019ULL);
 }
 
+/// The given values that `method`'s table declares: what multipass passes on to the renderer of a pass.
+ParameterValues forMethod(const ParameterValues &given, const std::string &method) {
+  ParameterValues values;
+  for (const ParameterSpec &spec : findRenderer(method).parameters) {
+    auto it = given.all().find(spec.name);
+    if (it != given.all().end()) values.set(spec.name, it->second.text, it->second.origin);
+  }
+  return values;
+}
+
 }  // namespace
 
 void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int width, int height,
@@ -82,11 +96,11 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
   MultipassPass pass{1, "radiosity preview", kPreviewSpp};
   {
     Solution preview = solve(kPreviewShots);
-    RendererOptions o = options.renderer;
+    RenderContext o = options.context;
     o.solution = &preview;
     Film film(width, height);
-    renderImage(camera, *createRenderer("interpolate", tracer, o), driverFor(pass, kPreviewSpp, 0), film,
-                progressFor(pass));
+    renderImage(camera, *createRenderer("interpolate", tracer, o, forMethod(options.parameters, "interpolate")),
+                driverFor(pass, kPreviewSpp, 0), film, progressFor(pass));
     finish(pass, film, passStart);
   }
   if (spent()) return;
@@ -110,12 +124,14 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
   pass = {2, "high frequency", kHighFrequencySpp};
   {
     const CausticPhotonMap caustics = causticMap(pass);
-    RendererOptions o = options.renderer;
+    RenderContext o = options.context;
     o.solution = &solution;
     o.caustics = &caustics;
-    o.removalVisibilityGrid = 1;  // a quarter of kok's set-up; no later pass reads this image
+    ParameterValues kok = forMethod(options.parameters, "kok");
+    // A quarter of kok's set-up: no later pass reads this image.
+    kok.set("source-visibility-grid", "1", InputLocation::ofParameter("source-visibility-grid"));
     Film film(width, height);
-    renderImage(camera, *createRenderer("kok", tracer, o), driverFor(pass, kHighFrequencySpp, 0), film,
+    renderImage(camera, *createRenderer("kok", tracer, o, kok), driverFor(pass, kHighFrequencySpp, 0), film,
                 progressFor(pass));
     finish(pass, film, passStart);
   }
@@ -175,11 +191,11 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
     for (int chunk = 0, remaining = spp; remaining > 0; ++chunk) {
       if (mapServed >= kSamplesPerMap) map.emplace(causticMap(pass)), mapServed = 0;
       const int n = std::min(remaining, kSamplesPerMap - mapServed);
-      RendererOptions o = options.renderer;
+      RenderContext o = options.context;
       o.solution = &solution;
       o.caustics = &*map;
       o.readSolutionDepth = 1;
-      const auto renderer = createRenderer("path", tracer, o);
+      const auto renderer = createRenderer("path", tracer, o, forMethod(options.parameters, "path"));
       if (paired) {
         PairedFilm film(width, height);
         renderPairedImage(camera, *renderer, driverFor(pass, n, chunk), film, progressFor(pass));
@@ -209,8 +225,50 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
   }
 }
 
-std::unique_ptr<Renderer> createMultipassPlaceholder(const RayTracer &, const RendererOptions &) {
-  throw std::logic_error("multipass is a sequence of passes: run it with renderMultipass");
+std::string describePass(const MultipassPass &pass) {
+  return fmt::format(
+      "multipass {} ({}): {} spp, {:.2f} s{}{}", pass.index, pass.name, pass.samplesPerPixel, pass.seconds,
+      pass.causticPhotons
+          ? fmt::format(", {} caustic photons within {:.1f} mm", pass.causticPhotons, pass.photonRadius * 1e3)
+          : std::string(),
+      pass.index >= 3 ? fmt::format("; so far {} spp reading the solution, {} of them paired with the unbiased "
+                                    "path, which weighs {:.2f} (the solution's bias {:.3g} W/(sr m²) RMS)",
+                                    pass.controlSamples, pass.pairedSamples, pass.unbiasedWeight, pass.estimatedBias)
+                      : std::string());
+}
+
+namespace {
+
+/// The registry's entry point: the command line's job, run as passes.
+void renderMultipassJob(const ImageJob &job, const Parameters &parameters) {
+  MultipassOptions options;
+  options.timeBudgetSeconds = job.timeBudgetSeconds;
+  options.samplesPerPixel = job.samplesPerPixel;
+  options.seed = job.seed;
+  options.threads = job.threads;
+  options.context.pixelSpreadAngle = texturePixelSpread(job.pixelAngle, 4);  // its filtered passes: 4 spp
+  options.parameters = parameters.givenValues();
+  renderMultipass(
+      job.tracer, job.camera, job.width, job.height, options, job.solve,
+      [&](const MultipassPass &pass, const Image &mean, const Image &variance) {
+        job.output(pass.index, describePass(pass), mean, variance);
+      },
+      job.progress);
+}
+
+}  // namespace
+
+RendererInfo multipassMethod() {
+  ParameterTable parameters = {maxDepthParameter()};
+  for (const ParameterSpec &spec : secondarySourceParameters())
+    if (spec.name != "source-visibility-grid") parameters.push_back(spec);  // pass 2 is a preview: 1
+  parameters.push_back(bumpOrientationsParameter());
+  return {"multipass",
+          "progressive passes from a radiosity preview to an unbiased image with caustics (Chen et al. 1991)",
+          parameters,
+          nullptr,
+          &renderMultipassJob,
+          true};
 }
 
 }  // namespace radiant

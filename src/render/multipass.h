@@ -30,6 +30,7 @@
 #include "radiosity/solution.h"
 #include "render/driver.h"
 #include "render/renderer.h"
+#include "util/parameters.h"
 
 namespace radiant {
 
@@ -42,7 +43,10 @@ struct MultipassOptions {
   int threads = 0;
   size_t photonsPerPass = 200000;  ///< emitted per caustic map
   double photonRadius = 0;         ///< first map's radius, metres; ≤ 0: 1 % of the scene's diagonal
-  RendererOptions renderer;        ///< pixel spread, kok's sources, textures…
+  RenderContext context;           ///< pixel spread (the passes set the solution and caustics)
+  /// Values for multipassParameters(): max-depth (the path passes), sources,
+  /// source-fraction (pass 2's kok), bump-orientations (passes 1 and 2).
+  ParameterValues parameters;
 };
 
 struct MultipassPass {
@@ -69,8 +73,8 @@ using MultipassOutput = std::function<void(const MultipassPass &pass, const Imag
 /// A progress reporter for one pass (driver.h), or none.
 using MultipassProgress = std::function<ProgressCallback(const std::string &label)>;
 
-/// The registry's entry: multipass is not one renderer; this throws.
-std::unique_ptr<Renderer> createMultipassPlaceholder(const RayTracer &tracer, const RendererOptions &options);
+/// One line for a person: what the pass did (samples, time, photons, the control variate's weight).
+std::string describePass(const MultipassPass &pass);
 
 /// Runs the passes. Deterministic for the seed: pass k draws from seed + k.
 void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int width, int height,

@@ -20,6 +20,7 @@
 #include "render/bsdf.h"
 #include "render/caustic_photons.h"
 #include "render/light_sampler.h"
+#include "render/registry.h"
 #include "util/sampling.h"
 
 namespace radiant {
@@ -28,15 +29,15 @@ namespace {
 
 class PathTracer final : public Renderer {
  public:
-  PathTracer(const RayTracer &tracer, const RendererOptions &options)
+  PathTracer(const RayTracer &tracer, const RenderContext &context, int maxDepth)
       : tracer_(tracer),
         scene_(tracer.scene()),
         lights_(tracer.scene()),
-        maxDepth_(options.maxDepth),
-        irradiance_(options.irradiance),
-        caustics_(options.caustics),
-        solution_(options.solution),
-        readDepth_(options.solution ? options.readSolutionDepth : 0) {
+        maxDepth_(maxDepth),
+        irradiance_(context.irradiance),
+        caustics_(context.caustics),
+        solution_(context.solution),
+        readDepth_(context.solution ? context.readSolutionDepth : 0) {
     meter_.name = "irradiance meter";
     meter_.diffuse = Bands(1.0);
   }
@@ -193,10 +194,32 @@ class PathTracer final : public Renderer {
   Material meter_;  ///< Lambertian, ρ = 1: the irradiance meter
 };
 
+std::unique_ptr<Renderer> createPathTracer(const RayTracer &tracer, const RenderContext &context,
+                                           const Parameters &parameters) {
+  return std::make_unique<PathTracer>(tracer, context, int(parameters.integer("max-depth")));
+}
+
 }  // namespace
 
-std::unique_ptr<Renderer> createPathTracer(const RayTracer &tracer, const RendererOptions &options) {
-  return std::make_unique<PathTracer>(tracer, options);
+const ParameterSpec &maxDepthParameter() {
+  static const ParameterSpec spec = {"max-depth",
+                                     ParameterType::Integer,
+                                     "0",
+                                     "maximum bounces (0: unlimited, Russian roulette ends paths; 1: direct light "
+                                     "only). A limit biases the image dark: for debugging",
+                                     0,
+                                     1 << 20};
+  return spec;
+}
+
+RendererInfo pathMethod() {
+  return {"path",
+          "unbiased reference path tracer (NEE + MIS, Russian roulette)",
+          {maxDepthParameter()},
+          &createPathTracer,
+          nullptr,
+          false,
+          true};
 }
 
 }  // namespace radiant

@@ -1,9 +1,10 @@
 #pragma once
 
-#include "render/renderer.h"
+#include "util/parameters.h"
 
 namespace radiant {
 
-std::unique_ptr<Renderer> createPathTracer(const RayTracer &tracer, const RendererOptions &options);
+/// max-depth: the path tracer's parameter (multipass's too, for its path passes).
+const ParameterSpec &maxDepthParameter();
 
 }  // namespace radiant

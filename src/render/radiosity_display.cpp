@@ -13,13 +13,14 @@
 // refraction, Fresnel-weighted choice) until a diffuse surface is reached,
 // as the per-pixel methods do; the back side of a face, which the one-sided
 // radiosity mesh does not represent, is black.
-#include "render/radiosity_display.h"
 
 #include <optional>
 
 #include "radiosity/solution.h"
 #include "render/bump_gather.h"
+#include "render/registry.h"
 #include "render/two_pass.h"
+#include "util/error.h"
 
 namespace radiant {
 
@@ -27,15 +28,17 @@ namespace {
 
 class RadiosityDisplay final : public Renderer {
  public:
-  RadiosityDisplay(const RayTracer &tracer, const Solution &solution, bool interpolate, const RendererOptions &options)
+  /// `bumpOrientations`: interpolate's parameter (0 for flat).
+  RadiosityDisplay(const RayTracer &tracer, const Solution &solution, bool interpolate, const RenderContext &context,
+                   int bumpOrientations)
       : tracer_(tracer),
         solution_(solution),
         interpolate_(interpolate),
-        irradiance_(options.irradiance),
-        pixelSpread_(options.pixelSpreadAngle) {
+        irradiance_(context.irradiance),
+        pixelSpread_(context.pixelSpreadAngle) {
     if (interpolate_ && !irradiance_) {
       BumpGatherOptions bump;
-      bump.orientations = options.bumpOrientations;
+      bump.orientations = bumpOrientations;
       bumps_.emplace(tracer, solution, bump);
       if (bumps_->empty()) bumps_.reset();
     }
@@ -81,14 +84,34 @@ class RadiosityDisplay final : public Renderer {
   std::vector<Bands> elementIrradiance_, nodeIrradiance_;  ///< H + ambient (irradiance only)
 };
 
-}  // namespace
-
-std::unique_ptr<Renderer> createFlatRadiosityDisplay(const RayTracer &tracer, const RendererOptions &options) {
-  return std::make_unique<RadiosityDisplay>(tracer, requireSolution(options), false, options);
+std::unique_ptr<Renderer> createFlat(const RayTracer &tracer, const RenderContext &context, const Parameters &) {
+  return std::make_unique<RadiosityDisplay>(tracer, requireSolution(context), false, context, 0);
 }
 
-std::unique_ptr<Renderer> createInterpolatedRadiosityDisplay(const RayTracer &tracer, const RendererOptions &options) {
-  return std::make_unique<RadiosityDisplay>(tracer, requireSolution(options), true, options);
+std::unique_ptr<Renderer> createInterpolated(const RayTracer &tracer, const RenderContext &context,
+                                             const Parameters &parameters) {
+  // The bumped irradiance ratio is a ratio of reflected light: an irradiance
+  // image shows the unbumped irradiance arriving, and gathers nothing.
+  if (context.irradiance && parameters.given("bump-orientations"))
+    throw InputError(parameters.origin("bump-orientations"), "an irradiance image does not use it");
+  return std::make_unique<RadiosityDisplay>(tracer, requireSolution(context), true, context,
+                                            bumpOrientations(parameters));
+}
+
+}  // namespace
+
+RendererInfo flatMethod() {
+  return {"flat", "the radiosity solution, constant per element", {}, &createFlat, nullptr, true, true};
+}
+
+RendererInfo interpolateMethod() {
+  return {"interpolate",
+          "the radiosity solution interpolated from its nodes (the classic radiosity image)",
+          {bumpOrientationsParameter()},
+          &createInterpolated,
+          nullptr,
+          true,
+          true};
 }
 
 }  // namespace radiant

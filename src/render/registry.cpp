@@ -1,29 +1,27 @@
-// The table of rendering methods: name → factory, one line per method.
+// The table of rendering methods, one line per method. Each method's file
+// defines its entry (name, summary, parameters, factory); adding a method is
+// that file and one line here (docs/adding-a-method.md).
+#include "render/registry.h"
+
 #include <fmt/format.h>
 
-#include "render/multipass.h"
-#include "render/path_tracer.h"
-#include "render/radiosity_display.h"
-#include "render/renderer.h"
-#include "render/two_pass.h"
 #include "util/error.h"
 
 namespace radiant {
 
+RendererInfo pathMethod();         // path_tracer.cpp
+RendererInfo flatMethod();         // radiosity_display.cpp
+RendererInfo interpolateMethod();  // radiosity_display.cpp
+RendererInfo rushmeierMethod();    // rushmeier.cpp
+RendererInfo reichertMethod();     // reichert.cpp
+RendererInfo shirleyMethod();      // shirley.cpp
+RendererInfo kokMethod();          // shirley.cpp
+RendererInfo multipassMethod();    // multipass.cpp
+
 const std::vector<RendererInfo> &rendererRegistry() {
   static const std::vector<RendererInfo> table = {
-      {"path", "unbiased reference path tracer (NEE + MIS, Russian roulette)", &createPathTracer, false, true},
-      {"flat", "the radiosity solution, constant per element", &createFlatRadiosityDisplay, true, true},
-      {"interpolate", "the radiosity solution interpolated from its nodes (the classic radiosity image)",
-       &createInterpolatedRadiosityDisplay, true, true},
-      {"rushmeier", "per-pixel Monte Carlo: light sample + one secondary ray reading the solution (C&W eq. 9.10)",
-       &createRushmeier, true},
-      {"reichert", "form factors per pixel to every element, ray-traced visibility (--ff point|mc)", &createReichert,
-       true},
-      {"shirley", "direct light per pixel, indirect interpolated from the solution", &createShirley, true},
-      {"kok", "as shirley, plus the brightest reflectors sampled per pixel (--sources K)", &createKok, true},
-      {"multipass", "progressive passes from a radiosity preview to an unbiased image with caustics (Chen et al. 1991)",
-       &createMultipassPlaceholder, true},
+      pathMethod(),     flatMethod(),    interpolateMethod(), rushmeierMethod(),
+      reichertMethod(), shirleyMethod(), kokMethod(),         multipassMethod(),
   };
   return table;
 }
@@ -34,12 +32,24 @@ const RendererInfo &findRenderer(const std::string &name) {
     if (name == info.name) return info;
     names += names.empty() ? info.name : std::string(", ") + info.name;
   }
-  throw InputError(InputLocation{"--method"}, fmt::format("unknown method '{}'; known methods: {}", name, names));
+  throw InputError(InputLocation::ofParameter("method"),
+                   fmt::format("unknown method '{}'; known methods: {}", name, names));
 }
 
-std::unique_ptr<Renderer> createRenderer(const std::string &name, const RayTracer &tracer,
-                                         const RendererOptions &options) {
-  return findRenderer(name).create(tracer, options);
+Parameters methodParameters(const RendererInfo &method, const ParameterValues &given) {
+  std::vector<std::pair<std::string, const ParameterTable *>> others;
+  for (const RendererInfo &info : rendererRegistry()) others.push_back({info.name, &info.parameters});
+  checkParameters(method.parameters, given, fmt::format("method {}", method.name), others);
+  return Parameters(method.parameters, given);
+}
+
+std::unique_ptr<Renderer> createRenderer(const std::string &name, const RayTracer &tracer, const RenderContext &context,
+                                         const ParameterValues &given) {
+  const RendererInfo &method = findRenderer(name);
+  if (!method.create)
+    throw InputError(InputLocation::ofParameter("method"),
+                     fmt::format("{} runs its own passes (RendererInfo::render), not one camera ray at a time", name));
+  return method.create(tracer, context, methodParameters(method, given));
 }
 
 }  // namespace radiant

@@ -24,6 +24,7 @@
 #include <fmt/format.h>
 
 #include "radiosity/form_factor.h"
+#include "render/registry.h"
 #include "render/two_pass.h"
 #include "util/error.h"
 #include "util/sampling.h"
@@ -34,18 +35,15 @@ namespace {
 
 class Reichert final : public TwoPassRenderer {
  public:
-  Reichert(const RayTracer &tracer, const RendererOptions &options) : TwoPassRenderer(tracer, options) {
-    if (options.formFactorSampling != "point" && options.formFactorSampling != "mc")
-      throw InputError(InputLocation{"--ff"},
-                       fmt::format("expected 'point' or 'mc', got '{}'", options.formFactorSampling));
-    pointSampled_ = options.formFactorSampling == "point";
+  Reichert(const RayTracer &tracer, const RenderContext &context, const SelectiveOptions &selective, bool pointSampled)
+      : TwoPassRenderer(tracer, context, selective), pointSampled_(pointSampled) {
     const RadiosityMesh &mesh = solution_.mesh;
     polygons_.resize(mesh.elements.size());
     for (uint32_t e = 0; e < mesh.elements.size(); ++e) {
       std::vector<Vec3> p = mesh.polygon(e);
       std::copy(p.begin(), p.end(), polygons_[e].begin());
     }
-    if (options.selective && !solution_.links.empty() && !solution_.treeRadiosity.empty()) prepareLinkMode();
+    if (selective_.enabled && !solution_.links.empty() && !solution_.treeRadiosity.empty()) prepareLinkMode();
   }
 
   double selectiveWork(const Ray &ray) const override {
@@ -121,7 +119,7 @@ class Reichert final : public TwoPassRenderer {
           if (child >= 0) parent_[child] = int32_t(t);
       }
     }
-    const double powerFloor = options_.selectiveLinkPower * solution_.stats.emittedPower.average();
+    const double powerFloor = selective_.linkPower * solution_.stats.emittedPower.average();
     linksOf_.assign(mesh.tree.size(), {});
     for (uint32_t l = 0; l < solution_.links.size(); ++l) {
       const Link &link = solution_.links[l];
@@ -138,16 +136,36 @@ class Reichert final : public TwoPassRenderer {
       for (uint32_t l : linksOf_[t]) visit(solution_.links[l]);
   }
 
-  bool pointSampled_ = false;
+  const bool pointSampled_;
   std::vector<std::array<Vec3, 4>> polygons_;
   std::vector<int32_t> parent_, leafOfElement_;
   std::vector<std::vector<uint32_t>> linksOf_;  ///< selected links by receiver tree node
 };
 
+std::unique_ptr<Renderer> createReichert(const RayTracer &tracer, const RenderContext &context,
+                                         const Parameters &parameters) {
+  SelectiveOptions selective = SelectiveOptions::from(parameters);
+  selective.linkPower = parameters.real("selective-power");
+  return std::make_unique<Reichert>(tracer, context, selective, parameters.choice("ff") == "point");
+}
+
 }  // namespace
 
-std::unique_ptr<Renderer> createReichert(const RayTracer &tracer, const RendererOptions &options) {
-  return std::make_unique<Reichert>(tracer, options);
+RendererInfo reichertMethod() {
+  ParameterTable parameters = {
+      {"ff",
+       ParameterType::Choice,
+       "mc",
+       "visibility of each per-pixel form factor from one shadow ray to the element's centre (point: coherent "
+       "stair-steps at shadow edges) or to a random point of it (mc: noise that samples average away)",
+       0,
+       0,
+       {"point", "mc"}}};
+  for (const ParameterSpec &spec : selectiveParameters()) parameters.push_back(spec);
+  parameters.push_back(selectivePowerParameter());
+  return {"reichert", "form factors per pixel to every element, ray-traced visibility",
+          parameters, &createReichert,
+          nullptr,    true};
 }
 
 }  // namespace radiant

@@ -17,6 +17,7 @@
 // so that path (L S+ D E) has no other estimator. Glossy surfaces sample
 // their whole BSDF for the secondary direction.
 #include "render/bsdf.h"
+#include "render/registry.h"
 #include "render/two_pass.h"
 
 namespace radiant {
@@ -51,10 +52,20 @@ class Rushmeier final : public TwoPassRenderer {
   }
 };
 
+std::unique_ptr<Renderer> createRushmeier(const RayTracer &tracer, const RenderContext &context,
+                                          const Parameters &parameters) {
+  return std::make_unique<Rushmeier>(tracer, context, SelectiveOptions::from(parameters));
+}
+
 }  // namespace
 
-std::unique_ptr<Renderer> createRushmeier(const RayTracer &tracer, const RendererOptions &options) {
-  return std::make_unique<Rushmeier>(tracer, options);
+RendererInfo rushmeierMethod() {
+  return {"rushmeier",
+          "per-pixel Monte Carlo: light sample + one secondary ray reading the solution (C&W eq. 9.10)",
+          selectiveParameters(),
+          &createRushmeier,
+          nullptr,
+          true};
 }
 
 }  // namespace radiant

@@ -110,8 +110,33 @@ void finishPiece(SourcePiece &piece) {
 
 }  // namespace
 
-SecondarySources::SecondarySources(const RayTracer &tracer, const Solution &solution, const RendererOptions &options,
-                                   double openingRatio)
+const ParameterTable &secondarySourceParameters() {
+  static const ParameterTable table = {
+      {"sources", ParameterType::Integer, "4",
+       "sample this many patches, the brightest reflectors, per pixel like emitters (Kok & Jansen 1991)", 0, 100000},
+      {"source-fraction", ParameterType::Real, "0",
+       "instead of sources (when > 0): the fewest patches carrying this fraction of the reflected power", 0, 1},
+      {"source-visibility-grid", ParameterType::Integer, "2",
+       "the visibility of each form factor removed from the interpolated light, from grid × grid points on the "
+       "source element",
+       1, 16},
+  };
+  return table;
+}
+
+SecondarySourceOptions SecondarySourceOptions::from(const Parameters &parameters) {
+  if (parameters.given("sources") && parameters.given("source-fraction"))
+    throw InputError(parameters.origin("source-fraction"), "give sources or source-fraction, not both");
+  SecondarySourceOptions o;
+  o.count = int(parameters.integer("sources"));
+  o.fraction = parameters.real("source-fraction");
+  o.visibilityGrid = int(parameters.integer("source-visibility-grid"));
+  o.origin = parameters.origin(o.fraction > 0 ? "source-fraction" : "sources");
+  return o;
+}
+
+SecondarySources::SecondarySources(const RayTracer &tracer, const Solution &solution,
+                                   const SecondarySourceOptions &options, double openingRatio)
     : solution_(solution) {
   const RadiosityMesh &mesh = solution.mesh;
   std::vector<double> power(mesh.patches.size(), 0.0);
@@ -127,8 +152,8 @@ SecondarySources::SecondarySources(const RayTracer &tracer, const Solution &solu
   double selected = 0;
   for (uint32_t p : order) {
     if (power[p] <= 0) break;
-    if (options.secondarySourceFraction > 0 ? selected >= options.secondarySourceFraction * total
-                                            : patches_.size() >= size_t(std::max(0, options.secondarySources)))
+    if (options.fraction > 0 ? selected >= options.fraction * total
+                             : patches_.size() >= size_t(std::max(0, options.count)))
       break;
     patches_.push_back(p);
     selected += power[p];
@@ -144,10 +169,11 @@ SecondarySources::SecondarySources(const RayTracer &tracer, const Solution &solu
   pdfAreaOfPatch_.assign(mesh.patches.size(), 0.0);
   for (size_t j = 0; j < patches_.size(); ++j)
     pdfAreaOfPatch_[patches_[j]] = probability_[j] / mesh.patches[patches_[j]].area;
-  computeRemovedRadiosity(tracer, std::max(1, options.removalVisibilityGrid), openingRatio);
+  computeRemovedRadiosity(tracer, std::max(1, options.visibilityGrid), openingRatio, options.origin);
 }
 
-void SecondarySources::computeRemovedRadiosity(const RayTracer &tracer, int grid, double openingRatio) {
+void SecondarySources::computeRemovedRadiosity(const RayTracer &tracer, int grid, double openingRatio,
+                                               const InputLocation &origin) {
   const RadiosityMesh &mesh = solution_.mesh;
   const Solution &s = solution_;
   // The selected patches' pieces, with their polygons and values, once:
@@ -173,7 +199,7 @@ void SecondarySources::computeRemovedRadiosity(const RayTracer &tracer, int grid
   // opening ratio is 0) is paired with every receiver: refuse minutes of it.
   const size_t unopened = openingRatio > 0 ? roots.size() : leaves;
   if (double(unopened) * double(mesh.elements.size()) > kMaxLeafPairs)
-    throw InputError(InputLocation{"--sources"},
+    throw InputError(origin,
                      fmt::format("{} source elements × {} receivers is too many form factors; select fewer sources",
                                  unopened, mesh.elements.size()));
   sourceElements_ = leaves;

@@ -11,8 +11,24 @@
 #include "radiosity/solution.h"
 #include "raytrace/ray_tracer.h"
 #include "render/renderer.h"
+#include "util/parameters.h"
 
 namespace radiant {
+
+/// Which patches become secondary sources (kok's and multipass's parameters).
+struct SecondarySourceOptions {
+  int count = 0;        ///< the `count` patches reflecting the most power…
+  double fraction = 0;  ///< …or, when > 0, the fewest carrying this fraction of the reflected power
+  /// The visibility of each removed form factor, from grid × grid points on
+  /// the source element (multipass's pass 2 takes 1: its image is a preview).
+  int visibilityGrid = 1;
+  InputLocation origin = InputLocation::ofParameter("sources");  ///< for errors about the selection
+
+  /// From the parameters of secondarySourceParameters().
+  static SecondarySourceOptions from(const Parameters &parameters);
+};
+/// sources, source-fraction, source-visibility-grid.
+const ParameterTable &secondarySourceParameters();
 
 struct SecondarySourceSample {
   Vec3 position;
@@ -23,8 +39,8 @@ struct SecondarySourceSample {
 
 class SecondarySources {
  public:
-  /// Selects patches by reflected power Σ (B − E)·A: the `options.secondarySources`
-  /// largest, or the fewest carrying `options.secondarySourceFraction` of the total.
+  /// Selects patches by reflected power Σ (B − E)·A: the `options.count`
+  /// largest, or the fewest carrying `options.fraction` of the total.
   /// Then computes removedRadiosity() for every element (parallel, deterministic).
   /// Where the solution refined a selected patch as a tree (hierarchical
   /// solvers: 10⁴ leaves behind a shadow), each receiver gathers from the
@@ -33,7 +49,7 @@ class SecondarySources {
   /// cost grows with the receivers times the log of the leaves; 0 gathers
   /// every leaf.
   static constexpr double kOpeningRatio = 0.25;
-  SecondarySources(const RayTracer &tracer, const Solution &solution, const RendererOptions &options,
+  SecondarySources(const RayTracer &tracer, const Solution &solution, const SecondarySourceOptions &options,
                    double openingRatio = kOpeningRatio);
 
   bool empty() const { return patches_.empty(); }
@@ -56,7 +72,7 @@ class SecondarySources {
   double piecesPerReceiver() const { return piecesPerReceiver_; }
 
  private:
-  void computeRemovedRadiosity(const RayTracer &tracer, int grid, double openingRatio);
+  void computeRemovedRadiosity(const RayTracer &tracer, int grid, double openingRatio, const InputLocation &origin);
 
   const Solution &solution_;
   std::vector<uint32_t> patches_;

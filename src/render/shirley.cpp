@@ -25,6 +25,7 @@
 #include "radiosity/backprojection.h"
 #include "render/bump_gather.h"
 #include "render/caustic_photons.h"
+#include "render/registry.h"
 #include "render/secondary_sources.h"
 #include "render/two_pass.h"
 #include "util/sampling.h"
@@ -35,18 +36,21 @@ namespace {
 
 class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
  public:
-  DirectPlusInterpolatedIndirect(const RayTracer &tracer, const RendererOptions &options, bool sampleReflectors)
-      : TwoPassRenderer(tracer, options) {
+  /// `sources`: kok's secondary sources, or none (shirley).
+  DirectPlusInterpolatedIndirect(const RayTracer &tracer, const RenderContext &context,
+                                 const SelectiveOptions &selective, int bumpOrientations,
+                                 const std::optional<SecondarySourceOptions> &sources)
+      : TwoPassRenderer(tracer, context, selective) {
     const Solution &s = solution_;
     remainingIndirect_ = s.nodeIndirectRadiosity();
-    if (sampleReflectors) {
-      sources_.emplace(tracer, s, options);
+    if (sources) {
+      sources_.emplace(tracer, s, *sources);
       const std::vector<Bands> removed = s.nodeValues(sources_->removedRadiosity());
       for (size_t v = 0; v < remainingIndirect_.size(); ++v) remainingIndirect_[v] = remainingIndirect_[v] - removed[v];
     }
     // Bump maps: the interpolated indirect light, seen by a tilted normal (Chen's ratio of reflected light).
     BumpGatherOptions bump;
-    bump.orientations = options.bumpOrientations;
+    bump.orientations = bumpOrientations;
     bump.reflectedOnly = true;
     bumps_.emplace(tracer, s, bump);
     if (bumps_->empty()) bumps_.reset();
@@ -68,8 +72,8 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
     if (x.textured) indirect *= x.textureFactor;  // eq. 9.11 on what is read from the solution
     if (bumps_ && x.textured) indirect *= bumps_->ratio(x.location, x.hit.shadingNormal, x.unbumpedNormal);
     // Multipass: caustics from the light-ray pass (the solution holds none; shadow rays cannot find them).
-    if (options_.caustics)
-      L += options_.caustics->reflectedRadiance(x.hit.position, x.hit.geometricNormal, x.reflectance);
+    if (context_.caustics)
+      L += context_.caustics->reflectedRadiance(x.hit.position, x.hit.geometricNormal, x.reflectance);
     for (int b = 0; b < kBandCount; ++b) indirect[b] = std::max(0.0, indirect[b]);
     return L + indirect;
   }
@@ -133,14 +137,36 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
   std::optional<DirectIrradiance> exactDirect_;  ///< scenes with at most kMaxExactEmitters emitting faces
 };
 
-}  // namespace
-
-std::unique_ptr<Renderer> createShirley(const RayTracer &tracer, const RendererOptions &options) {
-  return std::make_unique<DirectPlusInterpolatedIndirect>(tracer, options, false);
+std::unique_ptr<Renderer> createShirley(const RayTracer &tracer, const RenderContext &context,
+                                        const Parameters &parameters) {
+  return std::make_unique<DirectPlusInterpolatedIndirect>(tracer, context, SelectiveOptions::from(parameters),
+                                                          bumpOrientations(parameters), std::nullopt);
 }
 
-std::unique_ptr<Renderer> createKok(const RayTracer &tracer, const RendererOptions &options) {
-  return std::make_unique<DirectPlusInterpolatedIndirect>(tracer, options, true);
+std::unique_ptr<Renderer> createKok(const RayTracer &tracer, const RenderContext &context,
+                                    const Parameters &parameters) {
+  return std::make_unique<DirectPlusInterpolatedIndirect>(tracer, context, SelectiveOptions::from(parameters),
+                                                          bumpOrientations(parameters),
+                                                          SecondarySourceOptions::from(parameters));
+}
+
+}  // namespace
+
+RendererInfo shirleyMethod() {
+  ParameterTable parameters = {bumpOrientationsParameter()};
+  for (const ParameterSpec &spec : selectiveParameters()) parameters.push_back(spec);
+  return {"shirley",  "direct light per pixel, indirect interpolated from the solution",
+          parameters, &createShirley,
+          nullptr,    true};
+}
+
+RendererInfo kokMethod() {
+  ParameterTable parameters = secondarySourceParameters();
+  parameters.push_back(bumpOrientationsParameter());
+  for (const ParameterSpec &spec : selectiveParameters()) parameters.push_back(spec);
+  return {"kok",      "as shirley, plus the brightest reflectors sampled per pixel like emitters (Kok & Jansen 1991)",
+          parameters, &createKok,
+          nullptr,    true};
 }
 
 }  // namespace radiant

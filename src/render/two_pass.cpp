@@ -51,27 +51,58 @@ Bands reflectedRadiosity(const Solution &solution, const VisiblePoint &x) {
   return x.textured ? reflected * x.textureFactor : reflected;
 }
 
-const Solution &requireSolution(const RendererOptions &options) {
-  if (!options.solution) throw InputError(InputLocation{"--method"}, "this method needs a radiosity solution");
-  return *options.solution;
+const Solution &requireSolution(const RenderContext &context) {
+  if (!context.solution)
+    throw InputError(InputLocation::ofParameter("method"), "this method needs a radiosity solution");
+  return *context.solution;
 }
 
-TwoPassRenderer::TwoPassRenderer(const RayTracer &tracer, const RendererOptions &options)
+const ParameterTable &selectiveParameters() {
+  static const ParameterTable table = {
+      {"selective", ParameterType::Flag, "false",
+       "re-evaluate per pixel only where the solution is flagged inaccurate (C&W §9.3.3)"},
+      {"selective-threshold", ParameterType::Real, "0.1",
+       "with selective: re-evaluate where the element's error estimate (the largest relative difference between "
+       "its nodes and itself) is at least this (0: everywhere)",
+       0},
+  };
+  return table;
+}
+
+const ParameterSpec &selectivePowerParameter() {
+  static const ParameterSpec spec = {
+      "selective-power", ParameterType::Real, "1e-4",
+      "with selective, on a hierarchical solution: re-evaluate the partially visible links carrying at least this "
+      "fraction of the emitted power",
+      kPositive};
+  return spec;
+}
+
+SelectiveOptions SelectiveOptions::from(const Parameters &parameters) {
+  SelectiveOptions o;
+  o.enabled = parameters.flag("selective");
+  o.threshold = parameters.real("selective-threshold");
+  return o;
+}
+
+TwoPassRenderer::TwoPassRenderer(const RayTracer &tracer, const RenderContext &context,
+                                 const SelectiveOptions &selective)
     : tracer_(tracer),
       scene_(tracer.scene()),
-      solution_(requireSolution(options)),
-      options_(options),
+      solution_(requireSolution(context)),
+      context_(context),
+      selective_(selective),
       lights_(tracer.scene()) {}
 
 Bands TwoPassRenderer::radiance(const Ray &ray, Sampler &rng) const {
   VisiblePoint x;
-  if (!findVisiblePoint(tracer_, solution_, ray, rng, x, options_.pixelSpreadAngle)) return Bands(0.0);
+  if (!findVisiblePoint(tracer_, solution_, ray, rng, x, context_.pixelSpreadAngle)) return Bands(0.0);
   Bands L(0.0);
-  if (options_.selective && !selectsByLinks_ && trustsSolution(x)) {
+  if (selective_.enabled && !selectsByLinks_ && trustsSolution(x)) {
     L = x.textured ? (solution_.emission[x.location.element] + reflectedRadiosity(solution_, x)) * kInvPi
                    : solution_.interpolatedRadiosity(x.location) * kInvPi;  // emission included
   } else {
-    L = x.material->emission + (options_.selective && selectsByLinks_ ? reflectedByLinks(x, rng) : reflected(x, rng));
+    L = x.material->emission + (selective_.enabled && selectsByLinks_ ? reflectedByLinks(x, rng) : reflected(x, rng));
   }
   L = x.throughput * L;
   for (int b = 0; b < kBandCount; ++b) L[b] = std::max(0.0, L[b]);  // a correction may undershoot a dark pixel
@@ -83,7 +114,7 @@ Bands TwoPassRenderer::reflectedByLinks(const VisiblePoint &x, Sampler &rng) con
 }
 
 double TwoPassRenderer::selectiveWork(const Ray &ray) const {
-  if (!options_.selective) return 0;
+  if (!selective_.enabled) return 0;
   Sampler rng{Pcg32()};
   VisiblePoint x;
   if (!findVisiblePoint(tracer_, solution_, ray, rng, x)) return 0;
@@ -93,7 +124,7 @@ double TwoPassRenderer::selectiveWork(const Ray &ray) const {
 bool TwoPassRenderer::trustsSolution(const VisiblePoint &x) const {
   // The interpolated solution has no bumps: bump-mapped points are always re-evaluated.
   if (x.material->bumpTextureIndex >= 0 || x.material->normalTextureIndex >= 0) return false;
-  return solution_.errorEstimate[x.location.element] <= options_.selectiveThreshold;
+  return solution_.errorEstimate[x.location.element] < selective_.threshold;
 }
 
 Bands TwoPassRenderer::directLight(const VisiblePoint &x, Sampler &rng) const {

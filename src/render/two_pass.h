@@ -16,6 +16,7 @@
 #include "radiosity/solution.h"
 #include "render/light_sampler.h"
 #include "render/renderer.h"
+#include "util/parameters.h"
 
 namespace radiant {
 
@@ -51,9 +52,22 @@ bool findVisiblePoint(const RayTracer &tracer, const Solution &solution, Ray ray
 /// texture at x applied (eq. 9.11): what x reflects according to the solution.
 Bands reflectedRadiosity(const Solution &solution, const VisiblePoint &x);
 
+/// --selective (C&W §9.3.3): what the two-pass methods share of their
+/// parameters; reichert adds selective-power for its link mode.
+struct SelectiveOptions {
+  bool enabled = false;
+  double threshold = 0;  ///< element mode: re-evaluate where the element's error estimate exceeds this
+  double linkPower = 0;  ///< link mode: partially visible links carrying at least this fraction of the emitted power
+  static SelectiveOptions from(const Parameters &parameters);
+};
+/// selective and selective-threshold (every two-pass method's parameters).
+const ParameterTable &selectiveParameters();
+/// selective-power (reichert's link mode).
+const ParameterSpec &selectivePowerParameter();
+
 class TwoPassRenderer : public Renderer {
  public:
-  TwoPassRenderer(const RayTracer &tracer, const RendererOptions &options);
+  TwoPassRenderer(const RayTracer &tracer, const RenderContext &context, const SelectiveOptions &selective);
 
   Bands radiance(const Ray &ray, Sampler &rng) const final;
 
@@ -80,17 +94,13 @@ class TwoPassRenderer : public Renderer {
   const RayTracer &tracer_;
   const Scene &scene_;
   const Solution &solution_;
-  const RendererOptions options_;
+  const RenderContext context_;
+  const SelectiveOptions selective_;
   LightSampler lights_;
   bool selectsByLinks_ = false;
 };
 
-/// The options' solution, or an InputError naming the method that needs one.
-const Solution &requireSolution(const RendererOptions &options);
-
-std::unique_ptr<Renderer> createRushmeier(const RayTracer &tracer, const RendererOptions &options);
-std::unique_ptr<Renderer> createReichert(const RayTracer &tracer, const RendererOptions &options);
-std::unique_ptr<Renderer> createShirley(const RayTracer &tracer, const RendererOptions &options);
-std::unique_ptr<Renderer> createKok(const RayTracer &tracer, const RendererOptions &options);
+/// The context's solution, or an InputError: the method needs one.
+const Solution &requireSolution(const RenderContext &context);
 
 }  // namespace radiant

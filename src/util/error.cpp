@@ -6,6 +6,7 @@
 namespace radiant {
 
 std::string InputLocation::toString() const {
+  if (file.empty() && !parameter.empty()) return "parameter " + parameter;
   std::string s = file.empty() ? std::string("<input>") : file;
   if (line > 0) {
     s += ":" + std::to_string(line);
@@ -16,7 +17,7 @@ std::string InputLocation::toString() const {
 }
 
 InputError::InputError(InputLocation where, const std::string &what)
-    : std::runtime_error(where.toString() + ": " + what), where_(std::move(where)) {}
+    : std::runtime_error(where.toString() + ": " + what), where_(std::move(where)), message_(what) {}
 
 static size_t editDistance(const std::string &a, const std::string &b) {
   std::vector<size_t> previous(b.size() + 1), current(b.size() + 1);

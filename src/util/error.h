@@ -15,7 +15,16 @@ struct InputLocation {
   int line = 0;    // 1-based; 0 when unknown
   int column = 0;  // 1-based; 0 when unknown
   std::string jsonPath;
+  /// A method's or stage's parameter ("mesh-size"), when the value came from
+  /// whatever set it: the library names the parameter, and the command line
+  /// prints it as its flag (--mesh-size).
+  std::string parameter;
 
+  static InputLocation ofParameter(std::string name) {
+    InputLocation where;
+    where.parameter = std::move(name);
+    return where;
+  }
   std::string toString() const;
 };
 
@@ -23,9 +32,12 @@ class InputError : public std::runtime_error {
  public:
   InputError(InputLocation where, const std::string &what);
   const InputLocation &location() const { return where_; }
+  /// What is wrong, without the location.
+  const std::string &message() const { return message_; }
 
  private:
   InputLocation where_;
+  std::string message_;
 };
 
 /// The closest candidate to `word` by edit distance, or "" if none is close

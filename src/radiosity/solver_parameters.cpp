@@ -1,0 +1,163 @@
+// The solvers' parameter tables (util/parameters.h): which solver reads which
+// of SolverOptions' fields, and the meshing parameters every solver takes.
+// The defaults are SolverOptions' and MeshOptions' own, printed here, so they
+// are written once.
+#include <fmt/format.h>
+
+#include "radiosity/solver.h"
+#include "util/error.h"
+
+namespace radiant {
+
+namespace {
+
+std::string text(double value) {
+  return fmt::format("{}", value);
+}
+
+ParameterSpec meshSize() {
+  return {"mesh-size",
+          ParameterType::Real,
+          "",
+          "target element edge length in scene units",
+          kPositive,
+          std::numeric_limits<double>::infinity(),
+          {},
+          "1/8 of the scene's largest extent"};
+}
+
+ParameterSpec maxElements() {
+  return {"max-elements", ParameterType::Integer, text(double(MeshOptions{}.maxElements)),
+          "refuse uniform meshes with more elements than this; hierarchical solvers stop refining there", 1, 1e8};
+}
+
+ParameterSpec tolerance() {
+  return {"tolerance", ParameterType::Real, text(SolverOptions{}.tolerance),
+          "convergence: unshot power over emitted power (progressive, stochastic), or the largest change of B in a "
+          "sweep over the largest reflected radiosity (gauss-seidel, hierarchical solvers)",
+          kPositive, 1};
+}
+
+ParameterSpec maxIterations() {
+  return {"max-iterations", ParameterType::Integer, text(SolverOptions{}.maxIterations),
+          "stop after this many shots or sweeps (0: no limit)", 0, 2147483647};
+}
+
+ParameterSpec ffSamples() {
+  return {"ff-samples", ParameterType::Integer, text(SolverOptions{}.visibilitySamples),
+          "shadow rays per form factor, rounded to a square number k × k (stratified)", 1, 1024};
+}
+
+ParameterSpec adaptiveRounds() {
+  return {"adaptive-rounds", ParameterType::Integer, text(SolverOptions{}.adaptiveRounds),
+          "rounds of splitting the elements whose error estimate exceeds adaptive-threshold and solving again "
+          "(0: uniform mesh; Cohen et al. 1986)",
+          0, 20};
+}
+
+ParameterSpec adaptiveThreshold() {
+  return {"adaptive-threshold", ParameterType::Real, text(SolverOptions{}.adaptiveThreshold),
+          "with adaptive-rounds: split elements whose nodes differ from them by more than this fraction of their "
+          "radiosity",
+          0, 100};
+}
+
+ParameterSpec importance() {
+  return {"importance", ParameterType::Flag, "false",
+          "refine for the camera only (render: the camera it renders from); importance from the eye weighs each "
+          "link (Smits, Arvo & Salesin 1992)"};
+}
+
+ParameterSpec quality() {
+  ParameterSpec spec{"quality", ParameterType::Choice, "high", "accuracy against time:"};
+  for (const QualityLevel &level : qualityLevels()) {
+    spec.choices.push_back(level.name);
+    spec.documentation += fmt::format(" {} ({});", level.name, level.summary);
+  }
+  spec.documentation.pop_back();
+  return spec;
+}
+
+ParameterSpec raysPerElement() {
+  return {"rays-per-element", ParameterType::Integer, text(SolverOptions{}.raysPerElement),
+          "rays of the first iteration per element (noise falls as 1/√rays)", 1, 100000};
+}
+
+ParameterTable withCommon(std::initializer_list<ParameterSpec> own) {
+  ParameterTable table = {meshSize(), maxElements(), tolerance(), maxIterations()};
+  table.insert(table.end(), own.begin(), own.end());
+  return table;
+}
+
+}  // namespace
+
+const ParameterTable &solverParameters(const std::string &name) {
+  static const std::vector<std::pair<std::string, ParameterTable>> tables = {
+      {"gauss-seidel", withCommon({ffSamples(), adaptiveRounds(), adaptiveThreshold()})},
+      {"progressive",
+       withCommon({ffSamples(),
+                   {"form-factor", ParameterType::Choice, SolverOptions{}.formFactor,
+                    "how the form factors are estimated: analytic (contour integral × visible fraction), ray-cast "
+                    "(Wallace et al. 1989's disc sum), hemicube (Cohen & Greenberg 1985)",
+                    0, 0, {"analytic", "ray-cast", "hemicube"}},
+                   {"hemicube-resolution", ParameterType::Integer, text(SolverOptions{}.hemicubeResolution),
+                    "with form-factor hemicube: pixels across the top face", 4, 4096},
+                   adaptiveRounds(), adaptiveThreshold()})},
+      {"hierarchical",
+       withCommon({ffSamples(),
+                   {"link-threshold", ParameterType::Real, text(SolverOptions{}.linkThreshold),
+                    "link when F·B_source is below this fraction of the largest emitted radiosity (BF refinement)", 0,
+                    1},
+                   importance()})},
+      {"stochastic", withCommon({raysPerElement(), adaptiveRounds(), adaptiveThreshold()})},
+      {"hierarchical-exact", withCommon({quality()})},
+      // What "auto" may pick (resolveSolverName): hierarchical-exact or
+      // stochastic, and hierarchical when asked for importance.
+      {"auto", withCommon({quality(), raysPerElement(), adaptiveRounds(), adaptiveThreshold(), importance()})},
+  };
+  std::string names;
+  for (const auto &[solver, table] : tables) {
+    if (solver == name) return table;
+    names += (names.empty() ? "" : ", ") + solver;
+  }
+  throw InputError(InputLocation::ofParameter("solver"), fmt::format("unknown solver '{}'; known: {}", name, names));
+}
+
+void checkSolverParameters(const std::string &solver, const ParameterValues &given) {
+  std::vector<std::pair<std::string, const ParameterTable *>> others;
+  for (const char *name : {"auto", "gauss-seidel", "progressive", "hierarchical", "stochastic", "hierarchical-exact"})
+    others.push_back({name, &solverParameters(name)});
+  checkParameters(solverParameters(solver), given, "solver " + solver, others);
+}
+
+void applySolverParameters(const ParameterValues &given, const Scene &scene, SolverOptions &options,
+                           MeshOptions &mesh) {
+  checkSolverParameters(options.solver, given);
+  const ParameterTable &table = solverParameters(options.solver);
+  const Parameters p(table, given);
+  auto has = [&](const char *name) {
+    for (const ParameterSpec &spec : table)
+      if (spec.name == name) return true;
+    return false;
+  };
+  if (p.given("mesh-size")) mesh.maxEdgeLength = p.real("mesh-size") * scene.metresPerUnit;
+  mesh.maxElements = size_t(p.integer("max-elements"));
+  options.maxElements = mesh.maxElements;
+  options.tolerance = p.real("tolerance");
+  options.maxIterations = int(p.integer("max-iterations"));
+  if (has("ff-samples")) options.visibilitySamples = int(p.integer("ff-samples"));
+  if (has("form-factor")) options.formFactor = p.choice("form-factor");
+  if (has("hemicube-resolution")) options.hemicubeResolution = int(p.integer("hemicube-resolution"));
+  if (has("link-threshold")) options.linkThreshold = p.real("link-threshold");
+  if (has("importance")) options.importance = p.flag("importance");
+  if (has("rays-per-element")) options.raysPerElement = int(p.integer("rays-per-element"));
+  if (has("adaptive-rounds")) {
+    if (p.given("adaptive-threshold") && !p.given("adaptive-rounds"))
+      throw InputError(p.origin("adaptive-threshold"), "needs adaptive-rounds");
+    options.adaptiveRounds = int(p.integer("adaptive-rounds"));
+    options.adaptiveThreshold = p.real("adaptive-threshold");
+  }
+  if (has("quality")) applyQuality(options, p.choice("quality"));
+}
+
+}  // namespace radiant
