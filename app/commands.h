@@ -13,5 +13,6 @@ CommandRunner addRenderCommand(CLI::App &app);
 CommandRunner addCompareCommand(CLI::App &app);
 CommandRunner addSolveCommand(CLI::App &app);
 CommandRunner addTonemapCommand(CLI::App &app);
+CommandRunner addMethodsCommand(CLI::App &app);
 
 }  // namespace radiant

@@ -18,10 +18,13 @@ int main(int argc, char **argv) {
   CLI::App *compare = app.add_subcommand("compare", "Compare an image with a reference: mean ratio, RMSE, relMSE");
   CLI::App *tonemap =
       app.add_subcommand("tonemap", "Map a linear image (EXR/PFM) to a display PNG or a false-colour luminance map");
+  CLI::App *methods =
+      app.add_subcommand("methods", "List the rendering methods and radiosity solvers with their parameters");
   radiant::CommandRunner runRender = radiant::addRenderCommand(*render);
   radiant::CommandRunner runSolve = radiant::addSolveCommand(*solve);
   radiant::CommandRunner runCompare = radiant::addCompareCommand(*compare);
   radiant::CommandRunner runTonemap = radiant::addTonemapCommand(*tonemap);
+  radiant::CommandRunner runMethods = radiant::addMethodsCommand(*methods);
 
   try {
     app.parse(argc, argv);
@@ -34,6 +37,7 @@ int main(int argc, char **argv) {
     if (solve->parsed()) return runSolve();
     if (compare->parsed()) return runCompare();
     if (tonemap->parsed()) return runTonemap();
+    if (methods->parsed()) return runMethods();
   } catch (const radiant::InputError &e) {
     // The library names a parameter ("mesh-size"); here it is a flag.
     const radiant::InputLocation &where = e.location();

@@ -32,6 +32,14 @@ cornell="$source_dir/scenes/cornell-box/scene.json"
 "$radiant" --version | grep -q "radiant [0-9]" && pass || fail "--version"
 "$radiant" render --help | grep -q -- "--spp" && pass || fail "render --help lists --spp"
 "$radiant" render --help | grep -q "path" && pass || fail "render --help lists the methods"
+"$radiant" render --help | grep -q "Option Group: --method kok" && pass || fail "render --help groups by method"
+# docs/cli.md's parameter tables are the registries' (radiant methods --markdown), word for word.
+sed -n '/^<!-- BEGIN radiant methods --markdown -->$/,/^<!-- END radiant methods --markdown -->$/p' \
+  "$source_dir/docs/cli.md" | sed '1d;$d' >documented.md
+"$radiant" methods --markdown >generated.md
+if [ -s documented.md ] && diff -u documented.md generated.md >drift.txt; then pass; else
+  fail "docs/cli.md's parameter tables differ from radiant methods --markdown (regenerate them):"; head -20 drift.txt
+fi
 
 # A small render writes every requested format.
 if "$radiant" render "$cornell" --spp 2 --width 32 --height 32 -o a.exr -o a.png -o a.pfm --variance v.exr -q; then

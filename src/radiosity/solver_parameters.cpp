@@ -19,7 +19,9 @@ ParameterSpec meshSize() {
   return {"mesh-size",
           ParameterType::Real,
           "",
-          "target element edge length in scene units",
+          "target element edge length, in scene units (mm for the Cornell box). hierarchical-exact: the starting "
+          "mesh, refined from there; hierarchical: the size of its smallest elements (about 0.7–1.4 × this on a "
+          "side), larger where less detail is needed",
           kPositive,
           std::numeric_limits<double>::infinity(),
           {},
@@ -27,45 +29,69 @@ ParameterSpec meshSize() {
 }
 
 ParameterSpec maxElements() {
-  return {"max-elements", ParameterType::Integer, text(double(MeshOptions{}.maxElements)),
-          "refuse uniform meshes with more elements than this; hierarchical solvers stop refining there", 1, 1e8};
+  return {"max-elements",
+          ParameterType::Integer,
+          text(double(MeshOptions{}.maxElements)),
+          "refuse uniform meshes with more elements than this; hierarchical solvers stop refining there",
+          1,
+          1e8};
 }
 
 ParameterSpec tolerance() {
-  return {"tolerance", ParameterType::Real, text(SolverOptions{}.tolerance),
+  return {"tolerance",
+          ParameterType::Real,
+          text(SolverOptions{}.tolerance),
           "convergence: unshot power over emitted power (progressive, stochastic), or the largest change of B in a "
           "sweep over the largest reflected radiosity (gauss-seidel, hierarchical solvers)",
-          kPositive, 1};
+          kPositive,
+          1};
 }
 
 ParameterSpec maxIterations() {
-  return {"max-iterations", ParameterType::Integer, text(SolverOptions{}.maxIterations),
-          "stop after this many shots or sweeps (0: no limit)", 0, 2147483647};
+  return {"max-iterations",
+          ParameterType::Integer,
+          text(SolverOptions{}.maxIterations),
+          "stop after this many shots (progressive), sweeps (gauss-seidel; hierarchical solvers: per refinement "
+          "round) or iterations (stochastic) even if the tolerance is not met; 0: the tolerance decides",
+          0,
+          2147483647};
 }
 
 ParameterSpec ffSamples() {
-  return {"ff-samples", ParameterType::Integer, text(SolverOptions{}.visibilitySamples),
-          "shadow rays per form factor, rounded to a square number k × k (stratified)", 1, 1024};
+  return {"ff-samples",
+          ParameterType::Integer,
+          text(SolverOptions{}.visibilitySamples),
+          "shadow rays per form factor: analytic uses a k × k grid, k = round(√S), so give a square number; ray-cast "
+          "S pieces; hierarchical one ray from each point of an m × m grid on the receiver, m = max(4, round(√S))",
+          1,
+          1024};
 }
 
 ParameterSpec adaptiveRounds() {
-  return {"adaptive-rounds", ParameterType::Integer, text(SolverOptions{}.adaptiveRounds),
+  return {"adaptive-rounds",
+          ParameterType::Integer,
+          text(SolverOptions{}.adaptiveRounds),
           "rounds of splitting the elements whose error estimate exceeds adaptive-threshold and solving again "
           "(0: uniform mesh; Cohen et al. 1986)",
-          0, 20};
+          0,
+          20};
 }
 
 ParameterSpec adaptiveThreshold() {
-  return {"adaptive-threshold", ParameterType::Real, text(SolverOptions{}.adaptiveThreshold),
+  return {"adaptive-threshold",
+          ParameterType::Real,
+          text(SolverOptions{}.adaptiveThreshold),
           "with adaptive-rounds: split elements whose nodes differ from them by more than this fraction of their "
           "radiosity",
-          0, 100};
+          0,
+          100};
 }
 
 ParameterSpec importance() {
   return {"importance", ParameterType::Flag, "false",
-          "refine for the camera only (render: the camera it renders from); importance from the eye weighs each "
-          "link (Smits, Arvo & Salesin 1992)"};
+          "refine for one view (Smits, Arvo & Salesin 1992): importance emitted by the camera (solve: the scene's; "
+          "render: the one it renders from) is carried back over the links and weighs each, so what the view shows, "
+          "and what lights it, is refined and the rest stays coarse. With auto, it picks hierarchical"};
 }
 
 ParameterSpec quality() {
@@ -79,8 +105,12 @@ ParameterSpec quality() {
 }
 
 ParameterSpec raysPerElement() {
-  return {"rays-per-element", ParameterType::Integer, text(SolverOptions{}.raysPerElement),
-          "rays of the first iteration per element (noise falls as 1/√rays)", 1, 100000};
+  return {"rays-per-element",
+          ParameterType::Integer,
+          text(SolverOptions{}.raysPerElement),
+          "rays of the first iteration per element (noise falls as 1/√rays)",
+          1,
+          100000};
 }
 
 ParameterTable withCommon(std::initializer_list<ParameterSpec> own) {
@@ -96,19 +126,24 @@ const ParameterTable &solverParameters(const std::string &name) {
       {"gauss-seidel", withCommon({ffSamples(), adaptiveRounds(), adaptiveThreshold()})},
       {"progressive",
        withCommon({ffSamples(),
-                   {"form-factor", ParameterType::Choice, SolverOptions{}.formFactor,
+                   {"form-factor",
+                    ParameterType::Choice,
+                    SolverOptions{}.formFactor,
                     "how the form factors are estimated: analytic (contour integral × visible fraction), ray-cast "
                     "(Wallace et al. 1989's disc sum), hemicube (Cohen & Greenberg 1985)",
-                    0, 0, {"analytic", "ray-cast", "hemicube"}},
+                    0,
+                    0,
+                    {"analytic", "ray-cast", "hemicube"}},
                    {"hemicube-resolution", ParameterType::Integer, text(SolverOptions{}.hemicubeResolution),
                     "with form-factor hemicube: pixels across the top face", 4, 4096},
-                   adaptiveRounds(), adaptiveThreshold()})},
+                   adaptiveRounds(),
+                   adaptiveThreshold()})},
       {"hierarchical",
-       withCommon({ffSamples(),
-                   {"link-threshold", ParameterType::Real, text(SolverOptions{}.linkThreshold),
-                    "link when F·B_source is below this fraction of the largest emitted radiosity (BF refinement)", 0,
-                    1},
-                   importance()})},
+       withCommon(
+           {ffSamples(),
+            {"link-threshold", ParameterType::Real, text(SolverOptions{}.linkThreshold),
+             "link when F·B_source is below this fraction of the largest emitted radiosity (BF refinement)", 0, 1},
+            importance()})},
       {"stochastic", withCommon({raysPerElement(), adaptiveRounds(), adaptiveThreshold()})},
       {"hierarchical-exact", withCommon({quality()})},
       // What "auto" may pick (resolveSolverName): hierarchical-exact or

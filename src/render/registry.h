@@ -63,7 +63,7 @@ const RendererInfo &findRenderer(const std::string &name);
 /// types, ranges; util/parameters.h) and returns its view of them.
 Parameters methodParameters(const RendererInfo &method, const ParameterValues &given);
 /// A ray-level method by name, with its parameters checked (throws InputError).
-std::unique_ptr<Renderer> createRenderer(const std::string &name, const RayTracer &tracer,
-                                         const RenderContext &context, const ParameterValues &given = {});
+std::unique_ptr<Renderer> createRenderer(const std::string &name, const RayTracer &tracer, const RenderContext &context,
+                                         const ParameterValues &given = {});
 
 }  // namespace radiant

@@ -153,7 +153,8 @@ void checkParameters(const ParameterTable &table, const ParameterValues &given, 
       throw InputError(value.origin, fmt::format("{} does not use it (used by {})", owner, joinNames(users)));
     std::string best;
     for (const std::string &k : known) {
-      const std::string candidate = best.empty() ? closestMatch(name, {k.c_str()}) : closestMatch(name, {best.c_str(), k.c_str()});
+      const std::string candidate =
+          best.empty() ? closestMatch(name, {k.c_str()}) : closestMatch(name, {best.c_str(), k.c_str()});
       if (!candidate.empty()) best = candidate;
     }
     throw InputError(value.origin, fmt::format("unknown parameter '{}'{}", name,
