@@ -164,6 +164,23 @@ double formFactorPointToPolygon(const Vec3 &p, const Vec3 &n, std::span<const Ve
   return std::abs(sum) / (2 * kPi);
 }
 
+double visibleFormFactor(const RayTracer &tracer, const Vec3 &p, const Vec3 &n, const Vec3 &rayNormal,
+                         std::span<const Vec3> polygon, const Vec3 &polygonNormal, const VisibilitySamples &samples) {
+  thread_local std::vector<Vec3> front;
+  clipToFrontHalfSpace(p, n, polygon, front);
+  if (front.size() < 3) return 0;
+  const double f = formFactorPointToPolygon(p, n, front);
+  if (f <= 0) return 0;
+  if (samples.centroid) return tracer.visible(p, rayNormal, polygonCentroid(front), polygonNormal) ? f : 0.0;
+  const int grid = samples.grid;
+  int visible = 0;
+  for (int a = 0; a < grid; ++a)
+    for (int b = 0; b < grid; ++b)
+      visible += tracer.visible(
+          p, rayNormal, sampleConvexPolygon(front, (a + samples.u1) / grid, (b + samples.u2) / grid), polygonNormal);
+  return f * visible / double(grid * grid);
+}
+
 double polygonWarp(std::span<const Vec3> polygon, const Vec3 &n) {
   double warp = 0;
   for (size_t k = 1; k < polygon.size(); ++k) warp = std::max(warp, std::abs(dot(polygon[k] - polygon[0], n)));

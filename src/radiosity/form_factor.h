@@ -29,6 +29,29 @@ void clipToFrontHalfSpace(const Vec3 &p, const Vec3 &n, std::span<const Vec3> po
 /// independent of the polygon's winding; `polygon` has 3 or more vertices.
 double formFactorPointToPolygon(const Vec3 &p, const Vec3 &n, std::span<const Vec3> polygon);
 
+/// Where visibleFormFactor aims its shadow rays on the part of the polygon in
+/// front of the receiver's tangent plane.
+struct VisibilitySamples {
+  bool centroid = false;  ///< one ray, to the front part's centroid (the same point for every receiver point)
+  /// Otherwise grid × grid rays, to sampleConvexPolygon(front, (a + u1)/grid, (b + u2)/grid):
+  /// the cells' centres at u = ½, or one uniformly random point with grid 1 and random u.
+  int grid = 1;
+  double u1 = 0.5, u2 = 0.5;
+};
+
+/// F(dA → polygon) × V, the point-to-polygon factor with visibility (C&W
+/// eq. 4.9's kernel integrated over the polygon, V estimated by shadow rays):
+/// the exact factor of the part of the polygon in front of p's tangent
+/// plane (normal n), times the fraction of the shadow rays from p (offset
+/// along rayNormal, the geometric normal at p) to points of that part that
+/// reach it (polygonNormal: its front). Visibility is sampled on the part in
+/// front only: a point behind the plane would always read as occluded, by
+/// p's own surface. The per-pixel gathers (reichert) and kok's removal of
+/// its sources from the solution use it; the solvers keep their own
+/// estimators, whose sampling is part of their published results.
+double visibleFormFactor(const RayTracer &tracer, const Vec3 &p, const Vec3 &n, const Vec3 &rayNormal,
+                         std::span<const Vec3> polygon, const Vec3 &polygonNormal, const VisibilitySamples &samples);
+
 /// How far a polygon's vertices stray from the plane through its first vertex
 /// with normal n: 0 for a triangle, about 10⁻⁸ of its size for a quad read
 /// from a file in single precision (tinyobjloader's floats). A point closer

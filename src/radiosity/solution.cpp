@@ -163,6 +163,14 @@ std::vector<Bands> Solution::nodeIndirectRadiosity() const {
   return values;
 }
 
+std::vector<Bands> Solution::nodeDirectRadiosity() const {
+  if (!hasNodeIrradiance()) return nodeValues(direct);
+  std::vector<Bands> values(mesh.nodes.size());
+  for (size_t v = 0; v < mesh.nodes.size(); ++v) values[v] = nodeReflectance[v] * nodeDirectIrradiance[v];
+  applyTVertices(values);
+  return values;
+}
+
 Bands Solution::textureFactor(const MeshLocation &location, const Bands &rho) const {
   Bands average = nodeReflectance.empty() ? reflectance[location.element] : interpolate(nodeReflectance, location);
   Bands factor(0.0);

@@ -4,7 +4,9 @@
 // ("radiosity units"); a Lambertian surface of radiosity B has radiance B/π.
 // Per element, B = E + direct + indirect, where `direct` is what arrived
 // straight from emitters (ρ Σ F E) and `indirect` the rest — the split that
-// Shirley's two-pass method needs (C&W §9.3).
+// Shirley's two-pass method needs (C&W §9.3). Renderers read it at a point
+// of the scene through radiosity/solution_query.h, which holds the front-side,
+// texture (eq. 9.11) and clamping rules once.
 #pragma once
 
 #include <string>
@@ -74,6 +76,10 @@ struct Solution {
   /// kok interpolate: from nodeIndirectIrradiance when there is one, else the
   /// node values of the elements' indirect radiosity.
   std::vector<Bands> nodeIndirectRadiosity() const;
+  /// The direct radiosity at the nodes (reflected light that arrived straight
+  /// from the emitters), formed as nodeIndirectRadiosity is: from
+  /// nodeDirectIrradiance when there is one, else the node values of `direct`.
+  std::vector<Bands> nodeDirectRadiosity() const;
   /// ρ̄ at the nodes (nodeValues of `reflectance`): with textures, the texture
   /// averaged over each element; recomputed by updateNodesAndErrors and on reading.
   std::vector<Bands> nodeReflectance;
