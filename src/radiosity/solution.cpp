@@ -171,12 +171,4 @@ std::vector<Bands> Solution::nodeDirectRadiosity() const {
   return values;
 }
 
-Bands Solution::textureFactor(const MeshLocation &location, const Bands &rho) const {
-  Bands average = nodeReflectance.empty() ? reflectance[location.element] : interpolate(nodeReflectance, location);
-  Bands factor(0.0);
-  for (int b = 0; b < kBandCount; ++b)
-    factor[b] = average[b] > 0 ? rho[b] / average[b] : 0.0;  // ρ̄ = 0: nothing reflected
-  return factor;
-}
-
 }  // namespace radiant

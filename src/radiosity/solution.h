@@ -101,12 +101,6 @@ struct Solution {
   std::vector<Bands> nodeValues(const std::vector<Bands> &perElement) const;
   /// A field of node values (nodeRadiosity or from nodeValues) interpolated at a location.
   Bands interpolate(const std::vector<Bands> &values, const MeshLocation &location) const;
-  /// C&W eq. 9.11 at a textured point: ρ(x)/ρ̄(x), the factor that turns the
-  /// solution's reflected radiosity, computed with the mean reflectance ρ̄,
-  /// into the reflected radiosity where the texture has value ρ(x). ρ̄(x) is
-  /// interpolated from the nodes like B, so the factor is continuous; where
-  /// ρ̄ = 0 nothing was reflected and the factor is 0.
-  Bands textureFactor(const MeshLocation &location, const Bands &rho) const;
   /// Recomputes nodeRadiosity, nodeReflectance and errorEstimate from the element radiosities (including ambient).
   void updateNodesAndErrors();
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "radiosity/solution_query.h"
 #include "util/error.h"
 #include "util/random.h"
 
@@ -13,15 +14,15 @@ namespace radiant {
 namespace {
 
 /// Radiance the solution shows along a gather ray: B/π of the front of the
-/// diffuse surface it meets (emission included), 0 for anything else.
+/// diffuse surface it meets (emission included), 0 for anything else. The
+/// point's texture is not applied: the ratio is formed from a thousand rays,
+/// over which the element's mean ρ̄ (what B̂ holds) is the texture's average,
+/// and ρ(y) texel by texel would only add noise to it.
 Bands incidentRadiance(const RayTracer &tracer, const Solution &solution, const Ray &ray, bool reflectedOnly) {
   Hit hit;
-  if (!tracer.intersect(ray, hit) || dot(ray.direction, hit.geometricNormal) >= 0) return Bands(0.0);
-  if (solution.mesh.patchOfFace[hit.face] < 0) return Bands(0.0);
-  const MeshLocation at = solution.mesh.locate(hit.face, hit.position);
-  Bands b = solution.interpolatedRadiosity(at);
-  if (reflectedOnly) b = b - solution.emission[at.element];
-  return b * kInvPi;
+  SolutionPoint at;
+  if (!tracer.intersect(ray, hit) || !locateHit(solution, hit, -ray.direction, at)) return Bands(0.0);
+  return (reflectedOnly ? reflectedRadiosity(solution, at) : radiosity(solution, at)) * kInvPi;
 }
 
 }  // namespace

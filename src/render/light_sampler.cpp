@@ -1,6 +1,7 @@
 #include "render/light_sampler.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "util/sampling.h"
 
@@ -45,6 +46,28 @@ bool LightSampler::sample(double uSelect, double u1, double u2, LightSample &out
   out.pdfArea = pdfAreaByTriangle_[index];
   out.triangle = index;
   return true;
+}
+
+Bands estimateDirectLight(const LightSampler &lights, const RayTracer &tracer, const Hit &hit, const Bsdf &bsdf,
+                          Sampler &rng, LightWeighting weighting) {
+  LightSample light;
+  double uSelect = rng.next(), u1 = rng.next(), u2 = rng.next();
+  if (!lights.sample(uSelect, u1, u2, light)) return Bands(0.0);
+  Vec3 toLight = light.position - hit.position;
+  double distance2 = dot(toLight, toLight);
+  if (distance2 <= 0) return Bands(0.0);
+  Vec3 wi = toLight / std::sqrt(distance2);
+  double cosLight = -dot(wi, light.normal);
+  if (cosLight <= 0) return Bands(0.0);  // the emitter's back does not emit
+  Bands f = bsdf.evaluate(wi);
+  if (f.max() <= 0) return Bands(0.0);
+  if (!tracer.visible(hit.position, hit.geometricNormal, light.position, light.normal)) return Bands(0.0);
+  double cosSurface = std::abs(dot(wi, hit.shadingNormal));
+  if (weighting == LightWeighting::Alone)
+    return f * light.radiance * (cosSurface * cosLight / (distance2 * light.pdfArea));
+  double lightPdf = light.pdfArea * distance2 / cosLight;  // per solid angle
+  double weight = powerHeuristic(lightPdf, bsdf.pdf(wi));
+  return f * light.radiance * (cosSurface * weight / lightPdf);
 }
 
 double LightSampler::pdfArea(uint32_t triangle) const {

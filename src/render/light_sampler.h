@@ -4,10 +4,17 @@
 // Φ = π·A·L̄ (one-sided Lambertian emitter of radiance L, averaged over bands),
 // then a point uniformly on the chosen triangle. The density of a point is
 // therefore p(triangle)/A per unit area, whichever band is being estimated.
+//
+// estimateDirectLight is the one next-event estimate of every method that
+// samples the emitters at a surface point (path, and the two-pass methods
+// rushmeier, shirley and kok): one point on an emitter, one shadow ray.
 #pragma once
 
 #include <vector>
 
+#include "raytrace/ray_tracer.h"
+#include "render/bsdf.h"
+#include "render/sampler.h"
 #include "scene/scene.h"
 
 namespace radiant {
@@ -44,5 +51,23 @@ class LightSampler {
   std::vector<double> pdfAreaByTriangle_;  ///< per scene triangle
   Bands totalPower_;
 };
+
+/// How a next-event estimate is weighted.
+enum class LightWeighting {
+  /// Alone: nothing else finds the emitters (the two-pass methods), so the
+  /// estimate is the plain f·L·cosθ·cosθ_l / (r² p_A).
+  Alone,
+  /// Against a BSDF-sampled continuation that also finds them (the path
+  /// tracer): the power heuristic with β = 2 (Veach 1997, ch. 9).
+  PowerHeuristic,
+};
+
+/// Next-event estimate of the direct light a surface point reflects towards
+/// the BSDF's outgoing direction: a point on an emitter chosen by power
+/// (three numbers from rng), its front side only (emitters are one-sided),
+/// the BSDF, one shadow ray. 0 where the sample is behind the emitter,
+/// outside the BSDF's support, or occluded.
+Bands estimateDirectLight(const LightSampler &lights, const RayTracer &tracer, const Hit &hit, const Bsdf &bsdf,
+                          Sampler &rng, LightWeighting weighting);
 
 }  // namespace radiant

@@ -15,7 +15,7 @@
 // the image dark, for debugging only).
 #include "render/path_tracer.h"
 
-#include "radiosity/solution.h"
+#include "radiosity/solution_query.h"
 #include "raytrace/surface_detail.h"
 #include "render/bsdf.h"
 #include "render/caustic_photons.h"
@@ -129,7 +129,8 @@ class PathTracer final : public Renderer {
                 meterHere ? nullptr : &diffuse);
       if (meterHere) throughput *= kPi, metered = true;
 
-      if (!bsdf.isDelta() && !lights_.empty()) L += throughput * sampleLight(hit, bsdf, rng);
+      if (!bsdf.isDelta() && !lights_.empty())
+        L += throughput * estimateDirectLight(lights_, tracer_, hit, bsdf, rng, LightWeighting::PowerHeuristic);
 
       BsdfSample s;
       double uLobe = rng.next(), u1 = rng.next(), u2 = rng.next();
@@ -151,40 +152,17 @@ class PathTracer final : public Renderer {
     return L.isFinite() ? L : Bands(0.0);
   }
 
-  /// Next-event estimate of direct light at a non-delta vertex, MIS-weighted.
-  Bands sampleLight(const Hit &hit, const Bsdf &bsdf, Sampler &rng) const {
-    LightSample light;
-    double uSelect = rng.next(), u1 = rng.next(), u2 = rng.next();
-    if (!lights_.sample(uSelect, u1, u2, light)) return Bands(0.0);
-    Vec3 toLight = light.position - hit.position;
-    double distance2 = dot(toLight, toLight);
-    if (distance2 <= 0) return Bands(0.0);
-    Vec3 wi = toLight / std::sqrt(distance2);
-    double cosLight = -dot(wi, light.normal);
-    if (cosLight <= 0) return Bands(0.0);  // the emitter's back does not emit
-    Bands f = bsdf.evaluate(wi);
-    if (f.max() <= 0) return Bands(0.0);
-    double cosSurface = std::abs(dot(wi, hit.shadingNormal));
-    if (!tracer_.visible(hit.position, hit.geometricNormal, light.position, light.normal)) return Bands(0.0);
-    double lightPdf = light.pdfArea * distance2 / cosLight;  // solid angle
-    double weight = powerHeuristic(lightPdf, bsdf.pdf(wi));
-    return f * light.radiance * (cosSurface * weight / lightPdf);
-  }
-
   const RayTracer &tracer_;
   const Scene &scene_;
   LightSampler lights_;
   int maxDepth_;
-  /// B − E of the solution at a hit, interpolated, with eq. 9.11 for its texture, as radiance (front side only).
+  /// What the solution says the hit reflects towards wo, as radiance
+  /// (radiosity/solution_query.h: front side only, eq. 9.11 with ρ(x) = rho).
   Bands readSolution(const Hit &hit, const Vec3 &wo, const Bands &rho) const {
-    if (dot(wo, hit.geometricNormal) <= 0) return Bands(0.0);  // the one-sided solution says nothing of back sides
-    const int32_t patch = solution_->mesh.patchOfFace[hit.face];
-    if (patch < 0) return Bands(0.0);
-    const MeshLocation at = solution_->mesh.locate(hit.face, hit.position);
-    Bands reflected = solution_->interpolatedRadiosity(at) - solution_->emission[at.element];
-    if (scene_.materials[hit.material].diffuseTextureIndex >= 0) reflected *= solution_->textureFactor(at, rho);
-    for (int b = 0; b < kBandCount; ++b) reflected[b] = std::max(0.0, reflected[b]);
-    return reflected * kInvPi;
+    SolutionPoint at;
+    if (!locateHit(*solution_, hit, wo, at)) return Bands(0.0);
+    applySurfaceDetail(*solution_, scene_.materials[hit.material], rho, at);
+    return reflectedRadiance(*solution_, at);
   }
 
   bool irradiance_;

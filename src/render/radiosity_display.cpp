@@ -16,7 +16,7 @@
 
 #include <optional>
 
-#include "radiosity/solution.h"
+#include "radiosity/solution_query.h"
 #include "render/bump_gather.h"
 #include "render/registry.h"
 #include "render/two_pass.h"
@@ -51,25 +51,19 @@ class RadiosityDisplay final : public Renderer {
 
   Bands radiance(const Ray &cameraRay, Sampler &rng) const override {
     VisiblePoint x;
-    if (!findVisiblePoint(tracer_, solution_, cameraRay, rng, x, pixelSpread_)) return Bands(0.0);
+    if (!findVisiblePoint(tracer_, solution_, cameraRay, rng, x, pixelSpread_,
+                          interpolate_ ? Reconstruction::Interpolated : Reconstruction::Constant))
+      return Bands(0.0);
     if (irradiance_)
-      return x.throughput * (interpolate_ ? solution_.interpolate(nodeIrradiance_, x.location)
-                                          : elementIrradiance_[x.location.element]);
-    Bands radiosity =
-        interpolate_ ? solution_.interpolatedRadiosity(x.location) : solution_.displayRadiosity(x.location.element);
-    if (x.textured) {
-      // C&W eq. 9.11: B = E + (B(ρ̄) − E)·ρ(x)/ρ̄, with the element's own ρ̄
-      // for flat (so an element's mean stays its B) and the interpolated one
-      // for interpolate; and for a bump map, Chen's ratio r(n') (bump_gather.h).
-      const uint32_t e = x.location.element;
-      Bands factor = x.textureFactor;
-      if (!interpolate_ && x.material->diffuseTextureIndex >= 0)
-        for (int b = 0; b < kBandCount; ++b)
-          factor[b] = solution_.reflectance[e][b] > 0 ? x.reflectance[b] / solution_.reflectance[e][b] : 0.0;
-      if (bumps_) factor *= bumps_->ratio(x.location, x.hit.shadingNormal, x.unbumpedNormal);
-      radiosity = solution_.emission[e] + (radiosity - solution_.emission[e]) * factor;
-    }
-    return x.throughput * radiosity * kInvPi;
+      return x.throughput * (interpolate_ ? solution_.interpolate(nodeIrradiance_, x.at.location)
+                                          : elementIrradiance_[x.at.location.element]);
+    // C&W eq. 9.11 on a texture, B = E + (B̂ − E)·ρ(x)/ρ̄, with the element's
+    // own ρ̄ for flat (so an element's mean stays its B) and the interpolated
+    // one for interpolate (radiosity/solution_query.h); and for a bump map,
+    // Chen's ratio r(n') on the reflected part too (bump_gather.h).
+    if (bumps_ && x.at.scaled)
+      x.at.reflectedScale *= bumps_->ratio(x.at.location, x.hit.shadingNormal, x.unbumpedNormal);
+    return x.throughput * radiosity(solution_, x.at) * kInvPi;
   }
 
   bool variesOnlyAcrossThePixel() const override { return true; }

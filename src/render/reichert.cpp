@@ -27,7 +27,6 @@
 #include "render/registry.h"
 #include "render/two_pass.h"
 #include "util/error.h"
-#include "util/sampling.h"
 
 namespace radiant {
 
@@ -43,7 +42,14 @@ class Reichert final : public TwoPassRenderer {
       std::vector<Vec3> p = mesh.polygon(e);
       std::copy(p.begin(), p.end(), polygons_[e].begin());
     }
-    if (selective_.enabled && !solution_.links.empty() && !solution_.treeRadiosity.empty()) prepareLinkMode();
+    if (selective_.enabled && isHierarchical(solution_)) {
+      // Link mode: only the partially visible links that carry much power are re-evaluated per pixel.
+      selectsByLinks_ = true;
+      const double powerFloor = selective_.linkPower * solution_.stats.emittedPower.average();
+      links_ = indexLinksByReceiver(solution_, [&](const Link &link) {
+        return link.visibility == LinkVisibility::Partial && link.carriedPower >= powerFloor;
+      });
+    }
   }
 
   double selectiveWork(const Ray &ray) const override {
@@ -52,7 +58,7 @@ class Reichert final : public TwoPassRenderer {
     VisiblePoint x;
     if (!findVisiblePoint(tracer_, solution_, ray, rng, x)) return 0;
     int count = 0;
-    forEachReevaluatedLink(x, [&](const Link &) { ++count; });
+    forEachLinkLighting(solution_, links_, x.at.location.element, [&](const Link &) { ++count; });
     return count;
   }
 
@@ -75,7 +81,7 @@ class Reichert final : public TwoPassRenderer {
   Bands reflectedByLinks(const VisiblePoint &x, Sampler &rng) const override {
     const RadiosityMesh &mesh = solution_.mesh;
     Bands correction(0.0);
-    forEachReevaluatedLink(x, [&](const Link &link) {
+    forEachLinkLighting(solution_, links_, x.at.location.element, [&](const Link &link) {
       const MeshTreeNode &source = mesh.tree[link.source];
       double u1 = rng.next(), u2 = rng.next();
       const Vec3 &ns = mesh.patches[source.patch].normal;
@@ -86,60 +92,24 @@ class Reichert final : public TwoPassRenderer {
                      : 0.0;
       correction += solution_.treeRadiosity[link.source] * (f - link.formFactor);
     });
-    return (reflectedRadiosity(solution_, x) + x.reflectance * correction) * kInvPi;
+    return (reflectedRadiosity(solution_, x.at) + x.reflectance * correction) * kInvPi;
   }
 
  private:
-  /// F(dx → polygon) × V: the exact factor of the part of the polygon in
-  /// front of x's tangent plane, with visibility tested at a point of that
-  /// part (its centroid, or uniform for mc). A point on the part behind the
-  /// plane would always read as occluded, by x's own surface.
+  /// F(dx → polygon) × V (radiosity/form_factor.h), visibility tested at
+  /// one point of the polygon's part in front of x: its centroid (--ff
+  /// point) or a uniform one from (u1, u2) (--ff mc).
   double visibleFormFactor(const VisiblePoint &x, std::span<const Vec3> polygon, const Vec3 &polygonNormal, double u1,
                            double u2) const {
-    thread_local std::vector<Vec3> front;
-    clipToFrontHalfSpace(x.hit.position, x.hit.shadingNormal, polygon, front);
-    if (front.size() < 3) return 0;
-    double f = formFactorPointToPolygon(x.hit.position, x.hit.shadingNormal, front);
-    if (f <= 0) return 0;
-    Vec3 y = pointSampled_ ? polygonCentroid(front) : sampleConvexPolygon(front, u1, u2);
-    return tracer_.visible(x.hit.position, x.hit.geometricNormal, y, polygonNormal) ? f : 0.0;
-  }
-
-  void prepareLinkMode() {
-    const RadiosityMesh &mesh = solution_.mesh;
-    selectsByLinks_ = true;
-    parent_.assign(mesh.tree.size(), -1);
-    leafOfElement_.assign(mesh.elements.size(), -1);
-    for (uint32_t t = 0; t < mesh.tree.size(); ++t) {
-      const MeshTreeNode &node = mesh.tree[t];
-      if (node.isLeaf()) {
-        if (node.element >= 0) leafOfElement_[node.element] = int32_t(t);
-      } else {
-        for (int32_t child : node.children)
-          if (child >= 0) parent_[child] = int32_t(t);
-      }
-    }
-    const double powerFloor = selective_.linkPower * solution_.stats.emittedPower.average();
-    linksOf_.assign(mesh.tree.size(), {});
-    for (uint32_t l = 0; l < solution_.links.size(); ++l) {
-      const Link &link = solution_.links[l];
-      if (link.visibility == LinkVisibility::Partial && link.carriedPower >= powerFloor)
-        linksOf_[link.receiver].push_back(l);
-    }
-  }
-
-  /// The selected links of x's leaf and of every ancestor (whose links also
-  /// deliver to x, HSA 1991's push–pull).
-  template <typename Visit>
-  void forEachReevaluatedLink(const VisiblePoint &x, Visit &&visit) const {
-    for (int32_t t = leafOfElement_[x.location.element]; t >= 0; t = parent_[t])
-      for (uint32_t l : linksOf_[t]) visit(solution_.links[l]);
+    VisibilitySamples samples;
+    samples.centroid = pointSampled_, samples.u1 = u1, samples.u2 = u2;
+    return radiant::visibleFormFactor(tracer_, x.hit.position, x.hit.shadingNormal, x.hit.geometricNormal, polygon,
+                                      polygonNormal, samples);
   }
 
   const bool pointSampled_;
   std::vector<std::array<Vec3, 4>> polygons_;
-  std::vector<int32_t> parent_, leafOfElement_;
-  std::vector<std::vector<uint32_t>> linksOf_;  ///< selected links by receiver tree node
+  LinksByReceiver links_;  ///< link mode: the selected links by receiver tree node
 };
 
 std::unique_ptr<Renderer> createReichert(const RayTracer &tracer, const RenderContext &context,

@@ -45,8 +45,7 @@ class Rushmeier final : public TwoPassRenderer {
   Bands gatheredRadiance(const Ray &ray, Sampler &rng) const {
     VisiblePoint y;
     if (!findVisiblePoint(tracer_, solution_, ray, rng, y)) return Bands(0.0);
-    Bands L = reflectedRadiosity(solution_, y) * kInvPi;
-    for (int b = 0; b < kBandCount; ++b) L[b] = std::max(0.0, L[b]);
+    Bands L = reflectedRadiance(solution_, y.at);
     if (y.specularBounces > 0) L += y.material->emission;
     return y.throughput * L;
   }

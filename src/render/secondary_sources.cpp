@@ -7,19 +7,13 @@
 #include <numeric>
 
 #include "radiosity/form_factor.h"
+#include "radiosity/solution_query.h"
 #include "util/error.h"
 #include "util/sampling.h"
 
 namespace radiant {
 
 namespace {
-
-/// (B − E) of an element, ambient included as in the display: what it reflects.
-Bands reflectedRadiosity(const Solution &s, uint32_t element) {
-  Bands b = s.displayRadiosity(element) - s.emission[element];
-  for (int k = 0; k < kBandCount; ++k) b[k] = std::max(0.0, b[k]);
-  return b;
-}
 
 /// Above this many receiver × source-element pairs that no tree can
 /// coarsen (patches meshed as uniform grids) the removal would take
@@ -208,7 +202,6 @@ void SecondarySources::computeRemovedRadiosity(const RayTracer &tracer, int grid
   tbb::parallel_for(size_t(0), mesh.elements.size(), [&](size_t i) {
     const Element &receiver = mesh.elements[i];
     const Vec3 &n = mesh.normalOf(uint32_t(i));
-    std::vector<Vec3> front;
     std::vector<int32_t> stack(roots.rbegin(), roots.rend());
     Bands gathered(0.0);
     while (!stack.empty()) {
@@ -230,16 +223,11 @@ void SecondarySources::computeRemovedRadiosity(const RayTracer &tracer, int grid
       ++evaluated[i];
       // The part of the source in front of the receiver, its exact factor,
       // and its visible fraction from grid × grid stratified points on that part.
-      clipToFrontHalfSpace(receiver.centre, n, source.polygon, front);
-      if (front.size() < 3) continue;
-      double f = formFactorPointToPolygon(receiver.centre, n, front);
+      VisibilitySamples samples;
+      samples.grid = grid;
+      const double f = visibleFormFactor(tracer, receiver.centre, n, n, source.polygon, nk, samples);
       if (f <= 0) continue;
-      int visible = 0;
-      for (int a = 0; a < grid; ++a)
-        for (int b = 0; b < grid; ++b)
-          visible +=
-              tracer.visible(receiver.centre, n, sampleConvexPolygon(front, (a + 0.5) / grid, (b + 0.5) / grid), nk);
-      gathered += valueSeenFrom(pieces, source, receiver.centre, n, nk) * (f * visible / double(grid * grid));
+      gathered += valueSeenFrom(pieces, source, receiver.centre, n, nk) * f;
     }
     removed_[i] = s.reflectance[i] * gathered;
   });

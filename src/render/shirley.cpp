@@ -23,6 +23,7 @@
 #include <optional>
 
 #include "radiosity/backprojection.h"
+#include "radiosity/solution_query.h"
 #include "render/bump_gather.h"
 #include "render/caustic_photons.h"
 #include "render/registry.h"
@@ -42,7 +43,7 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
                                  const std::optional<SecondarySourceOptions> &sources)
       : TwoPassRenderer(tracer, context, selective) {
     const Solution &s = solution_;
-    remainingIndirect_ = s.nodeIndirectRadiosity();
+    remainingIndirect_ = nodeField(s, Field::Indirect);
     if (sources) {
       sources_.emplace(tracer, s, *sources);
       const std::vector<Bands> removed = s.nodeValues(sources_->removedRadiosity());
@@ -68,13 +69,12 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
                   ? x.reflectance * exact * kInvPi
                   : directLight(x, rng);
     if (sources_) L += secondaryLight(x, rng);
-    Bands indirect = solution_.interpolate(remainingIndirect_, x.location) * kInvPi;
-    if (x.textured) indirect *= x.textureFactor;  // eq. 9.11 on what is read from the solution
-    if (bumps_ && x.textured) indirect *= bumps_->ratio(x.location, x.hit.shadingNormal, x.unbumpedNormal);
+    // The indirect field with eq. 9.11 at x (radiosity/solution_query.h), and Chen's ratio on a bump map.
+    Bands indirect = fieldRadiance(solution_, remainingIndirect_, x.at);
+    if (bumps_ && x.at.scaled) indirect *= bumps_->ratio(x.at.location, x.hit.shadingNormal, x.unbumpedNormal);
     // Multipass: caustics from the light-ray pass (the solution holds none; shadow rays cannot find them).
     if (context_.caustics)
       L += context_.caustics->reflectedRadiance(x.hit.position, x.hit.geometricNormal, x.reflectance);
-    for (int b = 0; b < kBandCount; ++b) indirect[b] = std::max(0.0, indirect[b]);
     return L + indirect;
   }
 
@@ -120,14 +120,14 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
     Vec3 wi = Frame::fromNormal(n).toWorld(sampleCosineHemisphere(v1, v2));
     if (dot(wi, x.hit.geometricNormal) <= 0) return L;
     Hit y;
+    SolutionPoint at;
     if (!tracer_.intersect(tracer_.spawnRay(x.hit.position, x.hit.geometricNormal, wi), y)) return L;
-    if (dot(wi, y.geometricNormal) >= 0) return L;  // the back of a face
-    int32_t patch = solution_.mesh.patchOfFace[y.face];
-    double pdfArea = patch >= 0 ? sources_->pdfArea(uint32_t(patch)) : 0.0;
+    if (!locateHit(solution_, y, -wi, at)) return L;  // the back of a face, or no patch
+    double pdfArea = sources_->pdfArea(uint32_t(solution_.mesh.patchOfFace[y.face]));
     if (pdfArea <= 0) return L;
     double pdfSource = pdfArea * y.distance * y.distance / -dot(wi, y.geometricNormal);
     double pdfCosine = dot(wi, n) * kInvPi;
-    Bands radiance = sources_->radiance(solution_.mesh.locate(y.face, y.position).element);
+    Bands radiance = sources_->radiance(at.location.element);
     return L + x.reflectance * radiance * powerHeuristic(pdfCosine, pdfSource);  // f·cos/pdf = ρ
   }
 

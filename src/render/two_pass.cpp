@@ -7,7 +7,7 @@
 namespace radiant {
 
 bool findVisiblePoint(const RayTracer &tracer, const Solution &solution, Ray ray, Sampler &rng, VisiblePoint &out,
-                      double pixelSpread) {
+                      double pixelSpread, Reconstruction reconstruction) {
   constexpr int kMaxSpecularBounces = 64;
   const Scene &scene = tracer.scene();
   out.throughput = Bands(1.0);
@@ -27,28 +27,19 @@ bool findVisiblePoint(const RayTracer &tracer, const Solution &solution, Ray ray
       ray = tracer.spawnRay(out.hit.position, out.hit.geometricNormal, s.wi);
       continue;
     }
-    if (dot(out.wo, out.hit.geometricNormal) <= 0) return false;  // back side: not in the solution
-    if (solution.mesh.patchOfFace[out.hit.face] < 0) return false;
-    out.location = solution.mesh.locate(out.hit.face, out.hit.position);
+    if (!locateHit(solution, out.hit, out.wo, out.at, reconstruction)) return false;
     out.material = &material;
     out.reflectance = material.diffuse;
     out.unbumpedNormal = out.hit.shadingNormal;
-    out.textured = material.hasSurfaceDetail();
-    if (out.textured) {
+    if (material.hasSurfaceDetail()) {
       const SurfaceDetail detail = surfaceDetail(scene, out.hit, travelled * pixelSpread);
       out.reflectance = detail.diffuse;
       out.hit.shadingNormal = detail.shadingNormal;
-      out.textureFactor =
-          material.diffuseTextureIndex >= 0 ? solution.textureFactor(out.location, detail.diffuse) : Bands(1.0);
+      applySurfaceDetail(solution, material, detail.diffuse, out.at);
     }
     return true;
   }
   return false;
-}
-
-Bands reflectedRadiosity(const Solution &solution, const VisiblePoint &x) {
-  Bands reflected = solution.interpolatedRadiosity(x.location) - solution.emission[x.location.element];
-  return x.textured ? reflected * x.textureFactor : reflected;
 }
 
 const Solution &requireSolution(const RenderContext &context) {
@@ -99,8 +90,7 @@ Bands TwoPassRenderer::radiance(const Ray &ray, Sampler &rng) const {
   if (!findVisiblePoint(tracer_, solution_, ray, rng, x, context_.pixelSpreadAngle)) return Bands(0.0);
   Bands L(0.0);
   if (selective_.enabled && !selectsByLinks_ && trustsSolution(x)) {
-    L = x.textured ? (solution_.emission[x.location.element] + reflectedRadiosity(solution_, x)) * kInvPi
-                   : solution_.interpolatedRadiosity(x.location) * kInvPi;  // emission included
+    L = radiosity(solution_, x.at) * kInvPi;  // emission included
   } else {
     L = x.material->emission + (selective_.enabled && selectsByLinks_ ? reflectedByLinks(x, rng) : reflected(x, rng));
   }
@@ -124,25 +114,12 @@ double TwoPassRenderer::selectiveWork(const Ray &ray) const {
 bool TwoPassRenderer::trustsSolution(const VisiblePoint &x) const {
   // The interpolated solution has no bumps: bump-mapped points are always re-evaluated.
   if (x.material->bumpTextureIndex >= 0 || x.material->normalTextureIndex >= 0) return false;
-  return solution_.errorEstimate[x.location.element] < selective_.threshold;
+  return errorEstimate(solution_, x.at) < selective_.threshold;
 }
 
 Bands TwoPassRenderer::directLight(const VisiblePoint &x, Sampler &rng) const {
-  LightSample light;
-  double uSelect = rng.next(), u1 = rng.next(), u2 = rng.next();
-  if (!lights_.sample(uSelect, u1, u2, light)) return Bands(0.0);
-  Vec3 toLight = light.position - x.hit.position;
-  double distance2 = dot(toLight, toLight);
-  if (distance2 <= 0) return Bands(0.0);
-  Vec3 wi = toLight / std::sqrt(distance2);
-  double cosLight = -dot(wi, light.normal);
-  if (cosLight <= 0) return Bands(0.0);  // the emitter's back does not emit
-  Bsdf bsdf(*x.material, x.hit.shadingNormal, x.hit.geometricNormal, x.wo, &x.reflectance);
-  Bands f = bsdf.evaluate(wi);
-  if (f.max() <= 0) return Bands(0.0);
-  if (!tracer_.visible(x.hit.position, x.hit.geometricNormal, light.position, light.normal)) return Bands(0.0);
-  double cosSurface = std::abs(dot(wi, x.hit.shadingNormal));
-  return f * light.radiance * (cosSurface * cosLight / (distance2 * light.pdfArea));
+  const Bsdf bsdf(*x.material, x.hit.shadingNormal, x.hit.geometricNormal, x.wo, &x.reflectance);
+  return estimateDirectLight(lights_, tracer_, x.hit, bsdf, rng, LightWeighting::Alone);
 }
 
 }  // namespace radiant

@@ -13,7 +13,7 @@
 #include <memory>
 #include <vector>
 
-#include "radiosity/solution.h"
+#include "radiosity/solution_query.h"
 #include "render/light_sampler.h"
 #include "render/renderer.h"
 #include "util/parameters.h"
@@ -27,30 +27,26 @@ struct VisiblePoint {
   Vec3 wo;                ///< towards the viewer
   Bands throughput{1.0};  ///< product of the specular bounces' weights
   int specularBounces = 0;
-  MeshLocation location;  ///< in the radiosity mesh
+  /// Where the solution is read (radiosity/solution_query.h): the mesh
+  /// location, and with surface detail (`at.scaled`) eq. 9.11's ρ(x)/ρ̄(x).
+  SolutionPoint at;
   const Material *material = nullptr;
   /// Surface detail (raytrace/surface_detail.h): ρ(x), the diffuse reflectance
   /// here (the material's, times its texture), and hit.shadingNormal is the
-  /// bumped normal. textureFactor = ρ(x)/ρ̄(x) (C&W eq. 9.11) scales what is
-  /// read from the solution here; exactly 1 without a texture.
+  /// bumped normal.
   Bands reflectance;
-  Bands textureFactor{1.0};
-  bool textured = false;
   Vec3 unbumpedNormal;  ///< the shading normal before the bump or normal map (smooth shading included)
 };
 
 /// Follows a ray through ideal mirrors and glass (Fresnel-weighted choice, as
 /// the path tracer does) to the first non-delta surface. False if it escapes,
-/// is absorbed, or reaches the back of a face or a face outside the mesh
-/// (the one-sided solution says nothing about those: they are black).
+/// is absorbed, or reaches a point the solution does not hold (locateHit:
+/// the back of a face, a face outside the mesh): those are black.
 /// `pixelSpread`: the angle one pixel subtends (radians), which sets the width
-/// of the texture filter at x (0: the finest texels).
+/// of the texture filter at x (0: the finest texels). `reconstruction`: how
+/// the solution will be read at x (the texture factor's ρ̄ follows it).
 bool findVisiblePoint(const RayTracer &tracer, const Solution &solution, Ray ray, Sampler &rng, VisiblePoint &out,
-                      double pixelSpread = 0);
-
-/// The solution's reflected radiosity B − E interpolated at x, with the
-/// texture at x applied (eq. 9.11): what x reflects according to the solution.
-Bands reflectedRadiosity(const Solution &solution, const VisiblePoint &x);
+                      double pixelSpread = 0, Reconstruction reconstruction = Reconstruction::Interpolated);
 
 /// --selective (C&W §9.3.3): what the two-pass methods share of their
 /// parameters; reichert adds selective-power for its link mode.
@@ -85,8 +81,8 @@ class TwoPassRenderer : public Renderer {
   /// methods that set selectsByLinks_ implement it.
   virtual Bands reflectedByLinks(const VisiblePoint &x, Sampler &rng) const;
 
-  /// Direct light by next-event estimation: one point on an emitter chosen by
-  /// power, one shadow ray, no MIS (nothing else in these methods finds emitters).
+  /// Direct light by next-event estimation (estimateDirectLight, alone:
+  /// nothing else in these methods finds emitters).
   Bands directLight(const VisiblePoint &x, Sampler &rng) const;
   /// True where --selective leaves the solution alone (element error below threshold).
   bool trustsSolution(const VisiblePoint &x) const;
