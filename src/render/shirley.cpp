@@ -123,7 +123,9 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
     SolutionPoint at;
     if (!tracer_.intersect(tracer_.spawnRay(x.hit.position, x.hit.geometricNormal, wi), y)) return L;
     if (!locateHit(solution_, y, -wi, at)) return L;  // the back of a face, or no patch
-    double pdfArea = sources_->pdfArea(uint32_t(solution_.mesh.patchOfFace[y.face]));
+    // The density with which sample() picks y: that of y's own patch (a face
+    // cut where other surfaces meet it has several, each selected or not).
+    double pdfArea = sources_->pdfArea(solution_.mesh.elements[at.location.element].patch);
     if (pdfArea <= 0) return L;
     double pdfSource = pdfArea * y.distance * y.distance / -dot(wi, y.geometricNormal);
     double pdfCosine = dot(wi, n) * kInvPi;
