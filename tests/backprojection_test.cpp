@@ -13,7 +13,7 @@ using namespace radiant;
 
 namespace {
 
-constexpr double kUnitSquareAtHeightOne = 0.239456;  // REFERENCE §1.4: point under the centre of a unit square
+constexpr double kUnitSquareAtHeightOne = 0.239456;  // F under a unit square's centre, docs/radiosity.md
 
 /// An emitter: the unit square centred over the origin at height 1, facing down (material 0).
 Scene emitterOverOrigin() {

@@ -1,10 +1,10 @@
 // Colour from spectra (src/colour/): the CIE 1931 table, XYZ ↔ sRGB, Bradford
-// adaptation and the band colour matching, against REFERENCE §6.5–6.6 and the
-// Cornell box's published spectra (§7.3–7.4).
+// adaptation and the band colour matching, against IEC 61966-2-1, the CIE 1931
+// 2° observer and the Cornell box's published spectra (Cornell Box Data).
 //
-// Tolerances follow the digits printed in the source: a value printed to n
-// decimals is trusted to half a unit in its last place, and the tolerance is
-// that or a round number just above it. Identities that hold exactly in real
+// Tolerances follow the digits each expected value is given to: a value printed
+// to n decimals is trusted to half a unit in its last place, and the tolerance
+// is that or a round number just above it. Identities that hold exactly in real
 // arithmetic are tested to 1e-12 (double rounding over a few hundred terms).
 #include <gtest/gtest.h>
 
@@ -33,7 +33,8 @@ SampledSpectrum constantSpectrum(double value) {
   return {{550.0}, {value}};
 }
 
-/// A material's reflectance spectrum from the spectral Cornell box scene (REFERENCE §7.4's data).
+/// A material's reflectance spectrum from the spectral Cornell box scene (the
+/// Cornell Box Data).
 SampledSpectrum cornellReflectance(const std::string &material) {
   const std::string path = std::string(RADIANT_SOURCE_DIR) + "/scenes/cornell-box-spectral/scene.json";
   std::ifstream file(path);
@@ -47,11 +48,11 @@ SampledSpectrum cornellReflectance(const std::string &material) {
   return spectrum;
 }
 
-/// REFERENCE §7.3: the Cornell light's published emission, piecewise linear.
+/// Cornell Box Data: the light's published emission, piecewise linear.
 const SampledSpectrum kCornellLight{{400, 500, 600, 700}, {0.0, 8.0, 15.6, 18.4}};
 
 // ---------------------------------------------------------------------------
-// The CIE 1931 2° table (REFERENCE §6.6).
+// The CIE 1931 2° table (CIE 015, as pbrt-v3 carries it).
 
 TEST(Colour, CieTableHas471RowsAndIsZeroOutside) {
   // x̄ and ȳ are positive at every nm of the table; z̄ reaches 0 at 650 nm.
@@ -72,7 +73,8 @@ TEST(Colour, CieTableHas471RowsAndIsZeroOutside) {
 }
 
 TEST(Colour, CieTableSums) {
-  // REFERENCE §6.6 prints the sums to 3 decimals: tolerance 1e-3.
+  // The table's sums, computed to 3 decimals (pbrt-v3's CIE_Y_integral is
+  // 106.856895): tolerance 1e-3.
   Vec3 sum;
   for (int nm = kCieFirstWavelength; nm <= kCieLastWavelength; ++nm) sum += cieColourMatching(nm);
   EXPECT_NEAR(sum.x, 106.865, 1e-3);
@@ -103,7 +105,7 @@ TEST(Colour, CieTableSpotValues) {
 }
 
 TEST(Colour, EqualEnergyChromaticity) {
-  // REFERENCE §6.6: x = 0.33331, y = 0.33329 over 360–830 nm, printed to 5
+  // Computed from the table: x = 0.33331, y = 0.33329 over 360–830 nm, to 5
   // decimals (tolerance 1e-4); and within 1e-3 of 1/3.
   const Vec3 xyz = spectrumToXyz(constantSpectrum(1.0), kCieFirstWavelength, kCieLastWavelength);
   EXPECT_NEAR(xyz.y, 1.0, 1e-12);  // normalised by Σȳ over the same range
@@ -128,11 +130,12 @@ TEST(Colour, SpectrumToXyzIsLinearAndRejectsAnEmptyRange) {
 }
 
 // ---------------------------------------------------------------------------
-// XYZ ↔ linear sRGB (REFERENCE §6.5).
+// XYZ ↔ linear sRGB (IEC 61966-2-1).
 
 TEST(Colour, SrgbMatricesMatchReference) {
-  // REFERENCE prints both matrices to 7 decimals: tolerance 1e-6. Column j of
-  // a matrix is its image of the j-th unit vector.
+  // Both matrices, derived from the IEC primaries and D65 to 7 decimals
+  // (docs/spectral.md, Colour): tolerance 1e-6. Column j of a matrix is its
+  // image of the j-th unit vector.
   const double xyzToRgb[3][3] = {
       {3.2409699, -1.5373832, -0.4986108}, {-0.9692436, 1.8759675, 0.0415551}, {0.0556301, -0.2039770, 1.0569715}};
   const double rgbToXyz[3][3] = {
@@ -162,7 +165,7 @@ TEST(Colour, D65IsSrgbWhite) {
 }
 
 // ---------------------------------------------------------------------------
-// The Cornell box spectra (REFERENCE §7.3–7.4).
+// The Cornell box spectra (Cornell Box Data).
 
 TEST(Colour, CornellLight) {
   // Chromaticity does not depend on the normalisation; printed to 4 decimals.
@@ -170,10 +173,11 @@ TEST(Colour, CornellLight) {
   EXPECT_NEAR(x, 0.4364, 1e-4);
   EXPECT_NEAR(y, 0.4175, 1e-4);
 
-  // REFERENCE §7.3's "XYZ/∫ȳ" sums S·(x̄, ȳ, z̄) over 400–700 nm but divides by
-  // ∫ȳ over the whole table (106.857), unlike §7.4 and spectrumToXyz, which
-  // divide by ∫ȳ over 400–700: the two differ by 5.7e-4 relative. Its XYZ is
-  // printed to 3 decimals (tolerance 1e-3), its sRGB to 2 (tolerance 5e-3).
+  // The light's XYZ in docs/spectral.md sums S·(x̄, ȳ, z̄) over 400–700 nm but
+  // divides by ∫ȳ over the whole table (106.857), unlike the reflectances'
+  // colours below and spectrumToXyz, which divide by ∫ȳ over 400–700: the two
+  // differ by 5.7e-4 relative. Its XYZ is printed to 3 decimals (tolerance
+  // 1e-3), its sRGB to 2 (tolerance 5e-3).
   const double toWholeTable = cieYIntegral(400, 700) / cieYIntegral(kCieFirstWavelength, kCieLastWavelength);
   const Vec3 xyz = spectrumToXyz(kCornellLight, 400, 700) * toWholeTable;
   expectNear(xyz, {12.926, 12.368, 4.327}, 1e-3, "light XYZ");
@@ -187,7 +191,9 @@ struct CornellSurface {
   double yUnderLight;
 };
 
-// REFERENCE §7.4's derived table: piecewise-linear spectra, 1-nm CMFs over 400–700 nm, no adaptation.
+// The Cornell reflectances' colours, computed from piecewise-linear spectra and
+// the 1-nm CMFs over 400–700 nm, no adaptation (the linear sRGB also in
+// docs/spectral.md, Colour).
 const CornellSurface kCornellSurfaces[] = {
     {"white", 0.7367, {0.7358, 0.7367, 0.7341}, {0.8862, 0.6993, 0.6666}, 0.7368},
     {"green", 0.2986, {0.1924, 0.2986, 0.1196}, {0.1049, 0.3786, 0.0762}, 0.2829},
@@ -205,7 +211,8 @@ TEST(Colour, CornellReflectances) {
     expectNear(xyz, surface.xyz, 1e-4, "XYZ");
     expectNear(xyzToLinearSrgb(xyz), surface.linearSrgb, 1e-4, "linear sRGB");
 
-    // Relative Y under the Cornell light (REFERENCE §6.6): Σ ρ I ȳ / Σ I ȳ.
+    // Relative Y under the Cornell light (CIE 015's relative form):
+    // Σ ρ I ȳ / Σ I ȳ.
     double reflected = 0, incident = 0;
     for (int nm = 400; nm <= 700; ++nm) {
       const double light = kCornellLight.at(nm) * cieColourMatching(nm).y;

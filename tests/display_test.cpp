@@ -1,4 +1,4 @@
-// The display mapping (src/display/, docs/tone-mapping.md): REFERENCE §6's
+// The display mapping (src/display/, docs/tone-mapping.md): that document's
 // test vectors for gamma, sRGB, Tumblin–Rushmeier and Ward, the firefly and
 // the searchlight, and the files the mapping reads and writes.
 #include <gtest/gtest.h>
@@ -49,10 +49,11 @@ std::string temporaryPath(const std::string &name) {
   return (std::filesystem::temp_directory_path() / ("radiant_display_test_" + name)).string();
 }
 
-// ---- §6.1 gamma, §6.5 sRGB, quantisation, gamut ----
+// ---- Gamma, sRGB (IEC 61966-2-1), quantisation, gamut ----
 
 TEST(Gamma, ReferenceVectors) {
-  // REFERENCE §6.1: γ = 2.2, I/k = 0.18 → 117, 0.5 → 186, 1 → 255.
+  // I = k·V^γ (Tumblin & Rushmeier 1993, eq. 5): γ = 2.2, I/k = 0.18 → 117,
+  // 0.5 → 186, 1 → 255.
   EXPECT_EQ(quantise(gammaEncode(0.18, 2.2), 8), 117);
   EXPECT_EQ(quantise(gammaEncode(0.5, 2.2), 8), 186);
   EXPECT_EQ(quantise(gammaEncode(1.0, 2.2), 8), 255);
@@ -127,7 +128,7 @@ TEST(Linear, ByteIdenticalToTheOldPngExposurePath) {
     EXPECT_EQ(mapped[i], std::lround(255.0 * srgbEncode(image.rgb[i] * std::exp2(1.5)))) << i;
 }
 
-// ---- §6.3 Tumblin & Rushmeier ----
+// ---- Tumblin & Rushmeier 1993 ----
 
 TEST(TumblinRushmeier, IdentityWhenTheWorldIsAdaptedLikeTheDisplay) {
   const double displayAdaptation = 86 / std::sqrt(35.0);  // eq. 14
@@ -137,7 +138,8 @@ TEST(TumblinRushmeier, IdentityWhenTheWorldIsAdaptedLikeTheDisplay) {
 }
 
 TEST(TumblinRushmeier, ReferenceTable) {
-  // REFERENCE §6.3: L_dmax 86, C_max 35, γd 2.2; L_d and the frame-buffer value n.
+  // The table of docs/tone-mapping.md (eq. 13–15): L_dmax 86, C_max 35, γd 2.2;
+  // L_d and the frame-buffer value n.
   struct Row {
     double adaptation, displayLuminance, nAtAdaptation, nAtTenTimes;
   };
@@ -167,7 +169,7 @@ TEST(TumblinRushmeier, AdaptationFromTheImageIsEquation11) {
   EXPECT_NEAR(encodeGrey(3, fromImage), encodeGrey(3, given), 1e-12);
 }
 
-// ---- §6.4 Ward ----
+// ---- Ward 1994 ----
 
 TEST(Ward, ReferenceVectors) {
   EXPECT_NEAR(wardScaleFactor(0.001, 100), 47.393, 1e-3);
@@ -279,7 +281,7 @@ TEST(MaxReflected, BrightestReflectingPixelJustBelowFullScaleLightsClamp) {
   EXPECT_EQ(blind.warnings().size(), 1u);
 }
 
-// ---- The firefly and the searchlight (REFERENCE §6.2, issue 5) ----
+// ---- The firefly and the searchlight (Tumblin & Rushmeier 1993, issue 5) ----
 
 struct FireflySearchlight {
   std::vector<uint16_t> firefly, searchlight;

@@ -1,8 +1,9 @@
-// Form factors against closed forms (REFERENCE §1–§2): the exact contour
-// integral, the ray-cast disc estimator and the hemicube.
+// Form factors against closed forms (Howell's catalogue; docs/radiosity.md,
+// Form factors): the exact contour integral, the ray-cast disc estimator and
+// the hemicube.
 //
-// Tolerances: exact formulas are compared to 1e-6 (the reference tables are
-// rounded to 6–7 digits) or to round-off where two exact expressions must
+// Tolerances: exact formulas are compared to 1e-6 (the closed-form values
+// are quoted to 6–7 digits) or to round-off where two exact expressions must
 // agree; quadratures to what their rule reaches (checked by refining it);
 // Monte Carlo and hemicube results to bounds derived or measured below.
 #include "radiosity/form_factor.h"
@@ -22,9 +23,9 @@ namespace radiant {
 namespace {
 
 // ---------------------------------------------------------------------------
-// Closed forms (REFERENCE Appendix A and §1.4)
+// Closed forms (Howell C-11, C-14, B-3; Lambert's contour integral)
 
-/// Two parallel, directly opposed a × b rectangles at distance c (§1.2).
+/// Two parallel, directly opposed a × b rectangles at distance c (Howell C-11).
 double formFactorParallelRectangles(double a, double b, double c) {
   const double x = a / c, y = b / c;
   return 2 / (kPi * x * y) *
@@ -33,7 +34,7 @@ double formFactorParallelRectangles(double a, double b, double c) {
           y * std::sqrt(1 + x * x) * std::atan(y / std::sqrt(1 + x * x)) - x * std::atan(x) - y * std::atan(y));
 }
 
-/// From a w × l rectangle to an h × l rectangle perpendicular to it along the common edge l (§1.3).
+/// From a w × l rectangle to an h × l rectangle perpendicular to it along the common edge l (Howell C-14).
 double formFactorPerpendicularRectangles(double w, double h, double l) {
   const double W = w / l, H = h / l, S = W * W + H * H;
   const double a = W * std::atan(1 / W) + H * std::atan(1 / H) - std::sqrt(S) * std::atan(1 / std::sqrt(S));
@@ -43,7 +44,7 @@ double formFactorPerpendicularRectangles(double w, double h, double l) {
   return (a + 0.25 * logTerm) / (kPi * W);
 }
 
-/// Differential area parallel to an a × b rectangle at distance c, under one corner (Howell B-3, §1.4).
+/// Differential area parallel to an a × b rectangle at distance c, under one corner (Howell B-3).
 double formFactorPointUnderCorner(double a, double b, double c) {
   const double x = a / c, y = b / c;
   return (x / std::sqrt(1 + x * x) * std::atan(y / std::sqrt(1 + x * x)) +
@@ -156,7 +157,7 @@ TEST(FormFactorClosedForm, ReproduceReferenceTables) {
   EXPECT_NEAR(formFactorPerpendicularRectangles(2, 1, 1), 0.116426, 1e-6);
   EXPECT_NEAR(formFactorPerpendicularRectangles(1, 1, 2), 0.240636, 1e-6);
   EXPECT_NEAR(formFactorPerpendicularRectangles(0.5, 1, 1), 0.292373, 1e-6);
-  // Cube sum rule in closed form (§1.3: to 1e-9).
+  // Cube sum rule in closed form (to 1e-9; docs/radiosity.md).
   EXPECT_NEAR(formFactorParallelRectangles(1, 1, 1) + 4 * formFactorPerpendicularRectangles(1, 1, 1), 1.0, 1e-9);
 }
 
@@ -368,7 +369,8 @@ std::array<Vec3, 4> squareFacingDown(double h) {
 TEST(FormFactorRayCast, OneSampleIsBounded) {
   // One sample treats the whole source as a coaxial disc of area A: a term is
   // at most A/(π h² + A) (sample right above p), whatever the point — even
-  // 0.001 under the source, where 1/(πr²) would explode (§2.3: 0.999997).
+  // 0.001 under the source, where 1/(πr²) would explode (the one-sample
+  // estimate there is 0.999997).
   for (double h : {1.0, 0.1, 0.001}) {
     const auto source = squareFacingDown(h);
     Scene scene = sceneOfQuads({source});

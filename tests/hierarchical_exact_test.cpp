@@ -1,8 +1,9 @@
 // The default solver, hierarchical-exact (radiosity/hierarchical_exact.cpp),
 // through meshAndSolve (faces cut by splitFaces, tree meshes): the furnace
-// (REFERENCE §8.1), the unit cube (§8.5) against a fine Gauss–Seidel
-// solution, the exactness of its direct part, determinism, the solution
-// file, the two-rooms leak scene, and the Cornell box against the path tracer.
+// (B = E/(1−ρ)), the unit cube lit by its ceiling (docs/two-pass.md) against a
+// fine Gauss–Seidel solution, the exactness of its direct part, determinism,
+// the solution file, the two-rooms leak scene, and the Cornell box against the
+// path tracer.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -129,8 +130,8 @@ INSTANTIATE_TEST_SUITE_P(HierarchicalExact, HierarchicalExactFurnace,
                          ::testing::Values(std::make_tuple(0.5, 0.003), std::make_tuple(0.9, 0.003),
                                            std::make_tuple(0.5, 0.01)));
 
-/// REFERENCE §8.5: the unit cube, its ceiling (face 3) emitting exitance 1
-/// with ρ 0, the other five walls ρ 0.5.
+/// The unit cube of docs/two-pass.md (`rushmeier`), its ceiling (face 3)
+/// emitting exitance 1 with ρ 0, the other five walls ρ 0.5.
 Scene unitCube() {
   const int walls[6] = {0, 0, 0, 1, 0, 0};
   Scene scene = test::closedBox(1.0, walls);
@@ -143,17 +144,17 @@ Scene unitCube() {
 }
 
 TEST(HierarchicalExact, UnitCubeFaceMeansMatchFineGaussSeidel) {
-  // The closed form of §8.5 is for one element per face; the continuous
-  // answer is what a refined mesh converges to. Gauss–Seidel (centre
+  // The cube's closed form (docs/two-pass.md) is for one element per face; the
+  // continuous answer is what a refined mesh converges to. Gauss–Seidel (centre
   // collocation) converges as O(h): floor 0.155552, 0.155282, 0.155247,
   // 0.155224 and walls 0.164173, 0.164060, 0.164041, 0.164028 at 0.1, 0.05,
   // 0.04 and 0.033 m, extrapolating to floor 0.15511 and walls 0.16397
-  // (≈ 0.1551 and ≈ 0.1640). So Gauss–Seidel at 0.05 m is
-  // within 0.12 % of the limit (asserted for the floor, so the reference
-  // cannot drift), and the 0.3 % allows that plus hierarchical-exact's own
-  // error (measured 0.05–0.07 %). Fails if the face cutting, the tree mesh or
-  // the reflected-light hierarchy lost or double-counted light on a face (a
-  // 3 % loss of gathered light fails every face).
+  // (≈ 0.1551 and ≈ 0.1640). So Gauss–Seidel at 0.05 m is within 0.12 % of the
+  // limit (asserted for the floor, so the reference cannot drift), and the
+  // 0.3 % allows that plus hierarchical-exact's own error (measured
+  // 0.05–0.07 %). Fails if the face cutting, the tree mesh or the
+  // reflected-light hierarchy lost or double-counted light on a face (a 3 %
+  // loss of gathered light fails every face).
   const Scene scene = unitCube();
   RayTracer tracer(scene);
   MeshOptions fine;
@@ -183,16 +184,16 @@ TEST(HierarchicalExact, UnitCubeFaceMeansMatchFineGaussSeidel) {
               << "\n";
   }
   EXPECT_NEAR(expected[2], 0.15511, 0.0012 * 0.15511) << "the Gauss–Seidel reference moved";
-  EXPECT_NEAR(reference.stats.absorbedPower[0], 1.0, 1e-3);  // the reference balances (§8.9)
+  EXPECT_NEAR(reference.stats.absorbedPower[0], 1.0, 1e-3);  // the reference balances: absorbed = emitted
 }
 
 TEST(HierarchicalExact, UnitCubeAbsorbsWhatItEmits) {
-  // REFERENCE §8.9: a closed scene absorbs all it emits, Σ A(1−ρ)H = Σ A E
-  // = 1 W, so escapedPower is 0. The face means agree with Gauss–Seidel to
-  // 0.07 % (above), so the balance may be off by little more: 0.1 %. Fails
-  // if the solution's irradiance H misses light somewhere, e.g. on a surface
-  // that reflects nothing (the emitting ceiling here, ρ 0) and so takes no
-  // part in the reflected light's links.
+  // Energy balance (docs/radiosity.md): a closed scene absorbs all it emits,
+  // Σ A(1−ρ)H = Σ A E = 1 W, so escapedPower is 0. The face means agree with
+  // Gauss–Seidel to 0.07 % (above), so the balance may be off by little more:
+  // 0.1 %. Fails if the solution's irradiance H misses light somewhere, e.g. on
+  // a surface that reflects nothing (the emitting ceiling here, ρ 0) and so
+  // takes no part in the reflected light's links.
   const Scene scene = unitCube();
   RayTracer tracer(scene);
   SolverOptions options;
@@ -210,11 +211,11 @@ TEST(HierarchicalExact, UnitCubeAbsorbsWhatItEmits) {
 }
 
 TEST(HierarchicalExact, FurnaceSphereOfSinglePrecisionQuadsAbsorbsWhatItEmits) {
-  // The inside of a UV sphere of 8 × 4 faces, every wall emitting E = 0.9
-  // and reflecting ρ = 0.7, so B = πE/(1 − ρ) everywhere and a closed scene
-  // absorbs what it emits (REFERENCE §8.1, §8.9). The positions are rounded
-  // to float, as tinyobjloader reads an OBJ: the trapezoids are then planar
-  // only to about 10⁻⁸, and a point on one lies that far off its plane.
+  // The inside of a UV sphere of 8 × 4 faces, every wall emitting E = 0.9 and
+  // reflecting ρ = 0.7, so B = πE/(1 − ρ) everywhere and a closed scene absorbs
+  // what it emits (docs/radiosity.md, Energy balance). The positions are
+  // rounded to float, as tinyobjloader reads an OBJ: the trapezoids are then
+  // planar only to about 10⁻⁸, and a point on one lies that far off its plane.
   // Taken as in front of its own emitting quad, a point saw it as a whole
   // hemisphere of light (F = 1) and as an occluder hiding the rest, and this
   // sphere came out 26 % too bright (polygonWarp, form_factor.h). The face

@@ -51,9 +51,10 @@ bool inView(const RayTracer &tracer, const CameraSettings &c, const Vec3 &point,
 
 TEST(Importance, PropagationMatchesTheTwoPlateClosedForm) {
   // Two unit squares facing each other 1 m apart, F = 0.1998249 each way
-  // (REFERENCE §1.2). The camera sits just above plate 1 looking at plate 2,
-  // so R_1 = 0 and R_2 is the fraction of pixels on plate 2. The importance
-  // equation Y = R + Kᵀ Y (Y_m = R_m + Σ_ℓ ρ_ℓ F(ℓ ← m) Y_ℓ, equal areas) gives
+  // (Howell C-11; docs/radiosity.md). The camera sits just above plate 1
+  // looking at plate 2, so R_1 = 0 and R_2 is the fraction of pixels on
+  // plate 2. The importance equation Y = R + Kᵀ Y (Y_m = R_m + Σ_ℓ ρ_ℓ F(ℓ ← m)
+  // Y_ℓ, equal areas) gives
   //   Y_2 = R_2 / (1 − ρ_1 ρ_2 F²),   Y_1 = ρ_2 F Y_2.
   // Held at patch level with a 64 × 64 receiver grid the solver's F is
   // 0.199832, 4e-5 relative above the closed form (the midpoint rule over the

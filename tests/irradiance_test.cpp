@@ -33,8 +33,9 @@ PixelEstimate renderIrradiance(const Scene &scene, const std::string &method, in
   return e;
 }
 
-// The furnace (REFERENCE §8.1): radiance 2 arrives from every direction, so
-// the irradiance is π·2 everywhere, whatever the walls' own emission.
+// The furnace (closed form B = E/(1−ρ)): radiance 2 arrives from every
+// direction, so the irradiance is π·2 everywhere, whatever the walls' own
+// emission.
 TEST(Irradiance, TheFurnaceReceivesPiTimesItsRadiance) {
   Scene scene = test::furnace(1.0, 0.5);
   const double expected = 2 * kPi;
@@ -52,7 +53,7 @@ TEST(Irradiance, TheFurnaceReceivesPiTimesItsRadiance) {
 
 // A white floor under a square light of radiance 1, nothing else: the
 // irradiance at the floor's centre is π·L·F(point → light), Lambert's contour
-// formula (REFERENCE §1.4). The camera looks straight down at a tiny patch
+// formula (C&W ch. 4). The camera looks straight down at a tiny patch
 // around the centre, whose irradiance varies by less than 1e-4.
 TEST(Irradiance, UnderASquareLightItIsTheContourFormula) {
   Scene scene;

@@ -209,7 +209,7 @@ TEST(Multipass, PairedSamplesAreTheTwoEstimatorsFromTheSameNumbers) {
 // light a mirror throws onto the floor is ρ_mirror × what a light of the same
 // shape at the mirrored position would give: here, the map's irradiance under
 // a horizontal mirror below a downward light equals the contour formula of the
-// light's mirror image (REFERENCE §1.4), times the mirror's reflectance.
+// light's mirror image (C&W ch. 4), times the mirror's reflectance.
 TEST(Multipass, CausticMapIrradianceMatchesTheMirrorImageOfTheLight) {
   Scene scene;
   scene.objects.push_back({"test", "test"});
@@ -285,7 +285,7 @@ TEST(Multipass, TheMapGridFindsWhatAScanFinds) {
 }
 
 // The furnace holds for multipass: every pass (preview, high and low
-// frequency, unbiased) shows radiance 2 (REFERENCE §8.1) within its noise and
+// frequency, unbiased) shows radiance 2 (E/(1−ρ)) within its noise and
 // the solution's convergence.
 TEST(Multipass, TheFurnaceHoldsInEveryPass) {
   Scene scene = test::furnace(1.0, 0.5);

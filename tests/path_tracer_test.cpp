@@ -144,7 +144,7 @@ TEST(PathTracer, MirrorShowsTheEmitterScaledByItsReflectance) {
 }
 
 /// Form factor from a differential area (point p, normal n) to a polygon:
-/// Lambert's contour integral (REFERENCE §1.4, Appendix A).
+/// Lambert's contour integral (C&W ch. 4).
 double formFactorPointToPolygon(const Vec3 &p, const Vec3 &n, const std::vector<Vec3> &polygon) {
   double sum = 0;
   for (size_t k = 0; k < polygon.size(); ++k) {

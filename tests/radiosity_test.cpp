@@ -99,7 +99,8 @@ TEST_P(FurnaceSolution, GaussSeidelGivesEmissionOverOneMinusReflectanceEverywher
 }
 
 TEST_P(FurnaceSolution, ProgressiveAmbientIsExactBeforeTheFirstShot) {
-  // REFERENCE §8.1/§3.2: with uniform E and ρ the ambient-corrected display is E/(1−ρ) at iteration 0.
+  // With uniform E and ρ the display corrected by the ambient term (Cohen,
+  // Chen, Wallace & Greenberg 1988) is the furnace's E/(1−ρ) at iteration 0.
   const double rho = GetParam(), E = kPi;
   Solution s = solve(test::furnace(1.0, rho), "progressive", 0.25, /*tolerance above any residual*/ 2.0);
   EXPECT_EQ(s.stats.iterations, 0);
@@ -537,7 +538,8 @@ namespace {
 
 /// Hierarchical radiosity held at the patch level (no refinement) with a fine
 /// receiver grid: the classic one-element-per-patch system with accurate
-/// patch-to-patch form factors, which the closed forms of REFERENCE §8 describe.
+/// patch-to-patch form factors, which the closed forms below (cube, sphere,
+/// plates) describe.
 Solution solvePatchLevel(const Scene &scene, int receiverGrid = 64, int maxSweeps = 0) {
   RayTracer tracer(scene);
   MeshOptions meshOptions;
@@ -566,10 +568,12 @@ Scene unitCubeWithCeilingEmitter() {
 }
 
 TEST(ClosedForm, UnitCubeJacobiConvergenceAsTabulated) {
-  // REFERENCE §3.1: from B⁰ = E, Jacobi's max error after 1, 2 and 5 sweeps is
-  // 6.7e-2, 2.7e-2 and 1.7e-3. The hierarchical solver held at patch level
-  // sweeps exactly like Jacobi (gather everything, then push–pull). Later
-  // rows (1.8e-5 at 10) fall below the form factors' quadrature error.
+  // From B⁰ = E, Jacobi's max error after 1, 2 and 5 sweeps is 6.7e-2, 2.7e-2
+  // and 1.7e-3 (Jacobi on the cube's 6 × 6 system with the closed-form factors,
+  // against its direct solve, computed in double precision). The hierarchical
+  // solver held at patch level sweeps exactly like Jacobi (gather everything,
+  // then push–pull). Later rows (1.8e-5 at 10) fall below the form factors'
+  // quadrature error.
   const std::pair<int, double> table[] = {{1, 6.7e-2}, {2, 2.7e-2}, {5, 1.7e-3}};
   for (auto [sweeps, error] : table) {
     Solution s = solvePatchLevel(unitCubeWithCeilingEmitter(), 64, sweeps);
@@ -584,10 +588,11 @@ TEST(ClosedForm, UnitCubeJacobiConvergenceAsTabulated) {
 }
 
 TEST(ClosedForm, UnitCubeWithCeilingEmitter) {
-  // REFERENCE §8.5: ceiling E = 1 (ρ = 0), other faces ρ = 0.5; with exact
-  // patch form factors the floor is 0.1666003 and each wall 0.1666832. The
-  // 64 × 64 midpoint grid integrates the adjacent-face factor (log-singular at
-  // the shared edge) to ~1e-4, which bounds the tolerance.
+  // The cube of docs/two-pass.md (`rushmeier`): ceiling E = 1 (ρ = 0), other
+  // faces ρ = 0.5; with exact patch form factors the floor is 0.1666003 and
+  // each wall 0.1666832. The 64 × 64 midpoint grid integrates the adjacent-face
+  // factor (log-singular at the shared edge) to ~1e-4, which bounds the
+  // tolerance.
   Solution s = solvePatchLevel(unitCubeWithCeilingEmitter());
   ASSERT_EQ(s.elementCount(), 6u);
   for (uint32_t e = 0; e < 6; ++e) {
@@ -595,16 +600,16 @@ TEST(ClosedForm, UnitCubeWithCeilingEmitter) {
     double expected = n.y > 0.5 ? 0.1666003 : (n.y < -0.5 ? 1.0 : 0.1666832);
     EXPECT_NEAR(s.radiosity[e][0], expected, 2e-4) << "face with normal " << n.x << " " << n.y << " " << n.z;
   }
-  // Energy balance of a closed scene (REFERENCE §8.9): emitted = absorbed.
+  // Energy balance of a closed scene (docs/radiosity.md): emitted = absorbed.
   EXPECT_NEAR(s.stats.absorbedPower.average(), s.stats.emittedPower.average(), 1e-3);
 }
 
 TEST(ClosedForm, InteriorOfASphere) {
-  // REFERENCE §8.2: inside a sphere every F_ij = A_j/A, so whatever the
-  // emission, B_i − E_i = ρĒ/(1−ρ) with Ē the area-weighted mean emission.
-  // The sphere is a 24 × 12 tessellation turned inside out, each ring with its
-  // own emission (E = 1 + 0.5 cos θ); flat facets make the kernel only nearly
-  // constant, and a coarse receiver grid integrates neighbouring facets
+  // Inside a sphere cosθ cosθ'/(πr²) = 1/(4πR²), so every F_ij = A_j/A and,
+  // whatever the emission, B_i − E_i = ρĒ/(1−ρ) with Ē the area-weighted mean
+  // emission. The sphere is a 24 × 12 tessellation turned inside out, each ring
+  // with its own emission (E = 1 + 0.5 cos θ); flat facets make the kernel only
+  // nearly constant, and a coarse receiver grid integrates neighbouring facets
   // roughly, but with emission varying smoothly those errors cancel to within
   // 1% per facet (measured: 0.5%) and 0.2% in the mean.
   Scene scene;
@@ -654,9 +659,9 @@ TEST(ClosedForm, InteriorOfASphere) {
 }
 
 TEST(ClosedForm, TwoParallelPlates) {
-  // REFERENCE §8.3 for finite plates: two unit squares at distance 1 exchange
-  // F = 0.1998249 (§1.2); B1 = E1 + ρ1 F B2 and B2 = ρ2 F B1 solve in closed
-  // form. The open sides let the rest escape.
+  // The infinite-plate closed form for finite plates: two unit squares at
+  // distance 1 exchange F = 0.1998249 (Howell C-11); B1 = E1 + ρ1 F B2 and
+  // B2 = ρ2 F B1 solve in closed form. The open sides let the rest escape.
   Scene scene;
   scene.objects.push_back({"plates", "test"});
   Material emitter, receiver;

@@ -1,6 +1,6 @@
 // Scene loading: the bundled scenes against the published Cornell box data
-// (REFERENCE.md §7.2), every class of bad input (one table), the OBJ/MTL
-// mapping and object transforms.
+// ("Cornell Box Data", graphics.cornell.edu/online/box/data.html), every class
+// of bad input (one table), the OBJ/MTL mapping and object transforms.
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -132,7 +132,7 @@ TEST_F(SceneLoaderCornell, PublishedAreas) {
     const char *object;
     double areaM2;
   };
-  // REFERENCE §7.2, mm² → m².
+  // The published quads' (Newell) areas, mm² → m².
   const Row rows[] = {{"floor", 0.3082310},           {"ceiling", 0.3109152},       {"back-wall", 0.3033766},
                       {"right-wall", 0.306889},       {"left-wall", 0.306902},      {"light", 0.01365},
                       {"short-block-top", 0.0276330}, {"tall-block-top", 0.0276265}};

@@ -26,7 +26,7 @@ namespace {
 
 const std::string kSpectralBox = std::string(RADIANT_SOURCE_DIR) + "/scenes/cornell-box-spectral/scene.json";
 
-/// The furnace of scenes/furnace (REFERENCE §8.1: radiance E/(1−ρ) = 2
+/// The furnace of scenes/furnace (closed form: radiance E/(1−ρ) = 2
 /// everywhere) with its values given as flat spectra sampled at knots that
 /// differ from the scene's wavelengths, and `spectral` as the scene's sampling.
 std::string spectralFurnaceJson(const std::string &spectral) {
@@ -76,8 +76,9 @@ TEST(Spectral, TheCornellBoxLoadsWithItsMeasuredSpectra) {
   EXPECT_EQ(scene.spectral.wavelengths[1], 420);
   EXPECT_EQ(scene.spectral.passCount(), 6);
   EXPECT_EQ(scene.spectral.wavelength(5, 2), 700);  // the last pass repeats 700 nm
-  // Outside a pass the bands hold the spectra's sRGB colour: the values of
-  // REFERENCE §7.4 (equal-energy, 400–700 nm, no adaptation) to 1e-3, as the issue asks.
+  // Outside a pass the bands hold the spectra's sRGB colour: the published
+  // Cornell colours of docs/spectral.md (equal-energy, 400–700 nm, no
+  // adaptation) to 1e-3, as the issue asks.
   const std::map<std::string, Bands> expected = {
       {"white", {0.8862, 0.6993, 0.6666}}, {"green", {0.1049, 0.3786, 0.0762}}, {"red", {0.5703, 0.0428, 0.0444}}};
   for (const Material &m : scene.materials) {
@@ -94,7 +95,7 @@ TEST(Spectral, TheCornellBoxLoadsWithItsMeasuredSpectra) {
       EXPECT_NEAR(m.emission[0], 4.8, 1e-12);  // 0.6 of the way from 0 (400) to 8 (500)
       EXPECT_NEAR(m.emission[2], 8.0, 1e-12);
     } else if (m.name == "white") {
-      EXPECT_NEAR(m.diffuse[0], 0.765, 1e-12);  // a sample of REFERENCE §7.4 at 460 nm
+      EXPECT_NEAR(m.diffuse[0], 0.765, 1e-12);  // the Cornell Box Data's white at 460 nm
     }
 }
 
@@ -165,8 +166,8 @@ TEST(Spectral, LoaderEdgeCases) {
 
 // The issue's grey test: an equal-energy white reflector under an
 // equal-energy emitter. Every wavelength sees the furnace, radiance 2; colour
-// is then the equal-energy white: chromaticity (1/3, 1/3) to 1e-3 (REFERENCE
-// §6.6), and with the equal-energy white balance R = G = B.
+// is then the equal-energy white: chromaticity (1/3, 1/3) to 1e-3 (the white
+// point of CIE 1931 XYZ), and with the equal-energy white balance R = G = B.
 TEST(Spectral, AnEqualEnergyWhiteFurnaceIsNeutral) {
   for (const std::string method : {"interpolate", "path"}) {
     for (WhiteBalance balance : {WhiteBalance::None, WhiteBalance::EqualEnergy}) {

@@ -96,7 +96,7 @@ double worstRelativeDifference(const Film &a, const Film &b) {
   return worst;
 }
 
-// REFERENCE §5.1: a texture whose value everywhere is the untextured
+// C&W eq. 9.11: a texture whose value everywhere is the untextured
 // reflectance changes nothing — in the solution (ρ̄ = ρ) and at every pixel
 // (ρ(x)/ρ̄ = 1) — for every method. The texture is stored as float, so the
 // images agree to float precision of the reflectance (1e-6 relative).
@@ -120,8 +120,8 @@ TEST(SurfaceDetail, AConstantTextureEqualToTheReflectanceChangesNoImage) {
   std::filesystem::remove_all(dir);
 }
 
-// REFERENCE §5.1: "the area average of the textured radiosity over an element
-// equals the untextured radiosity". flat shows E + (B_e − E)·ρ(x)/ρ̄_e with
+// By C&W eq. 9.11 the area average of the textured radiosity over an element
+// equals the untextured radiosity. flat shows E + (B_e − E)·ρ(x)/ρ̄_e with
 // ρ̄_e the exact mean of ρ over the element (Texture::average), so the mean
 // of what it shows over the element, sampled on a fine grid, is B_e.
 TEST(SurfaceDetail, FlatDisplayKeepsEachElementsMean) {
@@ -173,11 +173,11 @@ TEST(SurfaceDetail, AFlatBumpChangesNoImage) {
   }
 }
 
-// Chen's resumming (REFERENCE §5.2): n' = n gives ratio 1 exactly; in a
-// furnace (uniform radiance) a tilt θ' keeps the part of its cosine lobe above
-// the surface, r = (1 + cos θ')/2, exactly at the gathered tilts (30°, 60°)
-// and between them too (the tilt is interpolated in 1 − cos θ', in which r is
-// linear); beyond 60° the last level holds.
+// Chen's resumming (Chen & Wu, SIGGRAPH 1990): n' = n gives ratio 1 exactly; in
+// a furnace (uniform radiance) a tilt θ' keeps the part of its cosine lobe
+// above the surface, r = (1 + cos θ')/2, exactly at the gathered tilts (30°,
+// 60°) and between them too (the tilt is interpolated in 1 − cos θ', in which r
+// is linear); beyond 60° the last level holds.
 TEST(SurfaceDetail, BumpGatherKeepsTheLobeAboveTheSurface) {
   Scene scene = test::furnace(1.0, 0.5);
   scene.textures.push_back(Texture(1, 1, {Bands(0.5)}));

@@ -49,7 +49,7 @@ inline void addQuads(Scene &s, std::initializer_list<uint32_t> materials) {
 }
 
 /// The furnace: every wall emits `emission` and reflects `reflectance`
-/// (REFERENCE §8.1: radiance E/(1−ρ) everywhere). Camera at the centre.
+/// (closed form: radiance E/(1−ρ) everywhere). Camera at the centre.
 inline Scene furnace(double emission, double reflectance) {
   const int walls[6] = {0, 0, 0, 0, 0, 0};
   Scene s = closedBox(1.0, walls);

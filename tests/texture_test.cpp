@@ -1,4 +1,4 @@
-// Textures (src/texture/, REFERENCE §5): loading PNG/JPEG/EXR into linear
+// Textures (src/texture/, docs/textures.md): loading PNG/JPEG/EXR into linear
 // texels, bilinear and trilinear lookups, the element average ρ̄ of C&W
 // eq. 9.11 and bump-map gradients, each against a closed-form value.
 //
@@ -139,7 +139,8 @@ TEST(Texture, EightBitPngIsSrgbDecodedForColourAndRawForData) {
   const Texture data = Texture::load(path, TextureEncoding::Data);
   ASSERT_EQ(colour.width(), 5);
   ASSERT_EQ(colour.height(), 3);
-  // REFERENCE §6.5: code 128 → V = 128/255 → ((V + 0.055)/1.055)^2.4 = 0.2158605.
+  // IEC 61966-2-1 decode: code 128 → V = 128/255 →
+  // ((V + 0.055)/1.055)^2.4 = 0.2158605.
   EXPECT_NEAR(texelAt(colour, 0, 0)[0], 0.2158605, 1e-6);
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 5; ++i)

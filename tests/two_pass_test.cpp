@@ -1,6 +1,7 @@
 // The two-pass methods (C&W §9.3): rushmeier, reichert, shirley, kok and
-// selective re-evaluation, against closed forms (REFERENCE §4.1, §8.5–8.6),
-// the furnace (§8.1) and the path tracer.
+// selective re-evaluation, against the closed forms of the unit cube lit by
+// its ceiling (docs/two-pass.md, `rushmeier`), the furnace (B = E/(1−ρ)) and
+// the path tracer.
 #include "render/two_pass.h"
 
 #include <gtest/gtest.h>
@@ -42,8 +43,8 @@ Estimate estimateRay(const Renderer &renderer, const Ray &ray, int samples) {
   return {mean, std::sqrt(variance)};
 }
 
-/// REFERENCE §8.5: the unit cube, ceiling (y = 1) emitting E = 1 with ρ = 0,
-/// the other faces ρ = 0.5.
+/// The unit cube of docs/two-pass.md (`rushmeier`), ceiling (y = 1) emitting
+/// E = 1 with ρ = 0, the other faces ρ = 0.5.
 Scene unitCubeWithCeilingLight() {
   const int walls[6] = {1, 1, 1, 0, 1, 1};
   Scene s = test::closedBox(1.0, walls);
@@ -61,8 +62,8 @@ Scene unitCubeWithCeilingLight() {
   return s;
 }
 
-/// The exact patch-level solution of §8.5 on one element per face:
-/// floor 0.1666003, walls 0.1666832, split into direct ρF·E and the rest.
+/// The cube's exact patch-level solution (docs/two-pass.md), one element per
+/// face: floor 0.1666003, walls 0.1666832, split into direct ρF·E and the rest.
 Solution exactCubeSolution(const Scene &scene) {
   MeshOptions meshOptions;
   meshOptions.maxEdgeLength = 1.0;
@@ -80,12 +81,14 @@ Solution exactCubeSolution(const Scene &scene) {
   return s;
 }
 
-// REFERENCE §4.1/§8.6: at the floor centre the one-bounce gather is 0.183113
-// (direct 0.119728 + indirect 0.063385), not the element's 0.1666.
+// Rushmeier's one-bounce gather (C&W eq. 9.10), exact in docs/two-pass.md: at
+// the floor centre it is 0.183113 (direct 0.119728 + indirect 0.063385), not
+// the element's 0.1666.
 constexpr double kGatherAtFloorCentre = 0.183113, kDirectAtFloorCentre = 0.119728;
 constexpr double kIndirectAtFloorCentre = 0.063385;
 const Ray kRayToFloorCentre{{0.5, 0.5, 0.5}, {0, -1, 0}};
-/// The floor element's own indirect radiosity, B − ρF·E (§8.5), which shirley interpolates.
+/// The floor element's own indirect radiosity, B − ρF·E (the exact solution
+/// above), which shirley interpolates.
 constexpr double kIndirectOfTheFloorElement = 0.1666003 - 0.5 * 0.1998249;
 
 /// The unit cube with its exact patch-level solution, and a renderer on it.
@@ -275,8 +278,9 @@ TEST(TwoPass, NoMethodCountsTheEmittersTwice) {
 }
 
 TEST(TwoPass, FurnaceGivesEmissionOverOneMinusReflectanceForEveryMethod) {
-  // REFERENCE §8.1: radiance Le/(1−ρ) everywhere. The hierarchical solution
-  // is exact here, so only noise separates the methods from the answer.
+  // The furnace's closed form: radiance Le/(1−ρ) everywhere. The hierarchical
+  // solution is exact here, so only noise separates the methods from the
+  // answer.
   const double rho = 0.5, expected = 1.0 / (1 - rho);
   Scene scene = test::furnace(1.0, rho);
   RayTracer tracer(scene);
@@ -439,9 +443,9 @@ TEST(TwoPass, KokAgreesWithShirleyWhereASourceIsOneOfSeveralPatchesOfAFace) {
 TEST(TwoPass, ShirleyAndKokDoNotCountUnshotEmissionTwice) {
   // Progressive refinement stopped after one shot: most emission is still
   // unshot and lives in the ambient term. The emitter samples count its first
-  // arrival, so only the rest of the ambient may be added (REFERENCE §8.1:
-  // in the furnace the ambient term makes every iteration exact, so the
-  // image must still be Le/(1−ρ)).
+  // arrival, so only the rest of the ambient may be added (in the furnace the
+  // ambient term of Cohen, Chen, Wallace & Greenberg 1988 makes every
+  // iteration exact, so the image must still be Le/(1−ρ)).
   const double rho = 0.5, expected = 1.0 / (1 - rho);
   Scene scene = test::furnace(1.0, rho);
   RayTracer tracer(scene);

@@ -2,7 +2,7 @@
 // 360–830 nm (471 rows): the CIE 015 (Colorimetry) / CIE S 014-1 table as
 // distributed by CVRL (cvrl.org, "CIE 1931 2-deg, XYZ CMFs", 1 nm). The numbers
 // were transcribed from pbrt-v3's copy of that table (src/core/spectrum.cpp,
-// CIE_X/CIE_Y/CIE_Z), which carries it unchanged; REFERENCE §6.6.
+// CIE_X/CIE_Y/CIE_Z), which carries it unchanged.
 //
 // Checks on this table (tests/colour_test.cpp, Colour.CieTable*): 471 rows;
 // Σx̄ = 106.865, Σȳ = 106.857 (pbrt's CIE_Y_integral = 106.856895), Σz̄ = 106.892;

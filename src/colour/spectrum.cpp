@@ -1,9 +1,11 @@
-// Spectra → CIE XYZ → linear sRGB (REFERENCE §6.5–6.6; Cohen & Wallace §9.5).
+// Spectra → CIE XYZ → linear sRGB (CIE 1931 2° observer; IEC 61966-2-1;
+// Cohen & Wallace §9.5).
 //
 // The CIE table itself is in cie1931.cpp. Everything here is double precision;
 // the sRGB matrices are derived from the primaries and the white, not typed in,
 // so the two directions are inverses to rounding and D65 maps to (1, 1, 1);
-// they reproduce REFERENCE §6.5's 7-decimal matrices (tests/colour_test.cpp).
+// they reproduce the 7-decimal matrices of docs/spectral.md, Colour
+// (tests/colour_test.cpp).
 #include "colour/spectrum.h"
 
 #include <fmt/format.h>
@@ -38,7 +40,7 @@ Vec3 xyzOfChromaticity(double x, double y) {
 }
 
 /// Linear sRGB → XYZ, derived from the Rec.709 primaries and the D65 white
-/// (IEC 61966-2-1; REFERENCE §6.5): the primaries' XYZ are the columns,
+/// (IEC 61966-2-1): the primaries' XYZ are the columns,
 /// each scaled so that RGB (1, 1, 1) is the white.
 Matrix3 deriveSrgbToXyz() {
   const Matrix3 primaries =

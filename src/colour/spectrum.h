@@ -1,13 +1,15 @@
 // Spectra and CIE 1931 colorimetry: how radiance computed at a few wavelengths
-// becomes colour, only at display (Cohen & Wallace §9.5; REFERENCE §6.5–6.6).
+// becomes colour, only at display (Cohen & Wallace §9.5; CIE 1931 2° observer;
+// IEC 61966-2-1).
 //
 // A spectral scene runs the solution and every renderer at its sample
 // wavelengths (docs/spectral.md). Between the samples the radiance is taken as
-// piecewise linear, the way the Cornell data is published (REFERENCE §7.3), and
-// integrated against the CIE 1931 2° colour-matching functions (1-nm table)
-// over the samples' range. Values are relative to an equal-energy white: XYZ is
-// divided by ∫ȳ over the same range, so a constant spectrum v has Y = v — the
-// same luminance as an RGB value (v, v, v) — and luminance in cd/m² is 683·Y.
+// piecewise linear, the way the Cornell Box Data spectra are published
+// (graphics.cornell.edu/online/box/data.html), and integrated against the CIE
+// 1931 2° colour-matching functions (1-nm table) over the samples' range.
+// Values are relative to an equal-energy white: XYZ is divided by ∫ȳ over the
+// same range, so a constant spectrum v has Y = v — the same luminance as an RGB
+// value (v, v, v) — and luminance in cd/m² is 683·Y.
 #pragma once
 
 #include <array>
@@ -19,7 +21,8 @@
 namespace radiant {
 
 /// A spectrum given at sample wavelengths: piecewise linear between them and
-/// held constant beyond the first and the last (REFERENCE §7.3's convention).
+/// held constant beyond the first and the last (the Cornell Box Data's
+/// convention).
 struct SampledSpectrum {
   std::vector<double> wavelengths;  ///< nm, strictly increasing, at least one sample
   std::vector<double> values;       ///< one per wavelength
@@ -41,11 +44,11 @@ double cieYIntegral(int first, int last);
 
 /// XYZ of a spectrum relative to an equal-energy illuminant over [first, last]
 /// nm: X = Σ S x̄ / Σ ȳ, Y = Σ S ȳ / Σ ȳ, Z = Σ S z̄ / Σ ȳ, sums over the
-/// integer wavelengths in the range (REFERENCE §6.6 relative form; §7.4's
-/// "equal-energy" values use 400–700).
+/// integer wavelengths in the range (CIE 015's relative form; the Cornell
+/// reflectances' colours in docs/spectral.md use 400–700).
 Vec3 spectrumToXyz(const SampledSpectrum &spectrum, int first = 400, int last = 700);
 
-/// CIE XYZ → linear sRGB (Rec.709 primaries, D65 white with Y = 1), REFERENCE §6.5.
+/// CIE XYZ → linear sRGB (Rec.709 primaries, D65 white with Y = 1), IEC 61966-2-1.
 Vec3 xyzToLinearSrgb(const Vec3 &xyz);
 /// Linear sRGB → CIE XYZ, the inverse of xyzToLinearSrgb.
 Vec3 linearSrgbToXyz(const Vec3 &rgb);
@@ -71,7 +74,7 @@ Matrix3 bradfordAdaptation(const Vec3 &sourceWhite, const Vec3 &destinationWhite
 
 /// Whether an equal-energy white is shown as the display's white.
 enum class WhiteBalance {
-  None,  ///< no adaptation: XYZ → sRGB as is (REFERENCE §7.4's values); a constant spectrum looks slightly pink
+  None,  ///< no adaptation: XYZ → sRGB as is (docs/spectral.md's colours); a constant spectrum looks slightly pink
   EqualEnergy,  ///< Bradford adaptation of the bands' equal-energy white to D65: a constant spectrum is grey
 };
 

@@ -4,7 +4,7 @@
 //   1. a tone operator (tone_operator.h): radiance → display-linear I/k per channel;
 //   2. the out-of-gamut rule: negative channels to 0, then channels above full
 //      scale either clipped one by one (`clip`, the default) or the whole colour
-//      divided by its largest channel (`hue`, as Chen's rad.c does; REFERENCE §6.2);
+//      divided by its largest channel (`hue`, as SpectraToRGB in Chen's rad.c, Graphics Gems II, does);
 //   3. the transfer curve: the sRGB curve (IEC 61966-2-1, the default) or the
 //      display model I = k·V^γ inverted, V = (I/k)^(1/γ) (C&W eq. 9.12–9.14);
 //   4. quantisation without dithering: round(V · (2^bits − 1)), 8 or 16 bits.

@@ -8,7 +8,7 @@
 // luminance (display/luminance.h) at the display value --key (default 0.18,
 // "middle grey"). Auto exposure makes the image independent of the absolute
 // level: the normalised linear mapping of C&W §9.5, which shows a dim and a
-// bright room alike (REFERENCE §6.2).
+// bright room alike (Tumblin & Rushmeier 1993's firefly and searchlight).
 #include <fmt/format.h>
 
 #include <cmath>

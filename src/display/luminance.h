@@ -2,8 +2,8 @@
 // image statistics the tone operators adapt to.
 //
 // Radiant's images hold radiance in W·sr⁻¹·m⁻² per linear Rec.709/sRGB
-// primary. Luminance is the Y row of the sRGB → XYZ matrix (REFERENCE §6.5)
-// times the luminous efficacy 683 lm/W (REFERENCE §6.6): a white of 1
+// primary. Luminance is the Y row of the sRGB → XYZ matrix (IEC 61966-2-1)
+// times the luminous efficacy K_m = 683 lm/W (CIE 015): a white of 1
 // W·sr⁻¹·m⁻² in every channel is 683 cd/m².
 #pragma once
 
@@ -14,7 +14,7 @@
 
 namespace radiant {
 
-/// Y row of the linear sRGB → XYZ matrix (REFERENCE §6.5), D65 white Y = 1.
+/// Y row of the linear sRGB → XYZ matrix (IEC 61966-2-1), D65 white Y = 1.
 constexpr double kRec709LuminanceWeights[3] = {0.2126390, 0.7151687, 0.0721923};
 
 /// Luminance-weighted radiance, W·sr⁻¹·m⁻² (no efficacy): the "Y" of an RGB triple.
@@ -35,7 +35,7 @@ inline double luminanceCdPerM2(const double rgb[3]) {
   return kLuminousEfficacy * relativeLuminance(rgb);
 }
 
-/// Tumblin & Rushmeier work in lamberts: 1 L = 10⁴/π cd/m² (REFERENCE §6.3).
+/// Tumblin & Rushmeier (IEEE CG&A 1993) work in lamberts: 1 L = 10⁴/π cd/m².
 constexpr double kLambertsPerCdM2 = 3.14159265358979323846e-4;
 constexpr double lambertsFromCdPerM2(double cdPerM2) {
   return cdPerM2 * kLambertsPerCdM2;

@@ -1,7 +1,7 @@
 // `max-reflected` — the ad-hoc normalisation of radiosity practice that
-// Tumblin & Rushmeier 1993 describe (REFERENCE §6.2): divide every radiance by
-// that of the brightest non-emitting surface in view, so it shows just below
-// full scale, and let the light sources saturate.
+// Tumblin & Rushmeier 1993 describe (sidebar "Why tone reproduction matters"):
+// divide every radiance by that of the brightest non-emitting surface in view,
+// so it shows just below full scale, and let the light sources saturate.
 //
 //   I/k = level · L / L_refl,  L_refl = the largest channel value of any pixel that shows no emitter
 //

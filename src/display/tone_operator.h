@@ -70,7 +70,7 @@ std::unique_ptr<ToneOperator> createAcesOperator(const Image &, const ToneParame
 /// chromaticity (hue and saturation); black or negative luminance gives black.
 void scaleToLuminance(const float radiance[3], double displayLuminance, double display[3]);
 
-// ---- The curves themselves, exposed for the tests (REFERENCE §6.3, §6.4) ----
+// ---- The curves themselves, exposed for the tests (Tumblin & Rushmeier 1993; Ward, Graphics Gems IV) ----
 
 constexpr double kTumblinRushmeierDisplayMaxCdM2 = 86;
 constexpr double kWardDisplayMaxCdM2 = 100;

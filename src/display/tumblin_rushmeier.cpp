@@ -3,7 +3,7 @@
 // display luminance whose perceived brightness, for an observer adapted to the
 // display, equals the brightness a real-world observer adapted to the scene
 // would perceive. Absolute luminance in, so a dim room looks dim and a bright
-// one bright (REFERENCE §6.3).
+// one bright (the paper's eq. 13–15).
 //
 // Brightness (Stevens & Stevens, eq. 7, 9, 10), luminances in lamberts:
 //   B = 10^β(L_a) · L^α(L_a),  α = 0.4 log10 L_a + 2.92,  β = −0.4 (log10 L_a)² − 2.584 log10 L_a + 2.0208

@@ -1,8 +1,8 @@
 // `ward` — Ward's contrast-based scale factor (G. Ward, "A contrast-based
-// scalefactor for luminance display", Graphics Gems IV, 1994, pp. 415–421;
-// REFERENCE §6.4). One linear scale m, chosen so that a just-noticeable
-// luminance difference at the world adaptation level (Blackwell's threshold
-// model) maps to a just-noticeable difference on the display:
+// scalefactor for luminance display", Graphics Gems IV, 1994, pp. 415–421).
+// One linear scale m, chosen so that a just-noticeable luminance difference
+// at the world adaptation level (Blackwell's threshold model) maps to a
+// just-noticeable difference on the display:
 //
 //   m = [ (1.219 + L_da^0.4) / (1.219 + L_wa^0.4) ]^2.5,  L_da = L_dmax / 2
 //   L_d = m · L_w,   I/k = L_d / L_dmax

@@ -1,13 +1,13 @@
 // Point-to-area form factors: exact (Lambert's contour integral) and ray-cast
 // (Wallace, Elmquist & Haines 1989).
 //
-// formFactorPointToPolygon — REFERENCE §1.4 (Lambert; Baum, Rushmeier & Winget
-//   1989; Cohen & Wallace ch. 4):
+// formFactorPointToPolygon — Lambert's contour integral (Baum, Rushmeier &
+//   Winget 1989; Cohen & Wallace ch. 4):
 //     F(dA → A) = (1/2π) |Σ_k β_k n·(R_k × R_{k+1}) / |R_k × R_{k+1}||,
 //   β_k the angle between R_k = v_k − p and R_{k+1}. Exact and unoccluded; the
 //   reference the other estimators and the tests are measured against.
 //
-// formFactorRayCast — REFERENCE §2.3 (Wallace et al. 1989):
+// formFactorRayCast — Wallace, Elmquist & Haines, SIGGRAPH 1989:
 //     F(dA → A) ≈ Σ_k δ_k cosθ_p cosθ_s a / (π r_k² + a),   a = A / n,
 //   each of n equal-area pieces of the source treated as a coaxial disc, so a
 //   term stays below 1 however close the point is. Includes visibility (one
@@ -95,7 +95,7 @@ void gridDimensions(int samples, int &small, int &large) {
 
 /// Sutherland–Hodgman clip of `polygon` to the open half-space dot(x − p, n) > 0.
 /// The part behind the receiver's tangent plane is invisible to it, and the
-/// contour formula is only valid for a polygon entirely in front (§1.4).
+/// contour formula is only valid for a polygon entirely in front (C&W ch. 4).
 ///
 /// The part *in* the plane is dropped too: a polygon coplanar with the receiver
 /// (its own face, a neighbouring element of the same wall) exchanges nothing,
@@ -154,7 +154,7 @@ double formFactorPointToPolygon(const Vec3 &p, const Vec3 &n, std::span<const Ve
     // An edge collinear with p (or a repeated vertex) spans no solid angle.
     if (!(cn > 0)) continue;
     // The angle from its sine and cosine, not acos: acos loses half its
-    // digits at small angles (§1.4).
+    // digits at small angles.
     sum += angleFromSineAndCosine(cn, dot(r0, r1)) * dot(n, c) / cn;
   }
   // For a planar polygon wholly in front of p every term has the sign set by

@@ -22,7 +22,7 @@ namespace radiant {
 /// clips to nothing; `out` may then hold fewer than 3 vertices.
 void clipToFrontHalfSpace(const Vec3 &p, const Vec3 &n, std::span<const Vec3> polygon, std::vector<Vec3> &out);
 
-/// Unoccluded F(dA → polygon) by Lambert's contour integral (REFERENCE §1.4),
+/// Unoccluded F(dA → polygon) by Lambert's contour integral (C&W ch. 4),
 /// with the polygon first clipped to the half-space in front of p's tangent
 /// plane (the part behind the receiver contributes nothing; a polygon lying in
 /// that plane gives 0). Exact for planar polygons of any size and distance;
@@ -71,8 +71,8 @@ double polygonWarp(std::span<const Vec3> polygon, const Vec3 &n);
 /// surface from this one vector.
 Vec3 vectorFormFactor(const Vec3 &p, std::span<const Vec3> polygon);
 
-/// Ray-cast F(dA → source) after Wallace, Elmquist & Haines 1989 (REFERENCE
-/// §2.3): the source polygon (planar, 3 or 4 vertices, front normal
+/// Ray-cast F(dA → source) after Wallace, Elmquist & Haines, SIGGRAPH 1989:
+/// the source polygon (planar, 3 or 4 vertices, front normal
 /// `sourceNormal`) is split into `samples` pieces of equal area (stratified),
 /// each treated as a coaxial disc a = A/n: Σ δ_k cosθ_p cosθ_s a / (π r² + a),
 /// with visibility δ_k from a shadow ray. Only the source's front side

@@ -1,4 +1,4 @@
-// `gauss-seidel` — gathering on the element matrix (C&W §5.3; REFERENCE §3.1).
+// `gauss-seidel` — gathering on the element matrix (Cohen & Wallace §5.3).
 //
 // B_i = E_i + ρ_i Σ_j F_ij B_j, swept in place until the largest change of B
 // in a sweep, relative to the largest reflected radiosity B − E, falls below

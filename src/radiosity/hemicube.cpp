@@ -1,4 +1,4 @@
-// The hemicube (Cohen & Greenberg 1985; Cohen & Wallace ch. 4; REFERENCE §2.1).
+// The hemicube (Cohen & Greenberg 1985; Cohen & Wallace ch. 4).
 //
 // A cube of half-width 1 at unit height over the point: the top face z = 1,
 // (x, y) ∈ [−1,1]², and four half side faces such as y = 1, x ∈ [−1,1],
@@ -9,7 +9,8 @@
 // (the formulas of S. E. Chen's rad.c, Graphics Gems II). The factor from the
 // point to a patch is the sum of ΔF over the pixels whose nearest surface it
 // is. The table is used as computed (midpoint rule, Σ ΔF = 1 + O(1/res²)), not
-// renormalised, so its totals match the reference table.
+// renormalised, so its totals are the midpoint-rule sums (1.000530 at res 32;
+// docs/radiosity.md, Form factors).
 //
 // Resolution: pixels across the full top face, rounded up to even so the side
 // faces split evenly; rad.c's room example uses 100. The per-patch error is

@@ -1,6 +1,7 @@
 // The hemicube (Cohen & Greenberg 1985): form factors from a point to
 // everything it sees, by projecting the scene onto the five faces of a cube
-// around the normal and summing precomputed delta form factors (REFERENCE §2.1).
+// around the normal and summing precomputed delta form factors (Cohen & Wallace
+// ch. 4).
 //
 // Radiant traces the hemicube's pixels with Embree instead of rasterising:
 // one ray per pixel through its centre, the same visibility as a z-buffer with
@@ -22,7 +23,8 @@ class Hemicube {
   explicit Hemicube(int resolution);
 
   int resolution() const { return resolution_; }
-  /// Σ of all delta form factors (≈ 1, error O(1/res²); REFERENCE §2.1 table).
+  /// Σ of all delta form factors (≈ 1, error O(1/res²); sums in
+  /// docs/radiosity.md, Form factors).
   double totalDeltaFormFactor() const;
   double topFaceDeltaFormFactor() const;
   double sideFaceDeltaFormFactor() const;  ///< one side face

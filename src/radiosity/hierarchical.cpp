@@ -1,5 +1,5 @@
 // `hierarchical` — hierarchical radiosity (Hanrahan, Salzman & Aupperle,
-// SIGGRAPH 1991; REFERENCE §3.3), with BF refinement and multigridding.
+// SIGGRAPH 1991), with BF refinement and multigridding.
 //
 // Every input patch is the root of a quadtree (quads split at their bilinear
 // midpoints, triangles into four). Energy moves along links between nodes at

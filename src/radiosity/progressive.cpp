@@ -1,6 +1,6 @@
 // `progressive` — progressive refinement radiosity (Cohen, Chen, Wallace &
-// Greenberg 1988; REFERENCE §3.2) with ray-cast form factors (Wallace,
-// Elmquist & Haines 1989; REFERENCE §2.3).
+// Greenberg, SIGGRAPH 1988) with ray-cast form factors (Wallace, Elmquist &
+// Haines, SIGGRAPH 1989).
 //
 // Repeatedly the element with the largest unshot power ΔB·A shoots it: every
 // other element j receives ΔB_j = ρ_j ΔB_i F(dA_j → A_i), the form factor from

@@ -1,7 +1,7 @@
-// What a material's maps change at a point of a surface (Cohen & Wallace
-// §9.4, REFERENCE §5): the diffuse reflectance ρ(x) of a texture map and the
-// shading normal of a bump or normal map. The geometric normal, and with it
-// visibility and emission, never changes.
+// What a material's maps change at a point of a surface (Cohen & Wallace §9.4,
+// eq. 9.11; Chen & Wu, SIGGRAPH 1990): the diffuse reflectance ρ(x) of a
+// texture map and the shading normal of a bump or normal map. The geometric
+// normal, and with it visibility and emission, never changes.
 #pragma once
 
 #include <span>

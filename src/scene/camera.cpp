@@ -7,7 +7,8 @@ PinholeCamera::PinholeCamera(const CameraSettings &s, int width, int height)
   forward_ = normalize(s.target - s.eye);
   // Right-handed world, camera looking along forward with up: image right is
   // forward × up. For the Cornell camera (forward +z, up +y) that is −x, so the
-  // red wall at x ≈ 550 appears on the left, as REFERENCE §7 says it must.
+  // red wall at x ≈ 550 appears on the left, as it must in the published
+  // Cornell box (Cornell Box Data; docs/scene-format.md).
   right_ = normalize(cross(forward_, s.up));
   up_ = cross(right_, forward_);
   tanHalfFov_ = std::tan(0.5 * s.verticalFovDegrees * kPi / 180.0);

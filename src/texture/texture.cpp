@@ -1,4 +1,5 @@
-// Texture lookups for surface detail (Cohen & Wallace §9.4, REFERENCE §5).
+// Texture lookups for surface detail (Cohen & Wallace §9.4, eq. 9.11;
+// Chen & Wu, SIGGRAPH 1990).
 //
 // What it computes, per band, in linear units (reflectance, or height for a
 // bump map):

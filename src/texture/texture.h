@@ -1,4 +1,5 @@
-// Image textures for surface detail (Cohen & Wallace §9.4, REFERENCE §5):
+// Image textures for surface detail (Cohen & Wallace §9.4, eq. 9.11;
+// Chen & Wu, SIGGRAPH 1990):
 // loading, filtered lookups, footprint averages for the radiosity solver, and
 // height-field gradients for bump maps.
 //

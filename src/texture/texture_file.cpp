@@ -1,4 +1,4 @@
-// Texture::load: image files to linear texels (REFERENCE §5, §6.5).
+// Texture::load: image files to linear texels (sRGB decoded per IEC 61966-2-1).
 //
 // PNG and JPEG go through stb_image (8 or 16 bits per channel), OpenEXR
 // through OpenEXR. The format is recognised by the file's signature, not its
@@ -65,7 +65,7 @@ void checkSize(const InputLocation &where, long long width, long long height) {
                                 std::to_string(Texture::kMaxTexels) + " (4096x4096); scale it down");
 }
 
-/// IEC 61966-2-1 decode (REFERENCE §6.5), V ∈ [0, 1] → linear.
+/// IEC 61966-2-1 decode, V ∈ [0, 1] → linear.
 double srgbDecode(double v) {
   return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
 }
