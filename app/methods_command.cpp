@@ -45,17 +45,19 @@ CommandRunner addMethodsCommand(CLI::App &app) {
   app.add_flag("--markdown", *markdown, "Print Markdown tables (docs/cli.md includes them)");
   return [markdown]() {
     const bool md = *markdown;
-    fmt::print("{}", md ? "### Parameters of each method (`radiant render --method NAME`)\n\n" : "Rendering methods (--method):\n");
+    fmt::print("{}", md ? "### Parameters of each method (`radiant render --method NAME`)\n\n"
+                        : "Rendering methods (--method):\n");
     for (const RendererInfo &info : rendererRegistry()) {
       fmt::print(fmt::runtime(md ? "#### `--method {}`\n\n{}.\n\n" : "  {}: {}\n"), info.name, info.summary);
       printTable(info.parameters, md);
     }
     fmt::print("{}", md ? "### Parameters of each solver (`--solver NAME`, for `solve` and the methods that read a "
-                    "solution)\n\n"
-                  : "\nRadiosity solvers (--solver):\n");
+                          "solution)\n\n"
+                        : "\nRadiosity solvers (--solver):\n");
     std::vector<std::pair<std::string, std::string>> solvers = {
-        {"auto", "hierarchical-exact up to 150 000 input faces (256 emitting), else stochastic; it takes the "
-                 "parameters of the solvers it may pick"}};
+        {"auto",
+         "hierarchical-exact up to 150 000 input faces (256 emitting), else stochastic; it takes the "
+         "parameters of the solvers it may pick"}};
     for (const SolverInfo &info : solverRegistry()) solvers.push_back({info.name, info.summary});
     for (const auto &[name, summary] : solvers) {
       fmt::print(fmt::runtime(md ? "#### `--solver {}`\n\n{}.\n\n" : "  {}: {}\n"), name, summary);

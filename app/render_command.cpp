@@ -2,7 +2,6 @@
 // overrides, renders with the chosen method and writes the images.
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -21,7 +20,6 @@
 #include "render/registry.h"
 #include "render/renderer.h"
 #include "render/spectral_film.h"
-#include "render/two_pass.h"
 #include "scene/load_scene.h"
 #include "scene/spectral_scene.h"
 #include "util/error.h"
@@ -71,28 +69,32 @@ std::string defaultStem(const std::string &scenePath) {
   return p.stem().string();
 }
 
-/// --selective-map: one ray through each pixel centre, grey by the work it triggers.
-void writeSelectiveMap(const Renderer &renderer, const PinholeCamera &camera, int width, int height,
-                       const std::string &path) {
-  const auto *twoPass = dynamic_cast<const TwoPassRenderer *>(&renderer);
-  if (!twoPass) return;
-  std::vector<double> work(size_t(width) * height);
-  tbb::parallel_for(0, height, [&](int y) {
-    for (int x = 0; x < width; ++x)
-      work[size_t(y) * width + x] = twoPass->selectiveWork(camera.generateRay(x + 0.5, y + 0.5));
-  });
+/// --selective-map: the film's selective channel (the work each pixel's
+/// samples triggered, on average), grey from none to the most.
+void writeSelectiveMap(const Film &film, const std::string &channelName, const std::string &path) {
+  const FilmChannel &channel = *film.channel(channelName);
+  std::vector<double> work(film.pixelCount());
   double most = 0;
-  for (double w : work) most = std::max(most, w);
+  for (size_t p = 0; p < work.size(); ++p) {
+    work[p] = film.samples[p] ? channel.sum[p][0] / film.samples[p] : 0.0;
+    most = std::max(most, work[p]);
+  }
   Image map;
-  map.width = width, map.height = height;
+  map.width = film.width, map.height = film.height;
   map.rgb.resize(work.size() * 3);
   for (size_t i = 0; i < work.size(); ++i)
     for (int c = 0; c < 3; ++c) map.rgb[i * 3 + c] = float(most > 0 ? work[i] / most : 0.0);
   writeImage(map, path);
-  size_t flagged = std::count_if(work.begin(), work.end(), [](double w) { return w > 0; });
-  fmt::print(stderr, "radiant: selective map {}: {:.1f}% of pixels re-evaluated{}\n", path,
-             100.0 * flagged / std::max<size_t>(1, work.size()),
-             twoPass->selectsByLinks() ? fmt::format(", at most {} links per pixel", most) : std::string());
+  // Element mode: each pixel's value is the fraction of its samples re-evaluated, so their mean is the share of
+  // the image's area that was; link mode: the links per sample, on average and at most.
+  double total = 0;
+  for (double w : work) total += w;
+  const double mean = total / double(std::max<size_t>(1, work.size()));
+  if (channelName == "selective-links")
+    fmt::print(stderr, "radiant: selective map {}: {:.3g} links per pixel on average, at most {:.3g}\n", path, mean,
+               most);
+  else
+    fmt::print(stderr, "radiant: selective map {}: {:.1f}% of the image re-evaluated\n", path, 100 * mean);
 }
 
 }  // namespace
@@ -284,6 +286,12 @@ CommandRunner addRenderCommand(CLI::App &app) {
         context.solution = solutions.empty() ? &solved : &solutions[pass];
       }
       std::unique_ptr<Renderer> renderer = createRenderer(o->method, tracer, context, given);
+      // --selective-map: the renderer's selective channel, in the first pass with light.
+      std::string mapChannel;
+      if (!o->selectiveMapPath.empty() && !selectiveMapWritten)
+        for (const std::string &name : renderer->channels())
+          if (name.rfind("selective-", 0) == 0) mapChannel = name;
+      if (!mapChannel.empty()) film = Film(film.width, film.height, {mapChannel});
       DriverOptions passDriver = driver;
       passDriver.timeBudgetSeconds = driver.timeBudgetSeconds / passes;  // --time covers all passes
       RenderStats passStats =
@@ -291,8 +299,8 @@ CommandRunner addRenderCommand(CLI::App &app) {
       stats.samplesPerPixel = std::max(stats.samplesPerPixel, passStats.samplesPerPixel);
       stats.seconds += passStats.seconds;
       stats.cameraSamples += passStats.cameraSamples;
-      if (!o->selectiveMapPath.empty() && !selectiveMapWritten) {  // spectral: the first pass with light
-        writeSelectiveMap(*renderer, camera, r.width, r.height, o->selectiveMapPath);
+      if (!mapChannel.empty()) {
+        writeSelectiveMap(film, mapChannel, o->selectiveMapPath);
         selectiveMapWritten = true;
       }
     };

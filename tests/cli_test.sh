@@ -122,7 +122,7 @@ done
 "$radiant" render "$cornell" --method shirley --mesh-size 200 --quality draft --spp 1 --width 16 --height 16 -o s.png -q \
   && pass || fail "shirley solving the scene itself"
 "$radiant" render "$cornell" --method shirley --solution box.rad --selective --selective-map map.png --spp 1 \
-  --width 16 --height 16 -o s.png 2>err.txt && [ -s map.png ] && grep -q "of pixels re-evaluated" err.txt \
+  --width 16 --height 16 -o s.png 2>err.txt && [ -s map.png ] && grep -q "% of the image re-evaluated" err.txt \
   && pass || { fail "--selective-map"; cat err.txt; }
 "$radiant" render "$cornell" --method reichert --solver hierarchical --selective --mesh-size 200 --selective-map links.png --spp 1 \
   --width 16 --height 16 -o r.png 2>err.txt && grep -q "links per pixel" err.txt \

@@ -189,11 +189,12 @@ TEST(Multipass, PairedSamplesAreTheTwoEstimatorsFromTheSameNumbers) {
   unbiased.caustics = &map;
   const Film controls = renderWith(tracer, reading, "path", size, spp, 3);
   const Film paths = renderWith(tracer, unbiased, "path", size, spp, 3);
-  PairedFilm pairs(size, size);
+  Film paired(size, size, {"control"});
   DriverOptions driver;
   driver.samplesPerPixel = spp;
   driver.seed = 3;
-  renderPairedImage(camera, *createRenderer("path", tracer, reading), driver, pairs);
+  renderImage(camera, *createRenderer("path", tracer, reading), driver, paired);
+  const PairedFilm pairs(paired, "control");
   double differs = 0;
   for (size_t p = 0; p < pairs.pixelCount(); ++p)
     for (int b = 0; b < kBandCount; ++b) {

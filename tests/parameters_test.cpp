@@ -64,11 +64,13 @@ TEST(Parameters, RefuseValuesOfTheWrongTypeOrOutOfRangeAtTheirOrigin) {
 
 TEST(Parameters, AMisplacedParameterNamesTheMethodsThatTakeIt) {
   const ParameterTable other = {{"radius", ParameterType::Real, "1", "r"}};
-  const std::string misplaced =
-      errorOf([&] { checkParameters(other, given({{"sources", "3"}}), "method disc", {{"kok", &table()}}); });
+  const std::string misplaced = errorOf([&] {
+    checkParameters(other, given({{"sources", "3"}}), "method disc", {{"kok", &table()}});
+  });
   EXPECT_NE(misplaced.find("--sources: method disc does not use it (used by kok)"), std::string::npos) << misplaced;
-  const std::string misspelt =
-      errorOf([&] { checkParameters(table(), given({{"sorces", "3"}}), "method kok", {{"kok", &table()}}); });
+  const std::string misspelt = errorOf([&] {
+    checkParameters(table(), given({{"sorces", "3"}}), "method kok", {{"kok", &table()}});
+  });
   EXPECT_NE(misspelt.find("unknown parameter 'sorces' (did you mean 'sources'?)"), std::string::npos) << misspelt;
 }
 
@@ -109,8 +111,7 @@ TEST(Parameters, AMethodTakesOnlyWhatItsTableDeclares) {
   const std::string error = errorOf([] { methodParameters(findRenderer("path"), given({{"sources", "2"}})); });
   EXPECT_NE(error.find("method path does not use it (used by kok, multipass)"), std::string::npos) << error;
   const std::string solverError = errorOf([] { checkSolverParameters("stochastic", given({{"quality", "low"}})); });
-  EXPECT_NE(solverError.find("solver stochastic does not use it (used by auto, hierarchical-exact)"),
-            std::string::npos)
+  EXPECT_NE(solverError.find("solver stochastic does not use it (used by auto, hierarchical-exact)"), std::string::npos)
       << solverError;
 }
 

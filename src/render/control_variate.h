@@ -48,8 +48,10 @@ class ControlVariateImage {
 
   /// An R-only round (path with readSolutionDepth, radiance()).
   void addControls(const Film &controls);
-  /// A paired round (pairedRadiance()): its R join the controls.
+  /// A paired round: its R join the controls.
   void addPairs(const PairedFilm &pairs);
+  /// The same from a film whose channel "control" holds R (Renderer::channels).
+  void addPairs(const Film &film) { addPairs(PairedFilm(film, "control")); }
 
   /// The combined image R̄ + λ D̄ and the variance of each pixel's estimate.
   Image mean(ControlVariateStats *stats = nullptr) const;

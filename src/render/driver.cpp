@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -145,21 +146,31 @@ RenderStats renderImage(const PinholeCamera &camera, const Renderer &renderer, c
         if (converged) active[pixel] = 0;
       }
     };
-  return drive(
-      camera, options, film.width, film.height,
-      [&](size_t pixel, const Ray &ray, Sampler &rng) { film.add(pixel, renderer.radiance(ray, rng)); }, progress,
-      stopConverged);
-}
-
-RenderStats renderPairedImage(const PinholeCamera &camera, const Renderer &renderer, const DriverOptions &options,
-                              PairedFilm &film, const ProgressCallback &progress) {
+  if (film.channels.empty())
+    return drive(
+        camera, options, film.width, film.height,
+        [&](size_t pixel, const Ray &ray, Sampler &rng) { film.add(pixel, renderer.radiance(ray, rng)); }, progress,
+        stopConverged);
+  // The film's channels, found among the renderer's by name.
+  const std::vector<std::string> offered = renderer.channels();
+  constexpr size_t kMaxChannels = 8;
+  if (offered.size() > kMaxChannels || film.channels.size() > kMaxChannels)
+    throw std::logic_error("more film channels than the driver holds");
+  std::vector<size_t> source;
+  for (const FilmChannel &c : film.channels) {
+    auto it = std::find(offered.begin(), offered.end(), c.name);
+    if (it == offered.end()) throw std::logic_error("the renderer gives no channel '" + c.name + "'");
+    source.push_back(size_t(it - offered.begin()));
+  }
   return drive(
       camera, options, film.width, film.height,
       [&](size_t pixel, const Ray &ray, Sampler &rng) {
-        const PairedRadiance pair = renderer.pairedRadiance(ray, rng);
-        film.add(pixel, pair.radiance, pair.control);
+        std::array<Bands, kMaxChannels> values, picked;
+        const Bands L = renderer.sample(ray, rng, values.data());
+        for (size_t c = 0; c < source.size(); ++c) picked[c] = values[source[c]];
+        film.add(pixel, L, picked.data());
       },
-      progress);
+      progress, stopConverged);
 }
 
 ProgressCallback makeConsoleProgress(const std::string &label) {

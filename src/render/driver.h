@@ -59,14 +59,12 @@ struct RenderStats {
 
 using ProgressCallback = std::function<void(const Progress &)>;
 
-/// Renders into `film` (which must be sized already). Calls `progress` from the
-/// calling thread's context, at most a few times a second.
+/// Renders into `film` (which must be sized already), and into its channels
+/// the renderer's outputs of those names (Renderer::channels; a name it does
+/// not give is a std::logic_error). Calls `progress` from the calling
+/// thread's context, at most a few times a second.
 RenderStats renderImage(const PinholeCamera &camera, const Renderer &renderer, const DriverOptions &options, Film &film,
                         const ProgressCallback &progress = {});
-
-/// The same for paired samples (Renderer::pairedRadiance): multipass's control variate.
-RenderStats renderPairedImage(const PinholeCamera &camera, const Renderer &renderer, const DriverOptions &options,
-                              PairedFilm &film, const ProgressCallback &progress = {});
 
 /// A progress reporter for a terminal (bar with ETA on one line) or for logs
 /// (a plain line every few seconds), chosen by whether stderr is a terminal.

@@ -197,8 +197,8 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
       o.readSolutionDepth = 1;
       const auto renderer = createRenderer("path", tracer, o, forMethod(options.parameters, "path"));
       if (paired) {
-        PairedFilm film(width, height);
-        renderPairedImage(camera, *renderer, driverFor(pass, n, chunk), film, progressFor(pass));
+        Film film(width, height, {"control"});
+        renderImage(camera, *renderer, driverFor(pass, n, chunk), film, progressFor(pass));
         combined.addPairs(film);
       } else {
         Film film(width, height);

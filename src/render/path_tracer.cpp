@@ -44,15 +44,17 @@ class PathTracer final : public Renderer {
 
   Bands radiance(const Ray &cameraRay, Sampler &rng) const override { return trace(cameraRay, rng, nullptr); }
 
-  /// The control is this path read the solution where radiance() would stop,
+  /// "control": this path read the solution where radiance() would stop,
   /// from the same numbers (so the two differ only past that vertex); paths
-  /// that end before it give the control their radiance (multipass, render/control_variate.h).
-  PairedRadiance pairedRadiance(const Ray &cameraRay, Sampler &rng) const override {
-    PairedRadiance pair;
+  /// that end before it give the control their radiance (multipass,
+  /// render/control_variate.h). Asked for it, the path goes on past the read.
+  std::vector<std::string> channels() const override { return {"control"}; }
+  Bands sample(const Ray &cameraRay, Sampler &rng, Bands *values) const override {
+    Bands &control = values[0];
     bool controlSet = false;
-    pair.radiance = trace(cameraRay, rng, readDepth_ > 0 ? &pair.control : nullptr, &controlSet);
-    if (!controlSet) pair.control = pair.radiance;
-    return pair;
+    const Bands L = trace(cameraRay, rng, readDepth_ > 0 ? &control : nullptr, &controlSet);
+    if (!controlSet) control = L;
+    return L;
   }
 
  private:

@@ -20,24 +20,23 @@ namespace radiant {
 
 class CausticPhotonMap;
 
-/// One camera sample's estimate and, from the same random numbers, a cheaper
-/// biased one of the same radiance: multipass's control variate (render/control_variate.h).
-struct PairedRadiance {
-  Bands radiance;  ///< unbiased
-  Bands control;   ///< the path tracer: what it would give reading the solution (readSolutionDepth)
-};
-
 class Renderer {
  public:
   virtual ~Renderer() = default;
   /// Radiance arriving at the camera along `ray`, W·sr⁻¹·m⁻² per band. Must be
   /// finite and non-negative; `rng` is this camera sample's own numbers (render/sampler.h).
   virtual Bands radiance(const Ray &ray, Sampler &rng) const = 0;
-  /// The radiance and its control. A renderer without one returns the
-  /// radiance as its own control (a difference of zero).
-  virtual PairedRadiance pairedRadiance(const Ray &ray, Sampler &rng) const {
-    const Bands L = radiance(ray, rng);
-    return {L, L};
+  /// The extra per-sample outputs it can give, by name (film channels,
+  /// render/film.h): "control" (path reading a solution: the estimate that
+  /// reads it where the path goes on, multipass's control variate),
+  /// "selective-elements" or "selective-links" (the two-pass methods with
+  /// selective: the work a sample triggered). None by default.
+  virtual std::vector<std::string> channels() const { return {}; }
+  /// One sample's radiance and, in `values` (one per name of channels(), in
+  /// that order), its extra outputs from the same numbers.
+  virtual Bands sample(const Ray &ray, Sampler &rng, Bands *values) const {
+    (void)values;
+    return radiance(ray, rng);
   }
   /// The estimate varies with where in its pixel the camera ray goes and
   /// hardly otherwise (the radiosity displays): a pixel whose samples

@@ -103,6 +103,17 @@ Bands TwoPassRenderer::reflectedByLinks(const VisiblePoint &x, Sampler &rng) con
   return reflected(x, rng);
 }
 
+std::vector<std::string> TwoPassRenderer::channels() const {
+  if (!selective_.enabled) return {};
+  return {selectsByLinks_ ? "selective-links" : "selective-elements"};
+}
+
+Bands TwoPassRenderer::sample(const Ray &ray, Sampler &rng, Bands *values) const {
+  const Bands L = radiance(ray, rng);
+  if (selective_.enabled) values[0] = Bands(selectiveWork(ray));
+  return L;
+}
+
 double TwoPassRenderer::selectiveWork(const Ray &ray) const {
   if (!selective_.enabled) return 0;
   Sampler rng{Pcg32()};

@@ -66,10 +66,14 @@ class TwoPassRenderer : public Renderer {
   TwoPassRenderer(const RayTracer &tracer, const RenderContext &context, const SelectiveOptions &selective);
 
   Bands radiance(const Ray &ray, Sampler &rng) const final;
+  /// With selective: the channel "selective-elements" (1 where the sample was
+  /// re-evaluated, 0 where it read the solution) or, in link mode,
+  /// "selective-links" (how many links it re-evaluated): --selective-map.
+  std::vector<std::string> channels() const final;
+  Bands sample(const Ray &ray, Sampler &rng, Bands *values) const final;
 
-  /// For `--selective-map`: how much per-pixel work the camera ray through a
-  /// pixel centre triggers — 1 or 0 (element mode) or the number of links
-  /// re-evaluated (link mode); 0 without --selective.
+  /// How much per-pixel work a camera ray triggers — 1 or 0 (element mode)
+  /// or the number of links re-evaluated (link mode); 0 without selective.
   virtual double selectiveWork(const Ray &ray) const;
   bool selectsByLinks() const { return selectsByLinks_; }
 
