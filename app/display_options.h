@@ -28,7 +28,7 @@ struct DisplayCommandOptions {
 void addDisplayOptions(CLI::App &app, DisplayCommandOptions &options);
 
 /// The settings the flags ask for. A flag the chosen operator does not use is
-/// an error naming it (STYLE.md §5). `defaultExposureStops` is what `linear`
+/// an error naming it. `defaultExposureStops` is what `linear`
 /// uses without --exposure (render: the scene's render.exposure).
 DisplaySettings displaySettings(const CLI::App &app, const DisplayCommandOptions &options, double defaultExposureStops);
 

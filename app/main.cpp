@@ -1,5 +1,5 @@
 // radiant — command-line entry point. Catches the one error type (InputError)
-// once, prints it and exits non-zero (STYLE.md §12).
+// once, prints it and exits non-zero.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>

@@ -21,7 +21,7 @@ struct RadiosityCommandOptions {
 
 void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &options);
 
-/// An option nothing will use is an error, not a silent no-op (STYLE.md §5):
+/// An option nothing will use is an error, not a silent no-op:
 /// a radiosity option when no solution is computed (`reason` says why), and a
 /// solver's parameter given to another solver (checkSolverParameters).
 void checkRadiosityOptions(const RadiosityCommandOptions &options, bool solving, const std::string &reason);

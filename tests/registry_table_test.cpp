@@ -1,6 +1,6 @@
 // Every method in the registries against scenes with a closed-form answer: one
 // table of expectations with every renderer of rendererRegistry() and every
-// solver of solverRegistry() under it (STYLE.md §6), as pbrt-v4's
+// solver of solverRegistry() under it, as pbrt-v4's
 // cpu/integrators_test.cpp renders GetScenes() × GetIntegrators() and checks
 // each image's average. The cases are made from the registries when the tests
 // are listed, so a method added to render/registry.cpp or radiosity/solver.cpp

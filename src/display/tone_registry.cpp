@@ -1,5 +1,5 @@
 // The table of tone operators: name → factory and the flags of its parameters,
-// one line per operator (STYLE.md §11).
+// one line per operator.
 #include <fmt/format.h>
 
 #include "display/tone_operator.h"

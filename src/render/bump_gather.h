@@ -1,5 +1,5 @@
 // Bump maps in interpolated radiosity display: Chen & Wu (SIGGRAPH 1990)'s
-// perturbed radiosity, as C&W §9.4 describes it (REFERENCE §5.2).
+// perturbed radiosity, as C&W §9.4 describes it.
 //
 // A bump map tilts the shading normal far below the scale of the radiosity
 // mesh, and the irradiance of a tilted surface differs from the flat one's:

@@ -1,7 +1,7 @@
 // The table of rendering methods: each entry is a method's name, summary,
-// parameter table and factory (STYLE.md §11). The command line builds its
+// parameter table and factory. The command line builds its
 // --method choices, its flags and its --help groups from it, and
-// docs/cli.md's method tables are generated from it (tests/cli_docs_test.cpp).
+// docs/cli.md's method tables are generated from it (tests/cli_test.sh checks they agree).
 #pragma once
 
 #include <functional>
@@ -40,7 +40,7 @@ struct ImageJob {
   std::function<ProgressCallback(const std::string &label)> progress;
 };
 
-/// A registry entry: one rendering method (STYLE.md §11). Most methods work at
+/// A registry entry: one rendering method. Most methods work at
 /// the level of a camera ray (`create`: the driver owns tiles, threads and
 /// sample counts); a method that owns its loop (multipass: passes, several
 /// films, outputs as it goes) gives `render` instead (pbrt-v4's Integrator

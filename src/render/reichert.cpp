@@ -1,11 +1,11 @@
 // `reichert` — form factors per pixel to every element (Reichert 1992,
 // "A two-pass radiosity method driven by lights and viewer position";
-// C&W §9.3.1; REFERENCE §4.2).
+// C&W §9.3.1).
 //
 // At the visible point x the irradiance is gathered from the whole mesh:
 //   L(x) = Le(x) + (ρ/π) Σ_j F(dx → A_j) V(x, A_j) B_j
 // with F the exact unoccluded point-to-polygon factor (Lambert's contour
-// integral, REFERENCE §1.4) and V from one shadow ray per element. Emitters
+// integral, C&W ch. 4) and V from one shadow ray per element. Emitters
 // are elements like any other, so direct and indirect light come from the
 // same sum and nothing is counted twice. The visibility ray goes to
 //   --ff point  the element's centre: every pixel tests the same points, so a

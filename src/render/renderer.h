@@ -1,4 +1,4 @@
-// The one interface every rendering method implements (STYLE.md §4).
+// The one interface every rendering method implements.
 //
 // A renderer estimates the radiance arriving along one camera ray; the driver
 // (render/driver.h) owns tiles, threads, seeds, sample counts, time budgets,

@@ -1,5 +1,5 @@
 // `rushmeier` — per-pixel Monte Carlo reading the solution at secondary hits
-// (C&W eq. 9.10; Rushmeier's 1988 thesis; REFERENCE §4.1).
+// (C&W eq. 9.10; Rushmeier's 1988 thesis).
 //
 // At the visible point x, per camera sample:
 //   L(x) = Le(x) + f·Le_s cosθx cosθs V / (r² p_A)          one point on an emitter

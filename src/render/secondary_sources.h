@@ -1,4 +1,4 @@
-// Kok & Jansen's source selection (EG Rendering Workshop 1991; REFERENCE §4.4):
+// Kok & Jansen's source selection (EG Rendering Workshop 1991; C&W §9.3.1):
 // after the radiosity pass, the patches that reflect the most power become
 // "secondary light sources" and are sampled per pixel with shadow rays, like
 // the emitters. Their share of the interpolated indirect light is computed

@@ -1,7 +1,7 @@
 // `shirley` and `kok` — direct light per pixel, indirect light from the
 // solution (C&W §9.3.1).
 //
-// `shirley` (Shirley, Graphics Interface 1990; REFERENCE §4.3): at the
+// `shirley` (Shirley, Graphics Interface 1990; C&W §9.3.1): at the
 // visible point x, direct light is re-evaluated by Monte Carlo sampling of
 // the emitters (one shadow ray per camera sample), and the indirect light is
 // interpolated from the solution's separately stored *indirect* radiosity —
@@ -11,7 +11,7 @@
 // direct part is never read, so L D E paths come only from the shadow rays
 // and L D D+ E paths only from the solution.
 //
-// `kok` (Kok & Jansen 1991; REFERENCE §4.4): as shirley, and the patches that
+// `kok` (Kok & Jansen 1991; C&W §9.3.1): as shirley, and the patches that
 // reflect the most power are sampled per pixel too, like emitters, reading
 // their reflected radiosity (B − E). Their share of the indirect radiosity,
 // computed per element with the same values (render/secondary_sources.h), is

@@ -5,7 +5,7 @@
 // emission, applies selective re-evaluation, and leaves to each method only
 // the light x reflects towards the eye.
 //
-// Light paths are partitioned (REFERENCE §4, Heckbert's notation) so each is
+// Light paths are partitioned (Heckbert's regular-expression notation, SIGGRAPH 1990; docs/two-pass.md) so each is
 // counted once: whatever a method samples per pixel, it removes from what it
 // reads from the solution.
 #pragma once

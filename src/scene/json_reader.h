@@ -4,7 +4,7 @@
 // for "an array of 3 numbers or a number" at a key, and a wrong value becomes an
 // InputError that names the file, the JSON path (RFC 6901 pointer, e.g.
 // /materials/white/reflectance) and what was expected instead. Unknown keys are
-// errors with a did-you-mean suggestion (STYLE.md §5: a typo never silently does
+// errors with a did-you-mean suggestion (a typo never silently does
 // nothing); "comment" is accepted everywhere and ignored.
 #pragma once
 

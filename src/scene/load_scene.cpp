@@ -1,7 +1,7 @@
 // JSON scene files (docs/scene-format.md) and bare OBJ files.
 //
 // Every key is checked: an unknown key, or a key that does not apply to the
-// material or object type it is in, is an error with a suggestion (STYLE.md §5).
+// material or object type it is in, is an error with a suggestion.
 // Values are checked where they are read, so the error names the JSON path;
 // validateScene repeats the value checks on the finished scene so that a bare
 // OBJ (or a scene built in code) meets the same rules.

@@ -1,4 +1,4 @@
-// The one error path of Radiant (STYLE.md §12): loaders and option parsers throw
+// The one error path of Radiant: loaders and option parsers throw
 // InputError with the location of the bad input; main() catches it once, prints
 // it and exits non-zero.
 #pragma once
