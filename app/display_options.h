@@ -10,6 +10,7 @@
 
 #include "display/display_mapping.h"
 #include "io/image.h"
+#include "parameter_flags.h"
 #include "raytrace/ray_tracer.h"
 #include "scene/camera.h"
 
@@ -17,9 +18,8 @@ namespace radiant {
 
 struct DisplayCommandOptions {
   std::string toneOperator = "linear";
-  std::string exposure;  ///< "" (not given), a number of stops, or "auto"
-  double key = 0.18, reflectedLevel = 0.95, displayContrast = 35;
-  std::optional<double> displayMax, adaptation, white, gamma;
+  ParameterFlags toneParameters;  ///< the operators' own, from their tables (display/tone_operator.h)
+  std::optional<double> gamma;
   bool srgb = false;
   int bits = 8;
   std::string gamut = "clip";

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "commands.h"
+#include "display/tone_operator.h"
 #include "radiosity/solver.h"
 #include "render/registry.h"
 
@@ -62,6 +63,13 @@ CommandRunner addMethodsCommand(CLI::App &app) {
     for (const auto &[name, summary] : solvers) {
       fmt::print(fmt::runtime(md ? "#### `--solver {}`\n\n{}.\n\n" : "  {}: {}\n"), name, summary);
       printTable(solverParameters(name), md);
+    }
+    fmt::print("{}", md ? "### Parameters of each tone operator (`--tonemap NAME`, for `tonemap` and `render`'s PNG "
+                          "outputs)\n\n"
+                        : "\nTone operators (--tonemap):\n");
+    for (const ToneOperatorInfo &info : toneOperatorRegistry()) {
+      fmt::print(fmt::runtime(md ? "#### `--tonemap {}`\n\n{}.\n\n" : "  {}: {}\n"), info.name, info.summary);
+      printTable(info.parameters, md);
     }
     return 0;
   };

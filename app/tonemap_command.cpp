@@ -31,10 +31,11 @@ InputLocation flag(const char *name) {
 }
 
 FalseColourSettings falseColourSettings(const CLI::App &app, const TonemapOptions &o, const Image &image) {
-  for (const char *name : {"--tonemap", "--exposure", "--key", "--reflected-level", "--display-max",
-                           "--display-contrast", "--adaptation", "--white", "--gamma", "--srgb", "--bits", "--gamut"})
-    if (app.count(name) > 0)
-      throw InputError(flag(name), "does not apply to --falsecolor, which maps luminance to colours itself");
+  const char *why = "does not apply to --falsecolor, which maps luminance to colours itself";
+  const ParameterValues given = o.display.toneParameters.given();
+  for (const auto &[name, value] : given.all()) throw InputError(value.origin, why);
+  for (const char *name : {"--tonemap", "--gamma", "--srgb", "--bits", "--gamut"})
+    if (app.count(name) > 0) throw InputError(flag(name), why);
   FalseColourSettings s;
   s.legend = o.legend;
   s.logarithmic = o.logarithmic;

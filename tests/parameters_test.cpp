@@ -7,6 +7,7 @@
 
 #include <map>
 
+#include "display/tone_operator.h"
 #include "radiosity/solver.h"
 #include "render/registry.h"
 
@@ -82,6 +83,7 @@ TEST(Parameters, EveryRegistryTableIsConsistent) {
   for (const RendererInfo &info : rendererRegistry()) tables.push_back({info.name, &info.parameters});
   for (const char *solver : {"auto", "gauss-seidel", "progressive", "hierarchical", "stochastic", "hierarchical-exact"})
     tables.push_back({solver, &solverParameters(solver)});
+  for (const ToneOperatorInfo &info : toneOperatorRegistry()) tables.push_back({info.name, &info.parameters});
   std::map<std::string, const ParameterSpec *> byName;
   for (const auto &[owner, t] : tables) {
     std::map<std::string, int> seen;
@@ -110,6 +112,10 @@ TEST(Parameters, EveryRegistryTableIsConsistent) {
 TEST(Parameters, AMethodTakesOnlyWhatItsTableDeclares) {
   const std::string error = errorOf([] { methodParameters(findRenderer("path"), given({{"sources", "2"}})); });
   EXPECT_NE(error.find("method path does not use it (used by kok, multipass)"), std::string::npos) << error;
+  const std::string both = errorOf([] {
+    methodParameters(findRenderer("kok"), given({{"sources", "2"}, {"source-fraction", "0.5"}}));
+  });
+  EXPECT_NE(both.find("--source-fraction: give sources or source-fraction, not both"), std::string::npos) << both;
   const std::string solverError = errorOf([] { checkSolverParameters("stochastic", given({{"quality", "low"}})); });
   EXPECT_NE(solverError.find("solver stochastic does not use it (used by auto, hierarchical-exact)"), std::string::npos)
       << solverError;

@@ -17,6 +17,7 @@
 
 #include "display/luminance.h"
 #include "io/image.h"
+#include "util/parameters.h"
 
 namespace radiant {
 
@@ -50,8 +51,16 @@ struct ToneOperatorInfo {
   const char *name;
   const char *summary;
   std::unique_ptr<ToneOperator> (*create)(const Image &radiance, const ToneParameters &, ToneWarnings &);
-  std::vector<std::string> parameterFlags;  ///< the command-line flags of its parameters
+  /// Its parameters (util/parameters.h): the ToneParameters fields it reads,
+  /// with their defaults, ranges and meaning (the command line's --exposure, --key, …).
+  ParameterTable parameters;
 };
+
+/// ToneParameters from the given values, checked against the operator's
+/// table (a parameter it does not declare is an InputError naming the
+/// operators that do). `defaultExposureStops`: linear's exposure when none is
+/// given (render: the scene's render.exposure).
+ToneParameters toneParameters(const ToneOperatorInfo &op, const ParameterValues &given, double defaultExposureStops);
 
 const std::vector<ToneOperatorInfo> &toneOperatorRegistry();
 /// The entry for `name`; throws InputError at --tonemap listing the known names.

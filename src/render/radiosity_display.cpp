@@ -5,7 +5,7 @@
 // the value interpolated from the element's nodes (bilinear on quads,
 // barycentric on triangles; Gouraud shading of the mesh), continuous inside a
 // patch. Both include the progressive solver's ambient term. With
-// RendererOptions::irradiance they show the irradiance H the same way.
+// RenderContext::irradiance they show the irradiance H the same way.
 // Texture maps apply C&W eq. 9.11 at each pixel; bump maps, in `interpolate`,
 // Chen's perturbed radiosity (render/bump_gather.h).
 //

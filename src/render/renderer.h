@@ -70,7 +70,7 @@ struct RenderContext {
   /// specular bounces is then left out. nullptr: none.
   const CausticPhotonMap *caustics = nullptr;
   /// path with a solution: at the (d+1)-th non-specular vertex, read the
-  /// solution's reflected radiosity instead of continuing (pairedRadiance:
+  /// solution's reflected radiosity instead of continuing (its channel "control":
   /// that reading is the control, and the path goes on); 0: never.
   int readSolutionDepth = 0;
 };

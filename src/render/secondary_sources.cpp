@@ -108,8 +108,15 @@ const ParameterTable &secondarySourceParameters() {
   static const ParameterTable table = {
       {"sources", ParameterType::Integer, "4",
        "sample this many patches, the brightest reflectors, per pixel like emitters (Kok & Jansen 1991)", 0, 100000},
-      {"source-fraction", ParameterType::Real, "0",
-       "instead of sources (when > 0): the fewest patches carrying this fraction of the reflected power", 0, 1},
+      {"source-fraction",
+       ParameterType::Real,
+       "0",
+       "instead of sources (when > 0): the fewest patches carrying this fraction of the reflected power",
+       0,
+       1,
+       {},
+       "",
+       "sources"},
       {"source-visibility-grid", ParameterType::Integer, "2",
        "the visibility of each form factor removed from the interpolated light, from grid × grid points on the "
        "source element",
@@ -119,8 +126,6 @@ const ParameterTable &secondarySourceParameters() {
 }
 
 SecondarySourceOptions SecondarySourceOptions::from(const Parameters &parameters) {
-  if (parameters.given("sources") && parameters.given("source-fraction"))
-    throw InputError(parameters.origin("source-fraction"), "give sources or source-fraction, not both");
   SecondarySourceOptions o;
   o.count = int(parameters.integer("sources"));
   o.fraction = parameters.real("source-fraction");

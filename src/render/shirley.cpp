@@ -18,7 +18,7 @@
 // subtracted before interpolation, so what the shadow rays add is not also
 // read from the solution.
 //
-// Caustics (L S+ D E) are not represented (unless multipass gives a caustic map, RendererOptions::caustics): the
+// Caustics (L S+ D E) are not represented (unless multipass gives a caustic map, RenderContext::caustics): the
 // solution holds diffuse transport only and shadow rays stop at glass (issue: multi-pass method).
 #include <optional>
 

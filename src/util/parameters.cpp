@@ -40,6 +40,7 @@ std::string ParameterSpec::describeRange() const {
       return joinNames(choices);
     case ParameterType::Integer:
     case ParameterType::Real:
+      if (!choices.empty()) return "a number or " + joinNames(choices);
       if (std::isinf(minimum) && std::isinf(maximum)) return "";
       if (minimum == kPositive) return std::isinf(maximum) ? "> 0" : "0 < x ≤ " + formatBound(maximum);
       if (std::isinf(maximum) || maximum >= 2147483647) return "≥ " + formatBound(minimum);
@@ -66,15 +67,20 @@ double parseParameter(const ParameterSpec &spec, const std::string &text, const 
     }
     case ParameterType::Integer:
     case ParameterType::Real: {
+      if (std::find(spec.choices.begin(), spec.choices.end(), text) != spec.choices.end()) return NAN;  // a word
       // strtod is locale-dependent only in its decimal point; Radiant never sets a locale.
       errno = 0;
       char *end = nullptr;
       const double value = text.empty() ? NAN : std::strtod(text.c_str(), &end);
       const bool parsed = !text.empty() && end && *end == '\0' && errno != ERANGE && std::isfinite(value);
       const bool integral = spec.type == ParameterType::Real || (parsed && value == std::floor(value));
-      if (!parsed || !integral)
-        throw InputError(origin, fmt::format("expected {}, got '{}'",
-                                             spec.type == ParameterType::Integer ? "an integer" : "a number", text));
+      if (!parsed || !integral) {
+        std::string words;
+        for (const std::string &w : spec.choices) words += " or '" + w + "'";
+        throw InputError(origin,
+                         fmt::format("expected {}{}, got '{}'",
+                                     spec.type == ParameterType::Integer ? "an integer" : "a number", words, text));
+      }
       if (value < spec.minimum || value > spec.maximum)
         throw InputError(origin, fmt::format("must be in {}, got {}", spec.describeRange(), text));
       return value;
@@ -139,6 +145,8 @@ void checkParameters(const ParameterTable &table, const ParameterValues &given, 
     auto declared = std::find_if(table.begin(), table.end(), [&](const ParameterSpec &s) { return s.name == name; });
     if (declared != table.end()) {
       parseParameter(*declared, value.text, value.origin);
+      if (!declared->excludes.empty() && given.has(declared->excludes))
+        throw InputError(value.origin, fmt::format("give {} or {}, not both", declared->excludes, name));
       continue;
     }
     std::vector<std::string> users;

@@ -33,10 +33,14 @@ struct ParameterSpec {
   std::string documentation;
   double minimum = -std::numeric_limits<double>::infinity();  ///< Integer, Real: inclusive
   double maximum = std::numeric_limits<double>::infinity();
-  std::vector<std::string> choices;  ///< Choice
+  /// Choice: the values allowed. Integer, Real: words allowed besides numbers
+  /// (exposure's "auto"); Parameters::text tells them apart.
+  std::vector<std::string> choices;
   /// The default is written in words ("1/8 of the scene's extent") because it
   /// depends on the scene; defaultValue is then empty and given() tells.
   std::string defaultDescription;
+  /// A parameter this one cannot be given with ("source-fraction" excludes "sources").
+  std::string excludes;
 
   /// "4", "0.1 (0…1)", "mc (point, mc)": the default and what is allowed, for help and docs.
   std::string describeDefault() const;
@@ -72,6 +76,8 @@ class Parameters {
   long long integer(const std::string &name) const;
   double real(const std::string &name) const;
   std::string choice(const std::string &name) const;
+  /// The value as given, or the default, as text (a numeric parameter's word, such as "auto").
+  std::string text(const std::string &name) const { return text(spec(name)); }
   /// Whether a value was given (for parameters whose default depends on the scene).
   bool given(const std::string &name) const;
   /// Where the given value came from, for errors found later (by the method).
