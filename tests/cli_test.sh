@@ -109,6 +109,8 @@ expect_error "not a solution file" "not a Radiant solution" "$radiant" render "$
 expect_error "unused radiosity option" "has no effect" "$radiant" render "$cornell" --mesh-size 50 -q
 expect_error "progressive-only option" "solver hierarchical does not use it .used by progressive" \
   "$radiant" solve "$cornell" --solver hierarchical --form-factor hemicube -q
+expect_error "another estimator's parameter" "form-factor estimator hemicube does not use it .used by analytic, ray-cast" \
+  "$radiant" solve "$cornell" --solver progressive --form-factor hemicube --ff-samples 9 -q
 "$radiant" solve "$cornell" --solver gauss-seidel --mesh-size 200 --adaptive-rounds 1 -q && pass || fail "solve --adaptive-rounds"
 expect_error "adaptive with hierarchical" "refines by itself" "$radiant" solve "$cornell" --adaptive-rounds 1 -q
 expect_error "bad tolerance" "must be in" "$radiant" solve "$cornell" --tolerance 0 -q

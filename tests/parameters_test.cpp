@@ -84,6 +84,7 @@ TEST(Parameters, EveryRegistryTableIsConsistent) {
   for (const char *solver : {"auto", "gauss-seidel", "progressive", "hierarchical", "stochastic", "hierarchical-exact"})
     tables.push_back({solver, &solverParameters(solver)});
   for (const ToneOperatorInfo &info : toneOperatorRegistry()) tables.push_back({info.name, &info.parameters});
+  for (const FormFactorEstimatorInfo &e : formFactorEstimators()) tables.push_back({e.name, &e.parameters});
   std::map<std::string, const ParameterSpec *> byName;
   for (const auto &[owner, t] : tables) {
     std::map<std::string, int> seen;

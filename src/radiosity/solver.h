@@ -107,6 +107,16 @@ void applyQuality(SolverOptions &options, const std::string &name);
 /// and tolerance and max-iterations are every solver's. Throws InputError
 /// (the parameter "solver") for an unknown name.
 const ParameterTable &solverParameters(const std::string &solver);
+/// The progressive solver's form-factor estimators (its form-factor
+/// parameter), each with the parameters it reads: a parameter of another
+/// estimator is refused like a parameter of another solver.
+struct FormFactorEstimatorInfo {
+  const char *name;
+  const char *summary;
+  ParameterTable parameters;
+};
+const std::vector<FormFactorEstimatorInfo> &formFactorEstimators();
+
 /// Checks `given` against the solver's table before any work (util/parameters.h).
 void checkSolverParameters(const std::string &solver, const ParameterValues &given);
 /// Checks `given` against options.solver's table (util/parameters.h

@@ -113,6 +113,26 @@ ParameterSpec raysPerElement() {
           100000};
 }
 
+ParameterSpec hemicubeResolution() {
+  return {"hemicube-resolution",
+          ParameterType::Integer,
+          text(SolverOptions{}.hemicubeResolution),
+          "pixels across the hemicube's top face",
+          4,
+          4096};
+}
+
+ParameterSpec formFactor() {
+  ParameterSpec spec{"form-factor", ParameterType::Choice, SolverOptions{}.formFactor,
+                     "how the form factors are estimated:"};
+  for (const FormFactorEstimatorInfo &e : formFactorEstimators()) {
+    spec.choices.push_back(e.name);
+    spec.documentation += fmt::format(" {} ({});", e.name, e.summary);
+  }
+  spec.documentation.pop_back();
+  return spec;
+}
+
 ParameterTable withCommon(std::initializer_list<ParameterSpec> own) {
   ParameterTable table = {meshSize(), maxElements(), tolerance(), maxIterations()};
   table.insert(table.end(), own.begin(), own.end());
@@ -121,23 +141,24 @@ ParameterTable withCommon(std::initializer_list<ParameterSpec> own) {
 
 }  // namespace
 
+const std::vector<FormFactorEstimatorInfo> &formFactorEstimators() {
+  static const std::vector<FormFactorEstimatorInfo> table = {
+      {"analytic",
+       "Lambert's contour integral × the visible fraction of the shooter, ff-samples shadow rays",
+       {ffSamples()}},
+      {"ray-cast", "Wallace et al. 1989: the shooter as ff-samples discs, one shadow ray each", {ffSamples()}},
+      {"hemicube",
+       "Cohen & Greenberg 1985: one hemicube at the shooter's centre, F_ji = F_ij A_i/A_j",
+       {hemicubeResolution()}},
+  };
+  return table;
+}
+
 const ParameterTable &solverParameters(const std::string &name) {
   static const std::vector<std::pair<std::string, ParameterTable>> tables = {
       {"gauss-seidel", withCommon({ffSamples(), adaptiveRounds(), adaptiveThreshold()})},
       {"progressive",
-       withCommon({ffSamples(),
-                   {"form-factor",
-                    ParameterType::Choice,
-                    SolverOptions{}.formFactor,
-                    "how the form factors are estimated: analytic (contour integral × visible fraction), ray-cast "
-                    "(Wallace et al. 1989's disc sum), hemicube (Cohen & Greenberg 1985)",
-                    0,
-                    0,
-                    {"analytic", "ray-cast", "hemicube"}},
-                   {"hemicube-resolution", ParameterType::Integer, text(SolverOptions{}.hemicubeResolution),
-                    "with form-factor hemicube: pixels across the top face", 4, 4096},
-                   adaptiveRounds(),
-                   adaptiveThreshold()})},
+       withCommon({formFactor(), ffSamples(), hemicubeResolution(), adaptiveRounds(), adaptiveThreshold()})},
       {"hierarchical",
        withCommon(
            {ffSamples(),
@@ -181,7 +202,20 @@ void applySolverParameters(const ParameterValues &given, const Scene &scene, Sol
   options.tolerance = p.real("tolerance");
   options.maxIterations = int(p.integer("max-iterations"));
   if (has("ff-samples")) options.visibilitySamples = int(p.integer("ff-samples"));
-  if (has("form-factor")) options.formFactor = p.choice("form-factor");
+  if (has("form-factor")) {
+    options.formFactor = p.choice("form-factor");
+    // The estimators' own parameters, checked against the chosen one's table.
+    ParameterValues estimatorValues;
+    std::vector<std::pair<std::string, const ParameterTable *>> estimators;
+    const FormFactorEstimatorInfo *chosen = nullptr;
+    for (const FormFactorEstimatorInfo &e : formFactorEstimators()) {
+      estimators.push_back({e.name, &e.parameters});
+      if (e.name == options.formFactor) chosen = &e;
+      for (const ParameterSpec &spec : e.parameters)
+        if (p.given(spec.name)) estimatorValues.set(spec.name, p.text(spec.name), p.origin(spec.name));
+    }
+    checkParameters(chosen->parameters, estimatorValues, "form-factor estimator " + options.formFactor, estimators);
+  }
   if (has("hemicube-resolution")) options.hemicubeResolution = int(p.integer("hemicube-resolution"));
   if (has("link-threshold")) options.linkThreshold = p.real("link-threshold");
   if (has("importance")) options.importance = p.flag("importance");
