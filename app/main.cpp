@@ -7,7 +7,31 @@
 #include <exception>
 
 #include "commands.h"
+#include "scene/json_reader.h"
 #include "util/error.h"
+
+namespace {
+
+/// After "The following argument was not expected: --sorces": the command's
+/// closest flag, for a typo (its flags include every method's parameters).
+void suggestFlags(CLI::App &app, CLI::App &command) {
+  std::vector<std::string> names;
+  auto collect = [&](CLI::App &a) {
+    for (const CLI::Option *option : a.get_options())
+      for (const std::string &name : option->get_lnames()) names.push_back("--" + name);
+  };
+  collect(command);
+  for (CLI::App *group : command.get_subcommands([](CLI::App *a) { return a->get_name().empty(); })) collect(*group);
+  std::vector<std::string> unexpected = command.remaining();
+  for (const std::string &arg : app.remaining()) unexpected.push_back(arg);
+  for (const std::string &arg : unexpected) {
+    if (arg.rfind("--", 0) != 0) continue;
+    const std::string best = radiant::closestName(arg.substr(0, arg.find('=')), names);
+    if (!best.empty()) fmt::print(stderr, "radiant: {}: did you mean {}?\n", arg, best);
+  }
+}
+
+}  // namespace
 
 int main(int argc, char **argv) {
   CLI::App app{"Radiant — a global-illumination renderer built around radiosity (Cohen & Wallace, ch. 9)", "radiant"};
@@ -30,7 +54,11 @@ int main(int argc, char **argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError &e) {
     // --help and --version exit 0; a bad flag is bad input, exit 2 like every other.
-    return app.exit(e) == 0 ? 0 : 2;
+    const int status = app.exit(e);
+    if (dynamic_cast<const CLI::ExtrasError *>(&e))
+      for (CLI::App *command : {render, solve, compare, tonemap, methods})
+        if (command->parsed()) suggestFlags(app, *command);
+    return status == 0 ? 0 : 2;
   }
   try {
     if (render->parsed()) return runRender();

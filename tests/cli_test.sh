@@ -129,6 +129,7 @@ done
 "$radiant" render "$cornell" --method reichert --solver hierarchical --selective --mesh-size 200 --selective-map links.png --spp 1 \
   --width 16 --height 16 -o r.png 2>err.txt && grep -q "links per pixel" err.txt \
   && pass || { fail "--selective link mode"; cat err.txt; }
+expect_error "a misspelt method parameter" "did you mean --sources" "$radiant" render "$cornell" --method kok --sorces 3 -q
 expect_error "--ff for another method" "method shirley does not use it .used by reichert" "$radiant" render "$cornell" --method shirley --ff point -q
 expect_error "--ff value" "expected one of point, mc" "$radiant" render "$cornell" --method reichert --ff pt -q
 expect_error "--selective with path" "used by rushmeier, reichert, shirley, kok" "$radiant" render "$cornell" --selective -q
