@@ -27,8 +27,6 @@ class ParameterFlags {
   void add(CLI::App &app, const std::vector<ParameterGroup> &groups);
   /// The values given on the command line, each located at its flag.
   ParameterValues given() const;
-  /// Whether any of these flags was given.
-  bool any() const { return !given().all().empty(); }
 
  private:
   struct Flag {

@@ -44,7 +44,6 @@ void checkRadiosityOptions(const RadiosityCommandOptions &options, bool solving,
     if (!given.all().empty()) throw InputError(given.all().begin()->second.origin, "has no effect here: " + reason);
     return;
   }
-  solverParameters(options.solver);  // an unknown name, before any work
   checkSolverParameters(options.solver, given);
 }
 

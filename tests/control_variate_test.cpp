@@ -38,7 +38,7 @@ struct SyntheticPixels {
     image.addControls(film);
   }
   void pairs(ControlVariateImage &image, int spp) {
-    PairedFilm film(kSize, kSize);
+    Film film(kSize, kSize, {"control"});
     for (size_t p = 0; p < film.pixelCount(); ++p)
       for (int k = 0; k < spp; ++k) {
         Bands r, unbiased;
@@ -47,7 +47,7 @@ struct SyntheticPixels {
           r[b] = kTruth + bias + e;
           unbiased[b] = kTruth + a * e + s * gaussian();
         }
-        film.add(p, unbiased, r);
+        film.add(p, unbiased, &r);
       }
     image.addPairs(film);
   }

@@ -121,15 +121,6 @@ struct PairedFilm {
   }
 
   size_t pixelCount() const { return size_t(width) * height; }
-  void add(size_t pixel, const Bands &radiance, const Bands &control) {
-    const Bands difference = radiance - control;
-    sumControl[pixel] += control;
-    sumControlSquares[pixel] += control * control;
-    sumDifference[pixel] += difference;
-    sumDifferenceSquares[pixel] += difference * difference;
-    sumProducts[pixel] += control * difference;
-    ++samples[pixel];
-  }
   /// Adds another paired film's samples (same size).
   void accumulate(const PairedFilm &other) {
     for (size_t p = 0; p < pixelCount(); ++p) {
