@@ -2,11 +2,13 @@
 // MSE, and optionally a false-colour difference image.
 #include <fmt/format.h>
 
+#include <filesystem>
 #include <optional>
 
 #include "commands.h"
 #include "io/compare.h"
 #include "io/image.h"
+#include "io/output_files.h"
 #include "util/error.h"
 
 namespace radiant {
@@ -35,6 +37,11 @@ CommandRunner addCompareCommand(CLI::App &app) {
   app.add_flag("--json", options->json, "Print the figures as JSON");
 
   return [options]() {
+    if (!options->differencePath.empty()) {
+      if (std::filesystem::path(options->differencePath).extension() != ".png")
+        throw InputError(InputLocation{"--diff"}, "'" + options->differencePath + "': expected a .png file");
+      checkOutputFiles({{options->differencePath, InputLocation{"--diff"}}}, {options->test, options->reference});
+    }
     Image test = readImage(options->test);
     Image reference = readImage(options->reference);
     ImageComparison c = compareImages(test, reference, options->test, options->reference);

@@ -7,6 +7,7 @@
 
 #include "display_options.h"
 #include "io/image.h"
+#include "util/interrupt.h"
 
 namespace radiant {
 
@@ -18,6 +19,8 @@ std::string passOutputPath(const std::string &path, int pass) {
 void runImageMethod(const RendererInfo &method, const Parameters &parameters, ImageJob job,
                     const ImageMethodCommand &command) {
   job.output = [&](int pass, const std::string &summary, const Image &mean, const Image &variance) {
+    // A pass cut short by Ctrl-C is not an image of its pass: the last complete one stands.
+    if (interruptRequested()) return;
     std::vector<std::string> paths;
     for (const std::string &path : command.outputs) paths.push_back(passOutputPath(path, pass));
     for (const std::string &path : command.outputs) paths.push_back(path);  // the latest pass

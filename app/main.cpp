@@ -7,8 +7,10 @@
 #include <exception>
 
 #include "commands.h"
+#include "interrupt_handler.h"
 #include "scene/json_reader.h"
 #include "util/error.h"
+#include "util/interrupt.h"
 
 namespace {
 
@@ -66,6 +68,9 @@ int main(int argc, char **argv) {
     if (compare->parsed()) return runCompare();
     if (tonemap->parsed()) return runTonemap();
     if (methods->parsed()) return runMethods();
+  } catch (const radiant::Interrupted &) {
+    fmt::print(stderr, "radiant: interrupted before anything was complete; nothing written\n");
+    return radiant::interruptedExitStatus();
   } catch (const radiant::InputError &e) {
     // The library names a parameter ("mesh-size"); here it is a flag.
     const radiant::InputLocation &where = e.location();

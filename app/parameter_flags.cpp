@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace radiant {
 
 namespace {
@@ -65,6 +67,19 @@ ParameterValues ParameterFlags::given() const {
   for (const auto &[name, flag] : flags_)
     if (flag.option->count() > 0) values.set(name, flag.isFlag ? "true" : flag.text, InputLocation{"--" + name});
   return values;
+}
+
+CLI::Validator seedRange() {
+  return CLI::Validator(
+      [](std::string &text) -> std::string {
+        const bool digits = !text.empty() && text.size() <= 20 &&
+                            std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+        // 2⁶⁴ − 1 has 20 digits: compare as strings of equal length.
+        if (!digits || (text.size() == 20 && text > "18446744073709551615"))
+          return "expected an integer from 0 to 18446744073709551615, got '" + text + "'";
+        return "";
+      },
+      "SEED");
 }
 
 }  // namespace radiant

@@ -19,6 +19,10 @@ struct ParameterGroup {
   const ParameterTable *table;
 };
 
+/// A check for --seed: a decimal integer in 0 … 2⁶⁴ − 1 (CLI11 alone saturates
+/// a larger one silently, and accepts "1e3" as 1000).
+CLI::Validator seedRange();
+
 class ParameterFlags {
  public:
   /// Adds a flag for every parameter of `groups` not added before, in the

@@ -11,6 +11,7 @@
 #include "mesh/mesh.h"
 #include "radiosity/solver.h"
 #include "util/error.h"
+#include "util/interrupt.h"
 
 namespace radiant {
 
@@ -89,7 +90,12 @@ Solution solveScene(const Scene &scene, const RayTracer &tracer, const Radiosity
                  name, p.iteration, p.residual, p.tolerance, p.elapsedSeconds, eta, terminal ? "   " : "\n");
     };
   }
-  Solution solution = meshAndSolve(scene, tracer, meshOptions, solverOptions, progress);
+  // Ctrl-C (util/interrupt.h): the solve stops at its next report and nothing of it is kept.
+  SolverProgressCallback report = [progress](const SolverProgress &p) {
+    if (interruptRequested()) throw Interrupted();
+    if (progress) progress(p);
+  };
+  Solution solution = meshAndSolve(scene, tracer, meshOptions, solverOptions, report);
   if (!quiet) {
     if (isatty(fileno(stderr))) fmt::print(stderr, "\n");
     printSolveSummary(solution);

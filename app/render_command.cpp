@@ -12,6 +12,8 @@
 #include "commands.h"
 #include "display_options.h"
 #include "image_method_command.h"
+#include "interrupt_handler.h"
+#include "io/output_files.h"
 #include "io/solution_file.h"
 #include "parameter_flags.h"
 #include "radiosity_options.h"
@@ -23,6 +25,7 @@
 #include "scene/load_scene.h"
 #include "scene/spectral_scene.h"
 #include "util/error.h"
+#include "util/interrupt.h"
 
 namespace radiant {
 
@@ -119,7 +122,8 @@ CommandRunner addRenderCommand(CLI::App &app) {
   app.add_option("--spp", o->spp, "Samples per pixel (default: the scene's render.spp, else 64)");
   app.add_option("--time", o->time,
                  "Time budget in seconds: stop after the sampling round that reaches it (--spp still caps it)");
-  app.add_option("--seed", o->seed, "Random seed; the same seed and sample count give the same image");
+  app.add_option("--seed", o->seed, "Random seed; the same seed and sample count give the same image")
+      ->check(seedRange());
   app.add_option("--threads", o->threads, "Worker threads (0: all cores); does not change the image")
       ->default_val(0)
       ->check(CLI::Range(0, 4096));
@@ -167,6 +171,26 @@ CommandRunner addRenderCommand(CLI::App &app) {
       if (!o->selectiveMapPath.empty() && std::filesystem::path(o->selectiveMapPath).extension() != ".png")
         throw InputError(flag("--selective-map"), "'" + o->selectiveMapPath + "': expected a .png file");
     }
+    // Every output checked before any work: a long render must not end in "cannot write".
+    std::vector<std::string> outputs = o->outputs;
+    if (outputs.empty()) {
+      std::string stem = defaultStem(o->scenePath);
+      outputs = {stem + ".exr", stem + ".png"};
+    }
+    for (const std::string &path : outputs)
+      if (!isSupportedImageExtension(path))
+        throw InputError(flag("--output"), "'" + path + "': unknown image extension (expected .exr, .pfm or .png)");
+    if (!o->variancePath.empty() && !isSupportedImageExtension(o->variancePath))
+      throw InputError(flag("--variance"), "'" + o->variancePath + "': expected a .exr or .pfm file");
+    {
+      std::vector<OutputFile> files;
+      for (const std::string &path : outputs) files.push_back({path, flag("--output")});
+      if (!o->variancePath.empty()) files.push_back({o->variancePath, flag("--variance")});
+      if (!o->selectiveMapPath.empty()) files.push_back({o->selectiveMapPath, flag("--selective-map")});
+      checkOutputFiles(files, {o->scenePath, o->solutionPath});
+    }
+    // Ctrl-C: the image so far is written (with its sample count), then exit 130.
+    InterruptHandler interrupts;
     Scene scene = loadScene(o->scenePath);
     const WhiteBalance balance = applyColourOptions(app, o->colour, scene);
     const double unit = scene.metresPerUnit;
@@ -195,22 +219,18 @@ CommandRunner addRenderCommand(CLI::App &app) {
       throw InputError(flag("--time"), "the time budget must be a non-negative number of seconds");
     if (!(scene.camera.verticalFovDegrees > 0 && scene.camera.verticalFovDegrees < 180))
       throw InputError(flag("--fov"), "the field of view must be strictly between 0 and 180 degrees");
+    for (const Vec3 &point : {scene.camera.eye, scene.camera.target})
+      if (!(std::max({std::abs(point.x), std::abs(point.y), std::abs(point.z)}) <= kMaxCoordinateMetres))
+        throw InputError(flag("--eye/--target"),
+                         fmt::format("the camera is more than {:g} m from the origin; the ray tracer works in single "
+                                     "precision and cannot trace rays from there",
+                                     kMaxCoordinateMetres));
     Vec3 view = scene.camera.target - scene.camera.eye;
     if (!(length(view) > 0) || !(length(cross(normalize(view), normalize(scene.camera.up))) > 1e-6))
       throw InputError(flag("--eye/--target/--up"),
                        "the camera needs eye ≠ target and an up vector not parallel to the view direction");
 
-    std::vector<std::string> outputs = o->outputs;
-    if (outputs.empty()) {
-      std::string stem = defaultStem(o->scenePath);
-      outputs = {stem + ".exr", stem + ".png"};
-    }
-    for (const std::string &path : outputs)
-      if (!isSupportedImageExtension(path))
-        throw InputError(flag("--output"), "'" + path + "': unknown image extension (expected .exr, .pfm or .png)");
     const DisplaySettings display = renderDisplaySettings(app, o->display, r.exposure, outputs);
-    if (!o->variancePath.empty() && !isSupportedImageExtension(o->variancePath))
-      throw InputError(flag("--variance"), "'" + o->variancePath + "': expected a .exr or .pfm file");
 
     DriverOptions driver;
     driver.samplesPerPixel = r.samplesPerPixel;
@@ -260,7 +280,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
                             : solveScene(scene, tracer, o->radiosity, r.seed, o->threads, o->quiet);
       };
       runImageMethod(method, parameters, job, command);
-      return 0;
+      return interruptRequested() ? interruptedExitStatus() : 0;
     }
     std::vector<Solution> solutions;
     if (method.needsSolution && !o->solutionPath.empty()) solutions = readSolutionPasses(o->solutionPath, scene);
@@ -299,14 +319,21 @@ CommandRunner addRenderCommand(CLI::App &app) {
       stats.samplesPerPixel = std::max(stats.samplesPerPixel, passStats.samplesPerPixel);
       stats.seconds += passStats.seconds;
       stats.cameraSamples += passStats.cameraSamples;
+      stats.interrupted = stats.interrupted || passStats.interrupted;
       if (!mapChannel.empty()) {
         writeSelectiveMap(film, mapChannel, o->selectiveMapPath);
         selectiveMapWritten = true;
       }
     };
     SpectralImages rendered = renderPasses(scene, r.width, r.height, balance, renderPass);
+    // A spectral image needs every pass's wavelengths: one cut short has no colour to write.
+    if (stats.interrupted && spectral) throw Interrupted();
     Image &image = rendered.colour;
     image.quantity = o->quantity;
+    image.samplesPerPixel = stats.samplesPerPixel;
+    image.interrupted = stats.interrupted;
+    rendered.variance.samplesPerPixel = stats.samplesPerPixel;
+    rendered.variance.interrupted = stats.interrupted;
     if (driver.onlyPixelX >= 0 && !o->quiet) {
       const float *v = image.pixel(driver.onlyPixelX, driver.onlyPixelY);
       fmt::print(stderr, "pixel {},{}: {} {:.6g} {:.6g} {:.6g} {}{}\n", driver.onlyPixelX, driver.onlyPixelY,
@@ -321,11 +348,12 @@ CommandRunner addRenderCommand(CLI::App &app) {
       const double mean = driver.onlyPixelX >= 0 ? stats.samplesPerPixel : stats.cameraSamples / pixelsTaken;
       const std::string converged =
           mean < stats.samplesPerPixel - 0.5 ? fmt::format(" (converged pixels stopped: {:.1f} on average)", mean) : "";
-      fmt::print(stderr, "radiant: {} spp{}{} in {:.2f} s ({:.3g} Msamples/s); wrote {}\n", stats.samplesPerPixel,
+      fmt::print(stderr, "radiant: {}{} spp{}{} in {:.2f} s ({:.3g} Msamples/s); wrote {}\n",
+                 stats.interrupted ? "interrupted after " : "", stats.samplesPerPixel,
                  spectral ? fmt::format(" × {} passes", passes) : std::string(), converged, stats.seconds,
                  stats.cameraSamples / std::max(stats.seconds, 1e-9) * 1e-6, fmt::join(outputs, ", "));
     }
-    return 0;
+    return stats.interrupted ? interruptedExitStatus() : 0;
   };
 }
 

@@ -4,11 +4,15 @@
 
 #include "colour_options.h"
 #include "commands.h"
+#include "interrupt_handler.h"
+#include "io/output_files.h"
 #include "io/solution_file.h"
+#include "parameter_flags.h"
 #include "radiosity/report.h"
 #include "radiosity_options.h"
 #include "scene/load_scene.h"
 #include "scene/spectral_scene.h"
+#include "util/interrupt.h"
 
 namespace radiant {
 
@@ -32,7 +36,7 @@ CommandRunner addSolveCommand(CLI::App &app) {
                  "luminance (cd/m²) and illuminance (lux)");
   addRadiosityOptions(app, o->radiosity);
   addColourOptions(app, o->colour);
-  app.add_option("--seed", o->seed, "Random seed of the form-factor shadow rays")->default_val(1);
+  app.add_option("--seed", o->seed, "Random seed of the form-factor shadow rays")->default_val(1)->check(seedRange());
   app.add_option("--threads", o->threads, "Worker threads (0: all cores); does not change the solution")
       ->default_val(0)
       ->check(CLI::Range(0, 4096));
@@ -40,6 +44,12 @@ CommandRunner addSolveCommand(CLI::App &app) {
 
   return [o, &app]() {
     checkRadiosityOptions(o->radiosity, true, "");
+    std::vector<OutputFile> outputs;
+    if (!o->outputPath.empty()) outputs.push_back({o->outputPath, InputLocation{"--output"}});
+    if (!o->reportPath.empty()) outputs.push_back({o->reportPath, InputLocation{"--report"}});
+    checkOutputFiles(outputs, {o->scenePath});
+    // Ctrl-C stops the solve at its next iteration and writes nothing.
+    InterruptHandler interrupts;
     Scene scene = loadScene(o->scenePath);
     const WhiteBalance balance = applyColourOptions(app, o->colour, scene);
     if (!o->quiet)
@@ -57,6 +67,7 @@ CommandRunner addSolveCommand(CLI::App &app) {
       solutions.push_back(solveScene(scene, tracer, o->radiosity, o->seed, o->threads, o->quiet));
     }
     if (scene.spectral.enabled()) applySpectralColour(scene, balance);
+    if (interruptRequested()) throw Interrupted();  // between the solve's last report and here
     if (!o->outputPath.empty()) {
       writeSolutionPasses(solutions, scene, o->outputPath);
       if (!o->quiet) fmt::print(stderr, "radiant: wrote {}\n", o->outputPath);

@@ -12,6 +12,7 @@
 #include "display/luminance.h"
 #include "display_options.h"
 #include "io/image.h"
+#include "io/output_files.h"
 #include "util/error.h"
 
 namespace radiant {
@@ -89,6 +90,7 @@ CommandRunner addTonemapCommand(CLI::App &app) {
         if (app.count(name) > 0) throw InputError(flag(name), "needs --falsecolor");
     DisplaySettings display;
     if (!o->falseColour) display = displaySettings(app, o->display, 0.0);  // refuse bad flags before reading
+    checkOutputFiles({{o->output, flag("--output")}}, {o->input});
 
     Image image = readImage(o->input);
     if (o->scale != 1)

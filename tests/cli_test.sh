@@ -295,5 +295,26 @@ else
   fail "renders for the tonemap tests failed"
 fi
 
+# Outputs are checked before any work (issue 17): a folder, a missing folder, the same file twice, the input.
+mkdir -p outdir
+expect_error "solve --report DIR" "error: --report: cannot write 'outdir': it is a folder" \
+  "$radiant" solve "$cornell" -o kept.rad --report outdir -q
+[ ! -e kept.rad ] && pass || fail "solve wrote its solution before refusing --report"
+expect_error "render into a missing folder" "folder 'missing/dir' does not exist" \
+  "$radiant" render "$cornell" --spp 100000 -o missing/dir/x.exr -q
+expect_error "render the same output twice" "given twice" "$radiant" render "$cornell" -o a.exr -o ./a.exr -q
+expect_error "seed beyond 64 bits" "expected an integer from 0 to 18446744073709551615" \
+  "$radiant" render "$cornell" --seed 99999999999999999999999 -q
+# Ctrl-C during a render writes the image so far and exits 130.
+"$radiant" render "$cornell" --spp 1000000 --width 32 --height 32 -o int.exr -q &
+pid=$!
+sleep 3
+kill -INT $pid
+wait $pid
+status=$?
+if [ "$status" -eq 130 ] && [ -s int.exr ] && "$radiant" tonemap int.exr -o int.png -q; then pass; else
+  fail "render; kill -INT: exit $status, int.exr $(ls -la int.exr 2>&1)"
+fi
+
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

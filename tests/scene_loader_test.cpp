@@ -487,6 +487,27 @@ v 1 0 0
 v 1 1 0
 v 0 1 0
 v 0.5 1.5 0
+v 0 0 1
+v 1 0 1
+v 1 1 1
+v 0 0 2
+v 1 0 2
+v 1 1 2
+v 0 0 3
+v 1 0 3
+v 1 1 3
+v 0 0 4
+v 1 0 4
+v 1 1 4
+v 0 0 5
+v 1 0 5
+v 1 1 5
+v 0 0 6
+v 1 0 6
+v 1 1 6
+v 0 0 7
+v 1 0 7
+v 1 1 7
 vn 0 0 1
 vt 0 0
 vt 1 0
@@ -496,20 +517,20 @@ o parts
 usemtl matte
 f 1/1/1 2/2/1 3/3/1 4/4/1
 usemtl lamp
-f 1 2 3
+f 6 7 8
 usemtl chrome
-f 1 2 3
+f 9 10 11
 usemtl glass
-f 1 2 3
+f 12 13 14
 usemtl plastic
-f 1 2 3
+f 15 16 17
 o more
 usemtl overridden
-f 1 2 3
+f 18 19 20
 usemtl jsononly
-f 1 2 3
+f 21 22 23
 usemtl nowhere
-f 1 2 3
+f 24 25 26
 f 1 2 3 5 4
 )";
 
@@ -640,18 +661,22 @@ TEST(SceneLoaderObj, BareObjGetsAFramingCameraAndWarnings) {
   EXPECT_EQ(s.render.width, 512);
 }
 
-TEST(SceneLoaderObj, KdOfOneIsRejectedInBareObj) {
+TEST(SceneLoaderObj, KdOfOneIsScaledWithAWarning) {
+  // Exporters write Kd 1 1 1 ("white") and Kd + Ks > 1 (3ds Max: Kd 0.2, Ks
+  // 0.9): loaded, scaled by one factor to conserve energy, said once.
   TempDir dir;
-  dir.write("w.mtl", "newmtl white\nKd 1 1 1\n");
-  std::string obj = dir.write("w.obj", "mtllib w.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl white\nf 1 2 3\n");
-  try {
-    loadScene(obj);
-    FAIL();
-  } catch (const InputError &e) {
-    EXPECT_EQ(e.location().file, dir.file("w.mtl"));
-    EXPECT_EQ(e.location().line, 1);
-    EXPECT_NE(std::string(e.what()).find("diverge"), std::string::npos) << e.what();
-  }
+  dir.write("w.mtl", "newmtl white\nKd 1 0.5 0.5\nnewmtl max\nillum 2\nKd 0.2 0.2 0.2\nKs 0.9 0.9 0.9\nNs 50\n");
+  std::string obj = dir.write(
+      "w.obj", "mtllib w.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nusemtl white\nf 1 2 3\nusemtl max\nf 1 2 4\n");
+  Scene s = loadScene(obj);
+  const Material &white = s.materials[s.faces[0].material];
+  EXPECT_DOUBLE_EQ(white.diffuse[0], kMaxDiffuseReflectance);
+  EXPECT_DOUBLE_EQ(white.diffuse[1], 0.5 * kMaxDiffuseReflectance);  // the colour kept
+  const Material &max = s.materials[s.faces[1].material];
+  EXPECT_NEAR(max.diffuse[0] + max.specular[0], 1.0, 1e-12);
+  EXPECT_NEAR(max.specular[0] / max.diffuse[0], 4.5, 1e-9);  // the ratio kept
+  EXPECT_TRUE(hasWarning(s, "w.mtl:1: material 'white'"));
+  EXPECT_TRUE(hasWarning(s, "w.mtl:3: material 'max': Kd + Ks = 1.1"));
 }
 
 // ---------------------------------------------------------------------------
@@ -771,6 +796,90 @@ TEST(SceneLoaderDocs, TheDocumentedExampleLoads) {
   EXPECT_NEAR(s.camera.eye.z, 4.0, 1e-12);
   EXPECT_EQ(s.materials[facesOf(s, "teapot").front()->material].kind, MaterialKind::Mirror);
   EXPECT_LT(s.faceNormal(*facesOf(s, "lamp").front()).y, -0.999);
+}
+
+}  // namespace
+}  // namespace radiant
+
+// ---------------------------------------------------------------------------
+// Malformed and unusual input (issue 17): each once crashed, hung or was refused.
+
+namespace radiant {
+namespace {
+
+std::string loadError(const std::string &path) {
+  try {
+    loadScene(path);
+  } catch (const InputError &e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SceneLoaderMalformed, DeeplyNestedJsonIsRefusedWithItsPosition) {
+  TempDir dir;
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  for (const char *name : {"deep.json", "deep.txt"}) {
+    const std::string error = loadError(dir.write(name, deep));
+    EXPECT_NE(error.find(std::string(name) + ":1:65: arrays and objects nest more than 64"), std::string::npos)
+        << error;
+  }
+}
+
+TEST(SceneLoaderMalformed, HexadecimalFloatsAndHugeIndicesAreRefusedAtTheirLine) {
+  TempDir dir;
+  std::string error = loadError(dir.write("hex.obj", "v 0 0 0\nv 0x1p-2 0 0\nv 1 1 0\nf 1 2 3\n"));
+  EXPECT_NE(error.find("hex.obj:2: 'v' expects finite decimal numbers, got '0x1p-2'"), std::string::npos) << error;
+  error = loadError(dir.write("big.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 -99999999999999999999\n"));
+  EXPECT_NE(error.find("big.obj:4:"), std::string::npos) << error;
+}
+
+TEST(SceneLoaderMalformed, AFaceOfAMillionVerticesIsRefused) {
+  TempDir dir;
+  std::string text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nf";
+  for (int k = 0; k < 1000000; ++k) text += k % 2 ? " 2" : " 3";
+  const std::string error = loadError(dir.write("ngon.obj", text + "\n"));
+  EXPECT_NE(error.find("ngon.obj:4: a face of 1000000 vertices"), std::string::npos) << error.substr(0, 200);
+}
+
+TEST(SceneLoaderMalformed, RepeatedCornersLeaveAProperPolygon) {
+  TempDir dir;
+  // f 1 2 2 3 once reached the quad mesher with a zero-length edge and crashed the solve.
+  Scene s = loadScene(dir.write("rep.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 2 3\nf 4 4 1 3 4\n"));
+  ASSERT_EQ(s.faces.size(), 2u);
+  EXPECT_EQ(s.faces[0].vertexCount, 3);
+  EXPECT_EQ(s.faces[1].vertexCount, 3);
+}
+
+TEST(SceneLoaderMalformed, ExactRepeatsAreDroppedAndOverlapsNamed) {
+  TempDir dir;
+  const std::string quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+  Scene repeated = loadScene(dir.write("dup.obj", quad + "f 1 2 3 4\nf 2 3 4 1\nf 4 3 2 1\n"));
+  EXPECT_EQ(repeated.faces.size(), 2u);  // the rotated copy goes; the reversed one is the other side
+  EXPECT_TRUE(hasWarning(repeated, "dropped 1 face that repeat"));
+  Scene overlapping = loadScene(dir.write("overlap.obj", quad + "f 1 2 3 4\nf 1 2 3\n"));
+  EXPECT_EQ(overlapping.faces.size(), 2u);
+  EXPECT_TRUE(hasWarning(overlapping, "1 pair of faces overlap in one plane")) << overlapping.warnings.size();
+  // A tessellated floor only touches along edges.
+  Scene floor = loadScene(dir.write("floor.obj", quad + "f 1 2 3\nf 1 3 4\n"));
+  EXPECT_FALSE(hasWarning(floor, "overlap"));
+}
+
+TEST(SceneLoaderMalformed, OtherFormatsAreNamed) {
+  TempDir dir;
+  EXPECT_NE(loadError(dir.write("m.gltf", "{\"asset\": {\"version\": \"2.0\"}}")).find("this is a glTF file"),
+            std::string::npos);
+  EXPECT_NE(loadError(dir.write("m.dat", "ply\nformat ascii 1.0\n")).find("this is a PLY file"), std::string::npos);
+  EXPECT_NE(loadError(dir.write("m.mgf", "c red\n")).find("MGF"), std::string::npos);
+  EXPECT_NE(loadError(dir.write("x.rad", "RADIANT-SOLUTION....")).find("--solution"), std::string::npos);
+}
+
+TEST(SceneLoaderMalformed, FarAwayCameraOrVerticesAreRefused) {
+  TempDir dir;
+  std::string error = loadError(dir.write(
+      "far.json",
+      sceneText(kLamp, R"({"type": "triangle", "vertices": [[0,0,0],[1,0,0],[0,1,1e30]], "material": "lamp"})")));
+  EXPECT_NE(error.find("from the origin"), std::string::npos) << error;
 }
 
 }  // namespace

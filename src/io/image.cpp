@@ -4,6 +4,7 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
+#include <ImfIntAttribute.h>
 #include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
 #include <fmt/format.h>
@@ -28,6 +29,8 @@ namespace {
 /// render's per-pixel emitter coverage, and what the pixels hold (image.h).
 constexpr const char *kEmitterChannel = "emitter";
 constexpr const char *kQuantityAttribute = "radiantQuantity";
+constexpr const char *kSamplesAttribute = "radiantSamplesPerPixel";
+constexpr const char *kInterruptedAttribute = "radiantInterrupted";
 
 std::string extensionOf(const std::string &path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -75,6 +78,8 @@ void writeExr(const Image &image, const std::string &path) {
     const bool hasEmitter = image.emitterFraction.size() == size_t(image.width) * image.height;
     if (hasEmitter) header.channels().insert(kEmitterChannel, Imf::Channel(Imf::FLOAT));
     if (!image.quantity.empty()) header.insert(kQuantityAttribute, Imf::StringAttribute(image.quantity));
+    if (image.samplesPerPixel > 0) header.insert(kSamplesAttribute, Imf::IntAttribute(image.samplesPerPixel));
+    if (image.interrupted) header.insert(kInterruptedAttribute, Imf::IntAttribute(1));
     const size_t bands = image.wavelengths.size();
     const bool hasSpectra = bands > 0 && image.spectral.size() == bands * image.width * image.height;
     std::vector<std::string> spectralNames;
@@ -227,6 +232,10 @@ static Image readExr(const std::string &path) {
     }
     if (const auto *quantity = file.header().findTypedAttribute<Imf::StringAttribute>(kQuantityAttribute))
       image.quantity = quantity->value();
+    if (const auto *samples = file.header().findTypedAttribute<Imf::IntAttribute>(kSamplesAttribute))
+      image.samplesPerPixel = samples->value();
+    if (const auto *interrupted = file.header().findTypedAttribute<Imf::IntAttribute>(kInterruptedAttribute))
+      image.interrupted = interrupted->value() != 0;
     file.setFrameBuffer(frame);
     file.readPixels(window.min.y, window.max.y);
     if (!hasRgb)  // grey image: luminance into all three channels

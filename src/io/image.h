@@ -25,6 +25,13 @@ struct Image {
   /// writes) or "irradiance" (W·m⁻²). OpenEXR keeps it as the string attribute
   /// "radiantQuantity"; empty when unknown.
   std::string quantity;
+  /// Samples per pixel that every pixel has (0: unknown); OpenEXR keeps it as
+  /// the int attribute "radiantSamplesPerPixel".
+  int samplesPerPixel = 0;
+  /// The render was stopped by Ctrl-C before its samples or time budget were
+  /// reached (some pixels may hold one round more than samplesPerPixel);
+  /// OpenEXR's int attribute "radiantInterrupted" = 1.
+  bool interrupted = false;
   /// Spectral renders only: the sample wavelengths (nm) and, per pixel, one
   /// float per wavelength of spectral radiance in W·m⁻²·sr⁻¹·nm⁻¹. OpenEXR
   /// keeps them as channels "S0.<λ>nm" (Fichet, Pacanowski & Wilkie 2021,

@@ -378,7 +378,17 @@ RadiosityMesh buildMesh(const Scene &scene, const MeshOptions &options) {
   for (size_t f = 0; f < scene.faces.size(); ++f) {
     for (const std::vector<Vec3> &poly : polygons[f]) {
       auto corner = [&](int k) { return poly[k]; };
-      auto steps = [&](double length) { return std::max(1, static_cast<int>(std::ceil(length / edge - 1e-9))); };
+      auto steps = [&](double length) {
+        // In double first: a tiny mesh-size gives counts beyond int, whose
+        // cast would wrap to one element per face without a word.
+        const double n = std::ceil(length / edge - 1e-9);
+        if (!(n <= double(options.maxElements)))
+          throw InputError(InputLocation::ofParameter("mesh-size"),
+                           fmt::format("the mesh would have more than {} elements (element edge {:.4g} m); "
+                                       "choose a larger mesh-size or raise max-elements",
+                                       options.maxElements, edge));
+        return std::max(1, static_cast<int>(n));
+      };
       if (poly.size() == 4) {
         int nU = steps(std::max(length(corner(1) - corner(0)), length(corner(2) - corner(3))));
         int nV = steps(std::max(length(corner(3) - corner(0)), length(corner(2) - corner(1))));

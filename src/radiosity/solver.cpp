@@ -4,6 +4,7 @@
 
 #include <chrono>
 
+#include "scene/overlapping_faces.h"
 #include "util/error.h"
 #include "util/sampling.h"
 
@@ -134,6 +135,21 @@ Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOpt
   return s;
 }
 
+namespace {
+
+/// What went wrong (the residual's growth, or more light absorbed than emitted) and the overlapping faces.
+[[noreturn]] void divergenceError(const Scene &scene, const std::string &what) {
+  const std::vector<FaceOverlap> overlaps = findOverlappingFaces(scene, 10000);
+  throw InputError(
+      InputLocation{scene.sourceFile, 0, 0, ""},
+      fmt::format("{}; {}", what,
+                  overlaps.empty() ? std::string("no overlapping faces were found; please report this scene")
+                                   : describeOverlappingFaces(scene, overlaps) +
+                                         ", and each is given all the light of the plane: keep one copy"));
+}
+
+}  // namespace
+
 void solveRadiosity(const RayTracer &tracer, Solution &solution, const SolverOptions &options,
                     const SolverProgressCallback &progress) {
   // "auto": resolveSolverName says which and why.
@@ -149,7 +165,28 @@ void solveRadiosity(const RayTracer &tracer, Solution &solution, const SolverOpt
                      fmt::format("unknown solver '{}'; known solvers: {}", options.solver, names));
   auto start = std::chrono::steady_clock::now();
   solution.stats.solver = chosen->name;
-  chosen->solve(tracer, solution, options, progress);
+  // With every ρ < 1 and form factors that sum to at most 1, each iteration
+  // leaves less light to distribute: a residual that grows tenfold means the
+  // system is creating light, which happens where surfaces overlap in one
+  // plane (each copy is given the whole light of the plane). Without this
+  // guard the shooting solver runs on until its shot limit, diverging.
+  const Scene &scene = tracer.scene();
+  double firstResidual = -1;
+  SolverProgressCallback guarded = [&](const SolverProgress &p) {
+    if (firstResidual < 0) firstResidual = p.residual;
+    if (p.residual > std::max(1.0, 10 * firstResidual))
+      divergenceError(scene, fmt::format("the {} solution diverges: its residual grew to {:.3g} by iteration {}",
+                                         chosen->name, p.residual, p.iteration));
+    if (progress) progress(p);
+  };
+  chosen->solve(tracer, solution, options, guarded);
+  // A converged solution of overlapping copies absorbs up to twice what is
+  // emitted; Monte Carlo form factors stay within a few per cent.
+  const double emitted = solution.stats.emittedPower.average(), absorbed = solution.stats.absorbedPower.average();
+  if (emitted > 0 && absorbed > 1.05 * emitted)
+    divergenceError(scene, fmt::format("the {} solution absorbs {:.4g} W of the {:.4g} W emitted, which no closed "
+                                       "set of surfaces can",
+                                       chosen->name, absorbed, emitted));
   solution.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   solution.updateNodesAndErrors();
 }

@@ -13,7 +13,7 @@ namespace radiant {
 
 /// A texture map's reflectance is clamped below 1: a white texel on a Kd = 1
 /// material must not make the radiosity series diverge.
-constexpr double kMaxTexturedReflectance = 0.999;
+constexpr double kMaxTexturedReflectance = kMaxDiffuseReflectance;
 
 /// The texture parameterisation of a triangle at barycentrics (b1, b2): the
 /// material's texture coordinates (its uvScale applied) and the derivatives of

@@ -14,6 +14,8 @@
 #include <cstdio>
 #include <mutex>
 
+#include "util/interrupt.h"
+
 namespace radiant {
 
 namespace {
@@ -73,6 +75,7 @@ RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, int
   std::vector<uint8_t> active(size_t(width) * height, 1);
   size_t activeCount = pixels;
   uint64_t pixelSamples = 0;  // camera samples taken so far, over all pixels
+  bool interrupted = false;
   while (done < target && activeCount > 0) {
     double elapsed = secondsSince(start);
     if (budget > 0 && done > 0 && elapsed >= budget) break;
@@ -91,6 +94,9 @@ RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, int
     arena.execute([&] {
       tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t> &range) {
         for (size_t t = range.begin(); t != range.end(); ++t) {
+          // Ctrl-C (util/interrupt.h): the tiles in flight finish, the rest
+          // of the round is skipped; each pixel's mean stays its own samples'.
+          if (interruptRequested()) continue;
           const Tile &tile = tiles[t];
           for (int y = tile.y0; y < tile.y1; ++y)
             for (int x = tile.x0; x < tile.x1; ++x) {
@@ -108,6 +114,11 @@ RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, int
         }
       });
     });
+    if (interruptRequested()) {
+      interrupted = true;
+      pixelSamples += uint64_t(activeCount) * roundSamples * tilesDone / std::max<size_t>(1, tiles.size());
+      break;
+    }
     done = last;
     pixelSamples += uint64_t(activeCount) * roundSamples;
     if (stopConverged && done >= kMinimumSamples && options.onlyPixelX < 0) {
@@ -121,6 +132,7 @@ RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, int
   stats.samplesPerPixel = done;
   stats.seconds = secondsSince(start);
   stats.cameraSamples = pixelSamples;
+  stats.interrupted = interrupted;
   return stats;
 }
 

@@ -52,7 +52,10 @@ struct Progress {
 };
 
 struct RenderStats {
-  int samplesPerPixel = 0;  ///< the most any pixel took (all of them, unless converged pixels stopped)
+  /// The most any pixel took (all of them, unless converged pixels stopped);
+  /// after an interrupt, the complete rounds (some pixels have more).
+  int samplesPerPixel = 0;
+  bool interrupted = false;  ///< stopped early by Ctrl-C (util/interrupt.h)
   double seconds = 0;
   uint64_t cameraSamples = 0;
 };

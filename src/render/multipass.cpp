@@ -15,6 +15,7 @@
 #include "render/path_tracer.h"
 #include "render/registry.h"
 #include "render/secondary_sources.h"
+#include "util/interrupt.h"
 #include "util/random.h"
 
 namespace radiant {
@@ -73,7 +74,8 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
                      const MultipassProgress &progress) {
   const Clock::time_point start = Clock::now();
   const bool budgeted = options.timeBudgetSeconds > 0;
-  auto spent = [&] { return budgeted && secondsSince(start) >= options.timeBudgetSeconds; };
+  // Ctrl-C (util/interrupt.h) ends the passes: the last complete one's image stands.
+  auto spent = [&] { return interruptRequested() || (budgeted && secondsSince(start) >= options.timeBudgetSeconds); };
 
   auto driverFor = [&](const MultipassPass &pass, int spp, int chunk) {
     DriverOptions driver;

@@ -32,9 +32,38 @@ std::string parseErrorReason(const std::string &what) {
   return bracket == std::string::npos ? what : what.substr(bracket + 2);
 }
 
+/// The first place where arrays and objects nest deeper than `limit`, or
+/// std::string::npos. nlohmann's parser keeps its own stack, but a document
+/// nested 10⁵ deep still overflows the call stack where it is copied, printed
+/// or destroyed recursively; no scene needs more than a handful of levels.
+size_t tooDeep(const std::string &text, int limit) {
+  int depth = 0;
+  bool inString = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (inString) {
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        inString = false;
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > limit) return i;
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return std::string::npos;
+}
+
 }  // namespace
 
 Json parseJsonText(const std::string &text, const std::string &file) {
+  if (size_t at = tooDeep(text, kMaxJsonDepth); at != std::string::npos)
+    throw InputError(locationOfByte(text, at + 1, file), "arrays and objects nest more than " +
+                                                             std::to_string(kMaxJsonDepth) +
+                                                             " levels deep here; a Radiant scene needs a few");
   try {
     return Json::parse(text);
   } catch (const nlohmann::json::parse_error &e) {

@@ -21,6 +21,9 @@ namespace radiant {
 
 using Json = nlohmann::ordered_json;
 
+/// The deepest nesting of arrays and objects parseJsonText accepts.
+constexpr int kMaxJsonDepth = 64;
+
 /// Parses JSON text; a syntax error (or a number too large for a double, which
 /// nlohmann reports separately) becomes an InputError with line and column.
 Json parseJsonText(const std::string &text, const std::string &file);

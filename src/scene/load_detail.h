@@ -43,6 +43,11 @@ void checkMaterial(const Material &material, const InputLocation &where, const M
 void addPolygon(Scene &scene, const std::vector<uint32_t> &vertices, const std::vector<int32_t> &uvs,
                 const std::vector<int32_t> &normals, uint32_t material, uint32_t object, bool flipWinding);
 
+/// Removes every face that repeats an earlier one exactly (the same corner
+/// positions in the same cyclic order), with its triangles, and says so in
+/// one warning.
+void dropRepeatedFaces(Scene &scene);
+
 /// A UV sphere with `segments` slices around the axis and segments/2 stacks,
 /// outward-facing, with per-vertex normals (smooth shading) and uvs (u around
 /// the y axis, v from the south pole), transformed by `toWorld`.

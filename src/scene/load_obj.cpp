@@ -19,10 +19,10 @@
 //                                   lobe width as a Beckmann/GGX α);
 //   anything else                → Lambertian Kd.
 
+#include <fmt/format.h>
 #include <tiny_obj_loader.h>
 
 #include <charconv>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -32,6 +32,7 @@
 #include "scene/json_reader.h"
 #include "scene/load_detail.h"
 #include "scene/load_scene.h"
+#include "util/parse_number.h"
 
 namespace radiant {
 
@@ -72,19 +73,18 @@ std::vector<std::string> splitLines(const std::string &text) {
   return lines;
 }
 
-bool parseNumber(const std::string &word, double &value) {
-  const char *begin = word.c_str();
-  char *end = nullptr;
-  value = std::strtod(begin, &end);
-  return end != begin && *end == '\0' && std::isfinite(value);
-}
+/// Bounds that keep a malformed file from running the mesher out of time or
+/// memory: a face is fan-split into (n − 2) slivers, so an n-gon of 10⁶
+/// vertices (seen in a corrupted file) would become a million triangles meeting
+/// at one point. Real exporters write n-gons of tens to hundreds of vertices.
+constexpr size_t kMaxFaceVertices = 4096;
+constexpr long kMaxObjIndex = 1L << 31;
 
 bool parseIndex(const std::string &text, long &value) {
-  if (text.empty()) return false;
-  const char *begin = text.c_str();
-  char *end = nullptr;
-  value = std::strtol(begin, &end, 10);
-  return *end == '\0' && value != 0;
+  int64_t parsed = 0;
+  if (!parseInteger(text, parsed) || parsed == 0 || parsed < -kMaxObjIndex || parsed > kMaxObjIndex) return false;
+  value = static_cast<long>(parsed);
+  return true;
 }
 
 constexpr const char *kReferenceKinds[3] = {"vertex", "texture coordinate", "normal"};
@@ -116,8 +116,8 @@ ObjScan scanObj(const std::string &objPath, const std::string &text) {
       size_t numbers = 0;
       for (size_t k = 1; k < words.size() && words[k][0] != '#'; ++k, ++numbers) {
         double value;
-        if (!parseNumber(words[k], value))
-          fileError(objPath, line, "'" + keyword + "' expects finite numbers, got '" + words[k] + "'");
+        if (!parseDecimal(words[k], value))
+          fileError(objPath, line, "'" + keyword + "' expects finite decimal numbers, got '" + words[k] + "'");
       }
       size_t minimum = keyword == "vt" ? 1 : 3;
       if (numbers < minimum)
@@ -128,6 +128,10 @@ ObjScan scanObj(const std::string &objPath, const std::string &text) {
     } else if (keyword == "f") {
       if (words.size() < 4)
         fileError(objPath, line, "a face needs at least 3 vertices, got " + std::to_string(words.size() - 1));
+      if (words.size() - 1 > kMaxFaceVertices)
+        fileError(objPath, line,
+                  "a face of " + std::to_string(words.size() - 1) + " vertices; Radiant reads faces of at most " +
+                      std::to_string(kMaxFaceVertices) + " (split it, or triangulate the model in the exporter)");
       for (size_t k = 1; k < words.size(); ++k) {
         // v, v/vt, v//vn or v/vt/vn; indices are 1-based, negative ones count back.
         std::vector<std::string> parts;
@@ -212,8 +216,8 @@ std::map<std::string, MtlSource> scanMtlFiles(const std::vector<std::string> &mt
         if (words.size() < 2) fileError(file, line, "'" + keyword + "' expects a value");
         for (size_t k = 1; k < words.size() && words[k][0] != '#'; ++k) {
           double value;
-          if (!parseNumber(words[k], value))
-            fileError(file, line, "'" + keyword + "' expects finite numbers, got '" + words[k] + "'");
+          if (!parseDecimal(words[k], value))
+            fileError(file, line, "'" + keyword + "' expects finite decimal numbers, got '" + words[k] + "'");
         }
       }
     }
@@ -248,7 +252,46 @@ std::string resolveTexture(const std::string &name, const MtlSource &source, int
   return path.lexically_normal().string();
 }
 
-Material convertMtlMaterial(const tinyobj::material_t &m, const MtlSource &source) {
+std::string bandsText(const Bands &b) {
+  return b[0] == b[1] && b[1] == b[2] ? fmt::format("{:.4g}", b[0])
+                                      : fmt::format("{:.4g} {:.4g} {:.4g}", b[0], b[1], b[2]);
+}
+
+/// Exporters write MTL values no physical surface has: Kd 1 1 1 ("white")
+/// without a texture, Kd + Ks above 1 (3ds Max: Kd 0.2, Ks 0.9), Ks or Tf
+/// above 1. Refusing them would leave the model unrenderable, so the values a
+/// surface scatters are scaled by one factor, keeping their colour and their
+/// ratio, until it scatters no more than it receives (and its diffuse part
+/// stays below kMaxDiffuseReflectance); one warning per material says so.
+void conserveEnergy(Material &out, const MtlSource &source, std::vector<std::string> &warnings) {
+  const bool textured = !out.diffuseTexture.empty();  // Kd multiplies the texture, clamped per texel
+  double scale = 1;
+  std::string what;
+  for (int b = 0; b < kBandCount; ++b) {
+    if (out.kind == MaterialKind::Glossy && out.diffuse[b] + out.specular[b] > 1.0) {
+      scale = std::min(scale, 1.0 / (out.diffuse[b] + out.specular[b]));
+      what = "Kd + Ks = " + bandsText(out.diffuse + out.specular);
+    }
+    if (out.kind != MaterialKind::Lambertian && out.kind != MaterialKind::Glossy && out.specular[b] > 1.0) {
+      scale = std::min(scale, 1.0 / out.specular[b]);
+      what = std::string(out.kind == MaterialKind::Mirror ? "Ks" : "Tf") + " = " + bandsText(out.specular);
+    }
+  }
+  Bands diffuse = out.diffuse * scale;
+  if (!textured && diffuse.max() > kMaxDiffuseReflectance) {
+    scale *= kMaxDiffuseReflectance / diffuse.max();
+    if (what.empty()) what = "Kd = " + bandsText(out.diffuse);
+  }
+  if (scale >= 1 || !(scale > 0)) return;  // nothing to do, or a negative value for checkMaterial to refuse
+  out.diffuse = out.diffuse * scale;
+  out.specular = out.specular * scale;
+  warnings.push_back(source.file + ":" + std::to_string(source.newmtlLine) + ": material '" + out.name + "': " + what +
+                     " would reflect as much light as arrives or more; scaled by " + fmt::format("{:.4g}", scale) +
+                     " to conserve energy (Kd " + bandsText(out.diffuse) +
+                     (out.kind == MaterialKind::Lambertian ? "" : ", Ks " + bandsText(out.specular)) + ")");
+}
+
+Material convertMtlMaterial(const tinyobj::material_t &m, const MtlSource &source, std::vector<std::string> &warnings) {
   Material out;
   out.name = m.name;
   out.diffuse = toBands(m.diffuse);
@@ -292,6 +335,7 @@ Material convertMtlMaterial(const tinyobj::material_t &m, const MtlSource &sourc
     out.bumpTextureFrom = lineOf(source.bumpLine);
     out.bumpScale = widen(m.bump_texopt.bump_multiplier);
   }
+  conserveEnergy(out, source, warnings);
   detail::checkMaterial(out, InputLocation{source.file, source.newmtlLine, 0, ""}, names);
   return out;
 }
@@ -342,7 +386,7 @@ void detail::appendObjFromScene(Scene &scene, const std::string &objPath, const 
     auto it = mtlByName.find(name);
     if (it == mtlByName.end()) return -1;
     MtlSource source = mtlSources.count(name) ? mtlSources[name] : MtlSource{objPath, 0, 0, 0};
-    scene.materials.push_back(convertMtlMaterial(mtlMaterials[it->second], source));
+    scene.materials.push_back(convertMtlMaterial(mtlMaterials[it->second], source, scene.warnings));
     return static_cast<int>(scene.materials.size() - 1);
   };
 

@@ -352,10 +352,32 @@ struct SceneParser {
   }
 };
 
-bool hasObjExtension(const std::string &path) {
+std::string lowerExtension(const std::string &path) {
   std::string extension = fs::path(path).extension().string();
   for (char &c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return extension == ".obj";
+  return extension;
+}
+
+/// The name of a 3D format Radiant does not read, recognised by the file's
+/// extension or its first bytes, or "" (then the file is read as JSON).
+std::string unreadFormat(const std::string &extension, const std::string &head) {
+  struct Known {
+    const char *extension, *name;
+  };
+  static constexpr Known kKnown[] = {
+      {".gltf", "glTF"},   {".glb", "binary glTF"},    {".ply", "PLY"},  {".mgf", "MGF"},       {".fbx", "FBX"},
+      {".dae", "COLLADA"}, {".3ds", "3D Studio"},      {".stl", "STL"},  {".blend", "Blender"}, {".usd", "USD"},
+      {".usda", "USD"},    {".usdc", "USD"},           {".usdz", "USD"}, {".x3d", "X3D"},       {".wrl", "VRML"},
+      {".pbrt", "pbrt"},   {".xml", "XML (Mitsuba?)"}, {".off", "OFF"},
+  };
+  for (const Known &k : kKnown)
+    if (extension == k.extension) return k.name;
+  if (head.rfind("glTF", 0) == 0) return "binary glTF";
+  if (head.rfind("ply\n", 0) == 0 || head.rfind("ply\r\n", 0) == 0) return "PLY";
+  if (head.rfind("Kaydara FBX Binary", 0) == 0) return "FBX";
+  if (head.rfind("solid ", 0) == 0) return "STL";
+  if (head.rfind("BLENDER", 0) == 0) return "Blender";
+  return "";
 }
 
 }  // namespace
@@ -366,17 +388,20 @@ Scene parseSceneJson(const std::string &text, const std::string &path) {
   scene.sourceFile = path;
   SceneParser parser{scene, path, fs::path(path).parent_path()};
   parser.parse(document);
+  detail::dropRepeatedFaces(scene);
   detail::loadTextures(scene);
   validateScene(scene);
   return scene;
 }
 
 Scene loadScene(const std::string &path) {
-  if (hasObjExtension(path)) {
+  const std::string extension = lowerExtension(path);
+  if (extension == ".obj") {
     Scene scene;
     scene.sourceFile = path;
     // A bare OBJ is taken to be in metres.
     appendObj(scene, path, Transform{}, fs::path(path).stem().string(), -1);
+    detail::dropRepeatedFaces(scene);
     scene.camera = detail::frameBounds(scene);
     detail::loadTextures(scene);
     validateScene(scene);
@@ -388,7 +413,26 @@ Scene loadScene(const std::string &path) {
     throw InputError(InputLocation{path, 0, 0, ""}, "cannot open scene file '" + path + "'");
   std::ostringstream text;
   text << in.rdbuf();
-  return parseSceneJson(text.str(), path);
+  const std::string head = text.str().substr(0, 32);
+  if (head.rfind("RADIANT-SOLUTION", 0) == 0)
+    throw InputError(InputLocation{path, 0, 0, ""},
+                     "this is a Radiant solution file (from radiant solve -o), not a scene: give the scene, and "
+                     "the solution with --solution");
+  const std::string format = unreadFormat(extension, head);
+  if (!format.empty())
+    throw InputError(InputLocation{path, 0, 0, ""},
+                     "this is a " + format +
+                         " file, which Radiant does not read: a scene is a JSON scene file "
+                         "(docs/scene-format.md) or a Wavefront OBJ model (.obj)");
+  try {
+    return parseSceneJson(text.str(), path);
+  } catch (const InputError &e) {
+    // A file that is not JSON at all, under a name that does not say JSON: say
+    // what Radiant expected rather than only where the JSON broke.
+    if (extension == ".json" || e.message().rfind("invalid JSON", 0) != 0 || e.location().line > 1) throw;
+    throw InputError(e.location(), e.message() + " (Radiant reads JSON scene files and .obj models; '" + path +
+                                       "' is read as JSON because its name does not end in .obj)");
+  }
 }
 
 }  // namespace radiant

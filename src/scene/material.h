@@ -24,6 +24,11 @@ enum class MaterialKind {
 
 const char *materialKindName(MaterialKind kind);
 
+/// The largest diffuse reflectance Radiant uses: ρ ≥ 1 makes radiosity's
+/// Neumann series diverge (C&W §5.2), so a white texel, or an MTL's Kd = 1
+/// without a texture, is taken down to this.
+constexpr double kMaxDiffuseReflectance = 0.999;
+
 /// The values of a spectral scene's material given as spectra (docs/spectral.md).
 /// A value without a spectrum is grey: the same at every wavelength.
 struct MaterialSpectra {

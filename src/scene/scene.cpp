@@ -46,6 +46,20 @@ bool Scene::addFace(const Face &face) {
     ++droppedDegenerateFaces;
     return false;
   }
+  if (face.vertexCount == 4 && kept.size() == 1) {
+    // Three corners of the quad on one line: its area is one triangle, and a
+    // quad with a straight corner would give the mesher zero-area elements.
+    Face triangle = face;
+    triangle.vertexCount = 3;
+    for (int j = 0; j < 3; ++j) {
+      triangle.vertices[j] = kept[0].v[j];
+      triangle.uvs[j] = kept[0].uv[j];
+      triangle.normals[j] = kept[0].n[j];
+    }
+    faces.push_back(triangle);
+    triangles.push_back(kept[0]);
+    return true;
+  }
   faces.push_back(face);
   triangles.insert(triangles.end(), kept.begin(), kept.end());
   return true;

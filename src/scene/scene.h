@@ -18,6 +18,11 @@
 namespace radiant {
 
 /// One input polygon (3 or 4 vertices, counter-clockwise seen from the front).
+/// The largest coordinate a vertex or the camera may have, in metres. The
+/// ray tracer (Embree) works in single precision, where 10⁹ m already has a
+/// resolution of 64 m, and refuses (aborts on) rays from beyond 1.8·10¹⁸.
+constexpr double kMaxCoordinateMetres = 1e9;
+
 struct Face {
   int vertexCount = 3;
   uint32_t vertices[4] = {0, 0, 0, 0};    ///< indices into Scene::positions

@@ -7,6 +7,7 @@
 
 #include "scene/load_detail.h"
 #include "scene/load_scene.h"
+#include "scene/overlapping_faces.h"
 
 namespace radiant {
 
@@ -75,9 +76,22 @@ void detail::checkMaterial(const Material &m, const InputLocation &where, const 
     throw InputError(fieldLocation(where, "bump_scale"), subject + "bump scale is not finite");
 }
 
+constexpr size_t kMaxReportedOverlaps = 10000;
+
+static bool withinCoordinateRange(const Vec3 &p) {
+  return std::abs(p.x) <= kMaxCoordinateMetres && std::abs(p.y) <= kMaxCoordinateMetres &&
+         std::abs(p.z) <= kMaxCoordinateMetres;
+}
+
 void detail::checkCamera(const CameraSettings &c, const InputLocation &where) {
   if (!isFinite(c.eye)) throw InputError(fieldLocation(where, "eye"), "camera eye is not finite");
   if (!isFinite(c.target)) throw InputError(fieldLocation(where, "target"), "camera target is not finite");
+  for (const auto &[point, name] : {std::pair{c.eye, "eye"}, std::pair{c.target, "target"}})
+    if (!withinCoordinateRange(point))
+      throw InputError(fieldLocation(where, name), std::string("camera ") + name + " is more than " +
+                                                       formatNumber(kMaxCoordinateMetres) +
+                                                       " m from the origin; the ray tracer works in single "
+                                                       "precision and cannot trace rays from there");
   if (!isFinite(c.up)) throw InputError(fieldLocation(where, "up"), "camera up is not finite");
   if (!(c.verticalFovDegrees > 0 && c.verticalFovDegrees < 180))
     throw InputError(fieldLocation(where, "fov"),
@@ -129,6 +143,10 @@ void validateScene(Scene &scene) {
   for (size_t i = 0; i < scene.positions.size(); ++i)
     if (!isFinite(scene.positions[i]))
       throw InputError(where, "vertex position " + std::to_string(i) + " is not finite");
+    else if (!withinCoordinateRange(scene.positions[i]))
+      throw InputError(where, "vertex position " + std::to_string(i) + " is more than " +
+                                  formatNumber(kMaxCoordinateMetres) +
+                                  " m from the origin; the ray tracer works in single precision");
   for (size_t i = 0; i < scene.normals.size(); ++i)
     if (!isFinite(scene.normals[i])) throw InputError(where, "vertex normal " + std::to_string(i) + " is not finite");
   for (size_t i = 0; i < scene.uvs.size(); ++i)
@@ -153,6 +171,9 @@ void validateScene(Scene &scene) {
     warnOnce("dropped " + std::to_string(scene.droppedDegenerateFaces) + " degenerate face" +
              (scene.droppedDegenerateFaces == 1 ? "" : "s") + " (zero area or not finite)");
   if (scene.faces.empty()) warnOnce("the scene has no faces");
+  if (const std::vector<FaceOverlap> overlaps = findOverlappingFaces(scene, kMaxReportedOverlaps); !overlaps.empty())
+    warnOnce(describeOverlappingFaces(scene, overlaps) + (overlaps.size() >= kMaxReportedOverlaps ? " or more" : "") +
+             ": each receives all the light that reaches the plane, so radiosity counts it twice; keep one copy");
   bool anyEmitter = false;
   for (const Face &f : scene.faces) anyEmitter = anyEmitter || scene.materials[f.material].isEmitter();
   if (!anyEmitter) warnOnce("no emitter: the image will be black");

@@ -1,6 +1,9 @@
 // Building faces from input polygons and analytic shapes (see load_detail.h).
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 
 #include "scene/load_detail.h"
 
@@ -61,22 +64,40 @@ void addPolygon(Scene &scene, const std::vector<uint32_t> &verticesIn, const std
     ++scene.droppedDegenerateFaces;
     return;
   }
-  // Reversing all but the first vertex turns the front to the back.
-  std::vector<uint32_t> vertices(n);
-  std::vector<int32_t> uvs(n, -1), normals(n, -1);
+  // Reversing all but the first vertex turns the front to the back. A vertex
+  // at the same place as the one before it ("f 1 2 2 3", or two indices of one
+  // point) is dropped: it adds a zero-length edge, which a quad's mesher
+  // cannot subdivide.
+  std::vector<uint32_t> vertices;
+  std::vector<int32_t> uvs, normals;
   for (size_t k = 0; k < n; ++k) {
     size_t from = flipWinding ? (n - k) % n : k;
-    vertices[k] = verticesIn[from];
-    if (!uvsIn.empty()) uvs[k] = uvsIn[from];
-    if (!normalsIn.empty()) normals[k] = normalsIn[from];
+    if (!vertices.empty() && scene.positions[verticesIn[from]] == scene.positions[vertices.back()]) continue;
+    vertices.push_back(verticesIn[from]);
+    uvs.push_back(uvsIn.empty() ? -1 : uvsIn[from]);
+    normals.push_back(normalsIn.empty() ? -1 : normalsIn[from]);
   }
+  while (vertices.size() > 1 && scene.positions[vertices.back()] == scene.positions[vertices.front()]) {
+    vertices.pop_back(), uvs.pop_back(), normals.pop_back();
+  }
+  if (vertices.size() < 3) {
+    ++scene.droppedDegenerateFaces;
+    return;
+  }
+  const size_t m = vertices.size();
+  // A point repeated further apart (a polygon that touches itself) has no
+  // single outline: its fan's pieces are kept where they have area.
+  bool repeats = false;
+  for (size_t a = 0; a < m && !repeats; ++a)
+    for (size_t b = a + 1; b < m && !repeats; ++b)
+      repeats = scene.positions[vertices[a]] == scene.positions[vertices[b]];
 
-  if (n == 3) {
+  if (m == 3) {
     addPiece(scene, vertices, uvs, normals, {0, 1, 2}, material, object);
     return;
   }
-  if (n > 4) {
-    for (size_t k = 1; k + 1 < n; ++k)
+  if (m > 4 || repeats) {
+    for (size_t k = 1; k + 1 < m; ++k)
       addPiece(scene, vertices, uvs, normals, {0, static_cast<int>(k), static_cast<int>(k + 1)}, material, object);
     return;
   }
@@ -155,6 +176,52 @@ void addUvSphere(Scene &scene, const Vec3 &center, double radius, int segments, 
       addPolygon(scene, vertices, uvs, normals, material, object, flip);
     }
   }
+}
+
+void dropRepeatedFaces(Scene &scene) {
+  // A face's corners as positions, rotated to start at the smallest: two faces
+  // with the same key have the same corners in the same cyclic order, so they
+  // are the same surface facing the same way. (The reverse order is the other
+  // side of a thin sheet, which is a surface of its own and stays.)
+  using Key = std::vector<std::array<double, 3>>;
+  auto keyOf = [&](const Face &f) {
+    Key key;
+    for (int k = 0; k < f.vertexCount; ++k) {
+      const Vec3 &p = scene.positions[f.vertices[k]];
+      key.push_back({p.x, p.y, p.z});
+    }
+    std::rotate(key.begin(), std::min_element(key.begin(), key.end()), key.end());
+    return key;
+  };
+  std::map<Key, uint32_t> firstWithKey;
+  std::vector<int64_t> newIndex(scene.faces.size(), -1);
+  std::vector<Face> kept;
+  size_t repeated = 0;
+  std::string example;
+  for (size_t i = 0; i < scene.faces.size(); ++i) {
+    auto [at, inserted] = firstWithKey.emplace(keyOf(scene.faces[i]), uint32_t(kept.size()));
+    if (!inserted) {
+      if (repeated++ == 0) {
+        const Face &first = kept[at->second];
+        example = "object '" + scene.objects[scene.faces[i].object].name + "' repeats a face of '" +
+                  scene.objects[first.object].name + "'";
+      }
+      continue;
+    }
+    newIndex[i] = int64_t(kept.size());
+    kept.push_back(scene.faces[i]);
+  }
+  if (repeated == 0) return;
+  std::vector<Triangle> triangles;
+  for (Triangle t : scene.triangles)
+    if (newIndex[t.face] >= 0) t.face = uint32_t(newIndex[t.face]), triangles.push_back(t);
+  scene.faces = std::move(kept);
+  scene.triangles = std::move(triangles);
+  // Two copies of one surface fight over every ray that reaches them (each
+  // shadows the other at distance 0), and a solver never settles their
+  // radiosities; one copy is the surface the model means.
+  scene.warnings.push_back("dropped " + std::to_string(repeated) + " face" + (repeated == 1 ? "" : "s") +
+                           " that repeat another face exactly (same corners, facing the same way; " + example + ")");
 }
 
 CameraSettings frameBounds(const Scene &scene) {
