@@ -13,8 +13,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <optional>
 #include <random>
 #include <stdexcept>
 
@@ -166,6 +169,58 @@ void writePng(const Image &image, const std::string &path, double exposureStops)
   writePngBytes(bytes, image.width, image.height, path);
 }
 
+ExrDataWindow checkExrHeaders(const std::string &path) {
+  const InputLocation where{path};
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(where, "cannot open the file");
+  const std::string data{std::istreambuf_iterator<char>(in), {}};
+  size_t at = 8;  // magic number, version and flags
+  if (data.size() < at) throw InputError(where, "not an OpenEXR file: shorter than its 8-byte preamble");
+  const bool multipart = uint8_t(data[5]) & 0x10;  // bit 12 of the version field: several headers, then an empty one
+  // A null-terminated name or type, at most 255 characters (31 without the long-names flag; OpenEXR checks that).
+  auto word = [&](const char *what) {
+    const size_t end = data.find('\0', at);
+    if (end == std::string::npos || end - at > 255)
+      throw InputError(where, fmt::format("the OpenEXR header is truncated or corrupt (an attribute {} at byte {} "
+                                          "does not end)",
+                                          what, at));
+    std::string text = data.substr(at, end - at);
+    at = end + 1;
+    return text;
+  };
+  std::optional<ExrDataWindow> window;
+  for (int part = 0;; ++part) {
+    if (part > 0 && (!multipart || (at < data.size() && data[at] == '\0'))) break;
+    for (;;) {
+      std::string name = word("name");
+      if (name.empty()) break;  // the end of this header
+      const std::string type = word("type");
+      if (data.size() - at < 4)
+        throw InputError(where, "the OpenEXR header is truncated (attribute '" + name + "' has no size)");
+      int32_t size;
+      std::memcpy(&size, data.data() + at, 4);  // little-endian, as every host radiant runs on
+      at += 4;
+      if (size < 0 || size_t(size) > data.size() - at)
+        throw InputError(where,
+                         fmt::format("the OpenEXR header is corrupt: attribute '{}' claims {} bytes and the file "
+                                     "has {} left",
+                                     name, size, data.size() - at));
+      if (part == 0 && name == "dataWindow" && type == "box2i" && size == 16) {
+        int32_t box[4];
+        std::memcpy(box, data.data() + at, sizeof box);
+        window = ExrDataWindow{box[0], box[1], box[2], box[3]};
+      }
+      at += size_t(size);
+    }
+    if (!multipart) break;
+  }
+  if (!window) throw InputError(where, "the OpenEXR header has no dataWindow (a box2i attribute)");
+  if (window->width() < 1 || window->height() < 1)
+    throw InputError(where,
+                     fmt::format("the OpenEXR data window is empty ({} x {})", window->width(), window->height()));
+  return *window;
+}
+
 static Image readPfm(const std::string &path) {
   InputLocation where{path};
   std::ifstream in(path, std::ios::binary);
@@ -200,6 +255,9 @@ static Image readPfm(const std::string &path) {
 
 static Image readExr(const std::string &path) {
   InputLocation where{path};
+  // Before OpenEXR allocates for what the headers claim (checkExrHeaders).
+  const ExrDataWindow claimed = checkExrHeaders(path);
+  if (claimed.width() * claimed.height() > (1LL << 28)) throw InputError(where, "EXR data window is too large");
   try {
     Imf::InputFile file(path.c_str());
     Imath::Box2i window = file.header().dataWindow();

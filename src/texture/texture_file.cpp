@@ -27,6 +27,7 @@
 #include <fstream>
 #include <memory>
 
+#include "io/image.h"
 #include "texture/texture.h"
 #include "util/error.h"
 
@@ -119,8 +120,11 @@ Decoded readStb(const InputLocation &where, TextureEncoding encoding) {
 
 /// OpenEXR, linear already: R, G, B, or Y copied to all three. Like
 /// io/image.cpp's reader, but with the texture limit checked on the header's
-/// data window before the pixels are allocated, and one open of the file.
+/// data window (read by checkExrHeaders) before anything is allocated for it.
 Decoded readExr(const InputLocation &where) {
+  // The size, before OpenEXR allocates for what the headers claim (io/image.h).
+  const ExrDataWindow claimed = checkExrHeaders(where.file);
+  checkSize(where, claimed.width(), claimed.height());
   try {
     Imf::InputFile file(where.file.c_str());
     const Imath::Box2i window = file.header().dataWindow();
