@@ -25,6 +25,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <memory>
 
 #include "io/image.h"
@@ -109,6 +110,43 @@ struct Decoded {
   std::vector<float> texels;  ///< 3 per texel, row 0 at the top
 };
 
+/// Refuses a JPEG with a Huffman table of more than 256 codes. stb_image
+/// before 2.28 (Debian 12 ships 2.27) trusts the table's 16 code counts,
+/// whose sum can reach 4080, and writes that many code lengths and symbols
+/// into arrays of 257 and 256 (stbi__build_huffman, stbi__process_marker):
+/// a heap overflow from a 700-byte file. Walks every marker segment, those
+/// between progressive scans too, before stb_image sees the file.
+void checkJpegHuffmanTables(const InputLocation &where) {
+  std::ifstream in(where.file, std::ios::binary);
+  const std::string data{std::istreambuf_iterator<char>(in), {}};
+  auto byte = [&](size_t at) { return at < data.size() ? static_cast<unsigned char>(data[at]) : 0u; };
+  size_t at = 2;  // after SOI
+  while (at + 4 <= data.size()) {
+    if (byte(at) != 0xFF) {  // entropy-coded data: skip to the next marker (not a stuffed FF 00 or an RSTn)
+      ++at;
+      continue;
+    }
+    const unsigned marker = byte(at + 1);
+    if (marker == 0xFF || marker == 0x00 || (marker >= 0xD0 && marker <= 0xD7) || marker == 0x01) {
+      ++at;
+      continue;
+    }
+    if (marker == 0xD9) return;  // EOI
+    const size_t length = size_t(byte(at + 2)) << 8 | byte(at + 3);
+    const size_t end = std::min(data.size(), at + 2 + length);
+    if (marker == 0xC4)  // DHT: one or more tables, each a class/id byte, 16 counts, the symbols
+      for (size_t table = at + 4; table + 17 <= end;) {
+        size_t codes = 0;
+        for (size_t i = 1; i <= 16; ++i) codes += byte(table + i);
+        if (codes > 256)
+          throw InputError(where,
+                           "corrupt JPEG: a Huffman table declares " + std::to_string(codes) + " codes (at most 256)");
+        table += 17 + codes;
+      }
+    at = std::max(end, at + 2);
+  }
+}
+
 Decoded readStb(const InputLocation &where, TextureEncoding encoding) {
   int width = 0, height = 0, channels = 0;
   if (!stbi_info(where.file.c_str(), &width, &height, &channels))
@@ -179,8 +217,11 @@ Texture Texture::load(const std::string &path, TextureEncoding encoding, Texture
     throw InputError(where, "the file is empty (expected a PNG, JPEG or OpenEXR image)");
   Decoded image;
   switch (sniffFormat(where)) {
-    case FileFormat::Png:
     case FileFormat::Jpeg:
+      checkJpegHuffmanTables(where);
+      image = readStb(where, encoding);
+      break;
+    case FileFormat::Png:
       image = readStb(where, encoding);
       break;
     case FileFormat::Exr:
