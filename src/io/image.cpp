@@ -235,6 +235,14 @@ static Image readPfm(const std::string &path) {
     throw InputError(where, "PFM size " + std::to_string(width) + "x" + std::to_string(height) + " is out of range");
   in.get();
   int channels = magic == "PF" ? 3 : 1;
+  // PFM is uncompressed: a file shorter than its header says is refused
+  // before the pixels are allocated (a 20-byte header could claim 3 GB).
+  const std::streamoff pixelsStart = in.tellg();
+  in.seekg(0, std::ios::end);
+  const std::streamoff fileSize = in.tellg();
+  in.seekg(pixelsStart);
+  if (!in || fileSize - pixelsStart < static_cast<std::streamoff>(width * height * channels * sizeof(float)))
+    throw InputError(where, "truncated PFM pixel data");
   std::vector<float> raw(size_t(width) * height * channels);
   in.read(reinterpret_cast<char *>(raw.data()), std::streamsize(raw.size() * sizeof(float)));
   if (!in) throw InputError(where, "truncated PFM pixel data");
