@@ -133,17 +133,27 @@ void checkJpegHuffmanTables(const InputLocation &where) {
     }
     if (marker == 0xD9) return;  // EOI
     const size_t length = size_t(byte(at + 2)) << 8 | byte(at + 3);
-    const size_t end = std::min(data.size(), at + 2 + length);
-    if (marker == 0xC4)  // DHT: one or more tables, each a class/id byte, 16 counts, the symbols
-      for (size_t table = at + 4; table + 17 <= end;) {
+    if (marker == 0xC4) {
+      // DHT: tables of a class/id byte, 16 counts and the symbols, read as
+      // stb_image reads them: while the declared length is not used up, even
+      // past it (a DHT that claims 3 bytes still has a 17-byte table read),
+      // and on from where the last table ends. Past the end of the file stb
+      // reads zeros, as byte() does.
+      long remaining = long(length) - 2;
+      size_t table = at + 4;
+      while (remaining > 0) {
         size_t codes = 0;
         for (size_t i = 1; i <= 16; ++i) codes += byte(table + i);
         if (codes > 256)
           throw InputError(where,
                            "corrupt JPEG: a Huffman table declares " + std::to_string(codes) + " codes (at most 256)");
         table += 17 + codes;
+        remaining -= long(17 + codes);
       }
-    at = std::max(end, at + 2);
+      at = table;
+      continue;
+    }
+    at += 2 + length;  // stb_image skips a segment by its length
   }
 }
 
