@@ -171,19 +171,22 @@ void writePng(const Image &image, const std::string &path, double exposureStops)
 
 ExrDataWindow checkExrHeaders(const std::string &path) {
   const InputLocation where{path};
+  auto refuse = [&](const std::string &why) {
+    return InputError(where, "cannot read OpenEXR image: " + why);  // the wording of readExr's other refusals
+  };
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(where, "cannot open the file");
   const std::string data{std::istreambuf_iterator<char>(in), {}};
-  size_t at = 8;  // magic number, version and flags
-  if (data.size() < at) throw InputError(where, "not an OpenEXR file: shorter than its 8-byte preamble");
+  if (data.size() < 8 || data.compare(0, 4, "\x76\x2f\x31\x01") != 0)
+    throw refuse("not an OpenEXR file (it does not start with OpenEXR's signature)");
+  size_t at = 8;                                   // signature, version and flags
   const bool multipart = uint8_t(data[5]) & 0x10;  // bit 12 of the version field: several headers, then an empty one
   // A null-terminated name or type, at most 255 characters (31 without the long-names flag; OpenEXR checks that).
   auto word = [&](const char *what) {
     const size_t end = data.find('\0', at);
     if (end == std::string::npos || end - at > 255)
-      throw InputError(where, fmt::format("the OpenEXR header is truncated or corrupt (an attribute {} at byte {} "
-                                          "does not end)",
-                                          what, at));
+      throw refuse(
+          fmt::format("the header is truncated or corrupt (an attribute {} at byte {} does not end)", what, at));
     std::string text = data.substr(at, end - at);
     at = end + 1;
     return text;
@@ -195,16 +198,13 @@ ExrDataWindow checkExrHeaders(const std::string &path) {
       std::string name = word("name");
       if (name.empty()) break;  // the end of this header
       const std::string type = word("type");
-      if (data.size() - at < 4)
-        throw InputError(where, "the OpenEXR header is truncated (attribute '" + name + "' has no size)");
+      if (data.size() - at < 4) throw refuse("the header is truncated (attribute '" + name + "' has no size)");
       int32_t size;
       std::memcpy(&size, data.data() + at, 4);  // little-endian, as every host radiant runs on
       at += 4;
       if (size < 0 || size_t(size) > data.size() - at)
-        throw InputError(where,
-                         fmt::format("the OpenEXR header is corrupt: attribute '{}' claims {} bytes and the file "
-                                     "has {} left",
-                                     name, size, data.size() - at));
+        throw refuse(fmt::format("the header is corrupt: attribute '{}' claims {} bytes and the file has {} left", name,
+                                 size, data.size() - at));
       if (part == 0 && name == "dataWindow" && type == "box2i" && size == 16) {
         int32_t box[4];
         std::memcpy(box, data.data() + at, sizeof box);
@@ -214,10 +214,9 @@ ExrDataWindow checkExrHeaders(const std::string &path) {
     }
     if (!multipart) break;
   }
-  if (!window) throw InputError(where, "the OpenEXR header has no dataWindow (a box2i attribute)");
+  if (!window) throw refuse("the header has no dataWindow (a box2i attribute)");
   if (window->width() < 1 || window->height() < 1)
-    throw InputError(where,
-                     fmt::format("the OpenEXR data window is empty ({} x {})", window->width(), window->height()));
+    throw refuse(fmt::format("the data window is empty ({} x {})", window->width(), window->height()));
   return *window;
 }
 
