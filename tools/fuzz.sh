@@ -111,18 +111,22 @@ for t in "${targets[@]}"; do
     -runs="$runs" -max_len="${max_len[$t]}" -timeout=10 -rss_limit_mb=2048 -print_funcs=0 "${dictionary[@]}" \
     -artifact_prefix="$artifacts/" "${inputs[@]}" >"$log" 2>&1 || true
   seconds=$(($(date +%s) - start))
-  # Fork mode's status lines: "#N: cov: … exec/s: E oom/timeout/crash: O/T/C time: …".
+  # Fork mode's status lines: "#N: cov: … exec/s E oom/timeout/crash: O/T/C time: …", and at
+  # the end "INFO: fuzzed for N iterations". The rate is the campaign's mean.
   last=$(grep -E '^#[0-9]+: cov:' "$log" | tail -1 || true)
-  executions=$(sed -nE 's/^#([0-9]+):.*/\1/p' <<<"$last")
-  rate=$(sed -nE 's/.*exec\/s: ([0-9]+).*/\1/p' <<<"$last")
+  executions=$(sed -nE 's/^INFO: fuzzed for ([0-9]+) iterations.*/\1/p' "$log" | tail -1)
+  [ -n "$executions" ] || executions=$(sed -nE 's/^#([0-9]+):.*/\1/p' <<<"$last")
+  rate=$([ -n "$executions" ] && echo $((executions / (seconds > 0 ? seconds : 1))) || true)
   IFS=/ read -r ooms timeouts crashes < <(sed -nE 's/.*oom\/timeout\/crash: ([0-9]+\/[0-9]+\/[0-9]+).*/\1/p' <<<"$last")
+  # New: no file with the same bytes among the findings and regression inputs
+  # (which are renamed for what they test once triaged).
   new=0
+  known=$(find "$findings" "tests/fuzz-regressions/$t" -type f -exec sha1sum {} + 2>/dev/null | cut -d' ' -f1)
   for file in "$artifacts"/*; do
     [ -f "$file" ] || continue
-    name=$(basename "$file")
-    [ -e "tests/fuzz-regressions/$t/$name" ] || [ -e "$findings/$name" ] && continue
+    grep -qx "$(sha1sum "$file" | cut -d' ' -f1)" <<<"$known" && continue
     mkdir -p "$findings"
-    cp "$file" "$findings/$name"
+    cp "$file" "$findings/$(basename "$file")"
     new=$((new + 1))
   done
   [ "$new" -gt 0 ] && status=1
