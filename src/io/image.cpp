@@ -279,16 +279,17 @@ static Image readExr(const std::string &path) {
     if (!hasRgb && !hasY) throw InputError(where, "EXR file has neither R, G, B nor Y channels");
     Imf::FrameBuffer frame;
     const size_t xStride = 3 * sizeof(float), yStride = xStride * image.width;
-    char *base =
-        reinterpret_cast<char *>(image.rgb.data()) - (size_t(window.min.x) * xStride + size_t(window.min.y) * yStride);
+    // OpenEXR addresses the buffer by absolute pixel position in the data window;
+    // Slice::Make shifts the pointer by its origin (a negative origin wrapped
+    // the size_t arithmetic this did by hand: undefined pointer overflow).
     const char *names[3] = {"R", "G", "B"};
     for (int c = 0; c < (hasRgb ? 3 : 1); ++c)
-      frame.insert(hasRgb ? names[c] : "Y", Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
+      frame.insert(hasRgb ? names[c] : "Y",
+                   Imf::Slice::Make(Imf::FLOAT, image.rgb.data() + c, window, xStride, yStride));
     if (channels.findChannel(kEmitterChannel)) {
       image.emitterFraction.assign(size_t(width) * height, 0.0f);
-      char *emitterBase = reinterpret_cast<char *>(image.emitterFraction.data()) -
-                          (size_t(window.min.x) + size_t(window.min.y) * image.width) * sizeof(float);
-      frame.insert(kEmitterChannel, Imf::Slice(Imf::FLOAT, emitterBase, sizeof(float), sizeof(float) * image.width));
+      frame.insert(kEmitterChannel, Imf::Slice::Make(Imf::FLOAT, image.emitterFraction.data(), window, sizeof(float),
+                                                     sizeof(float) * image.width));
     }
     if (const auto *quantity = file.header().findTypedAttribute<Imf::StringAttribute>(kQuantityAttribute))
       image.quantity = quantity->value();

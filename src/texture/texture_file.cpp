@@ -185,13 +185,14 @@ Decoded readExr(const InputLocation &where) {
       throw InputError(where, "OpenEXR image has neither R, G, B nor a Y channel");
     Decoded image{int(width), int(height), std::vector<float>(size_t(width) * height * 3)};
     const size_t xStride = 3 * sizeof(float), yStride = xStride * size_t(width);
-    // OpenEXR addresses the buffer by absolute pixel position in the data window.
-    char *base = reinterpret_cast<char *>(image.texels.data()) -
-                 (ptrdiff_t(window.min.x) * ptrdiff_t(xStride) + ptrdiff_t(window.min.y) * ptrdiff_t(yStride));
+    // OpenEXR addresses the buffer by absolute pixel position in the data window;
+    // Slice::Make shifts the pointer by its origin (by hand, a data window far
+    // from (0, 0) moved it below address 0: undefined pointer overflow).
     Imf::FrameBuffer frame;
     const char *names[3] = {"R", "G", "B"};
     for (int c = 0; c < (rgb ? 3 : 1); ++c)
-      frame.insert(rgb ? names[c] : "Y", Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
+      frame.insert(rgb ? names[c] : "Y",
+                   Imf::Slice::Make(Imf::FLOAT, image.texels.data() + c, window, xStride, yStride));
     file.setFrameBuffer(frame);
     file.readPixels(window.min.y, window.max.y);
     if (!rgb)
