@@ -28,9 +28,9 @@
 #include <iterator>
 #include <memory>
 
-#include "io/image.h"
 #include "texture/texture.h"
 #include "util/error.h"
+#include "util/exr_header.h"
 
 namespace radiant {
 
@@ -170,7 +170,7 @@ Decoded readStb(const InputLocation &where, TextureEncoding encoding) {
 /// io/image.cpp's reader, but with the texture limit checked on the header's
 /// data window (read by checkExrHeaders) before anything is allocated for it.
 Decoded readExr(const InputLocation &where) {
-  // The size, before OpenEXR allocates for what the headers claim (io/image.h).
+  // The size, before OpenEXR allocates for what the headers claim (util/exr_header.h).
   const ExrDataWindow claimed = checkExrHeaders(where.file);
   checkSize(where, claimed.width(), claimed.height());
   try {
