@@ -214,7 +214,8 @@ static Image readExr(const std::string &path) {
   InputLocation where{path};
   // Before OpenEXR allocates for what the headers claim (checkExrHeaders).
   const ExrDataWindow claimed = checkExrHeaders(path);
-  if (claimed.width() * claimed.height() > (1LL << 28)) throw InputError(where, "EXR data window is too large");
+  // Divided, not multiplied: each side may be up to 2^32, and the product overflow.
+  if (claimed.width() > (1LL << 28) / claimed.height()) throw InputError(where, "EXR data window is too large");
   try {
     Imf::InputFile file(path.c_str());
     Imath::Box2i window = file.header().dataWindow();

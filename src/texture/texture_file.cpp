@@ -61,10 +61,11 @@ FileFormat sniffFormat(const InputLocation &where) {
 void checkSize(const InputLocation &where, long long width, long long height) {
   if (width < 1 || height < 1)
     throw InputError(where, "image is empty (" + std::to_string(width) + "x" + std::to_string(height) + ")");
-  if (width * height > Texture::kMaxTexels)
-    throw InputError(where, "image is " + std::to_string(width) + "x" + std::to_string(height) + " = " +
-                                std::to_string(width * height) + " texels, more than the limit of " +
-                                std::to_string(Texture::kMaxTexels) + " (4096x4096); scale it down");
+  // Divided, not multiplied: an OpenEXR data window may be 2^32 on a side, and the product overflow.
+  if (width > Texture::kMaxTexels / height)
+    throw InputError(where, "image is " + std::to_string(width) + "x" + std::to_string(height) +
+                                " texels, more than the limit of " + std::to_string(Texture::kMaxTexels) +
+                                " (4096x4096); scale it down");
 }
 
 /// IEC 61966-2-1 decode, V ∈ [0, 1] → linear.
