@@ -121,7 +121,7 @@ for t in "${targets[@]}"; do
   # New: no file with the same bytes among the findings and regression inputs
   # (which are renamed for what they test once triaged).
   new=0
-  known=$(find "$findings" "tests/fuzz-regressions/$t" -type f -exec sha1sum {} + 2>/dev/null | cut -d' ' -f1)
+  known=$(find "$findings" "tests/fuzz-regressions/$t" -type f -exec sha1sum {} + 2>/dev/null | cut -d' ' -f1 || true)
   for file in "$artifacts"/*; do
     [ -f "$file" ] || continue
     grep -qx "$(sha1sum "$file" | cut -d' ' -f1)" <<<"$known" && continue
