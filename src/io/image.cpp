@@ -14,13 +14,17 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <optional>
 #include <random>
 #include <stdexcept>
 
 #include "util/atomic_file.h"
 #include "util/error.h"
+#include "util/exr_header.h"
 
 namespace radiant {
 
@@ -185,6 +189,14 @@ static Image readPfm(const std::string &path) {
     throw InputError(where, "PFM size " + std::to_string(width) + "x" + std::to_string(height) + " is out of range");
   in.get();
   int channels = magic == "PF" ? 3 : 1;
+  // PFM is uncompressed: a file shorter than its header says is refused
+  // before the pixels are allocated (a 20-byte header could claim 3 GB).
+  const std::streamoff pixelsStart = in.tellg();
+  in.seekg(0, std::ios::end);
+  const std::streamoff fileSize = in.tellg();
+  in.seekg(pixelsStart);
+  if (!in || fileSize - pixelsStart < static_cast<std::streamoff>(width * height * channels * sizeof(float)))
+    throw InputError(where, "truncated PFM pixel data");
   std::vector<float> raw(size_t(width) * height * channels);
   in.read(reinterpret_cast<char *>(raw.data()), std::streamsize(raw.size() * sizeof(float)));
   if (!in) throw InputError(where, "truncated PFM pixel data");
@@ -205,6 +217,10 @@ static Image readPfm(const std::string &path) {
 
 static Image readExr(const std::string &path) {
   InputLocation where{path};
+  // Before OpenEXR allocates for what the headers claim (checkExrHeaders).
+  const ExrDataWindow claimed = checkExrHeaders(path);
+  // Divided, not multiplied: each side may be up to 2^32, and the product overflow.
+  if (claimed.width() > (1LL << 28) / claimed.height()) throw InputError(where, "EXR data window is too large");
   try {
     Imf::InputFile file(path.c_str());
     Imath::Box2i window = file.header().dataWindow();
@@ -219,16 +235,17 @@ static Image readExr(const std::string &path) {
     if (!hasRgb && !hasY) throw InputError(where, "EXR file has neither R, G, B nor Y channels");
     Imf::FrameBuffer frame;
     const size_t xStride = 3 * sizeof(float), yStride = xStride * image.width;
-    char *base =
-        reinterpret_cast<char *>(image.rgb.data()) - (size_t(window.min.x) * xStride + size_t(window.min.y) * yStride);
+    // OpenEXR addresses the buffer by absolute pixel position in the data window;
+    // Slice::Make shifts the pointer by its origin (a negative origin wrapped
+    // the size_t arithmetic this did by hand: undefined pointer overflow).
     const char *names[3] = {"R", "G", "B"};
     for (int c = 0; c < (hasRgb ? 3 : 1); ++c)
-      frame.insert(hasRgb ? names[c] : "Y", Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
+      frame.insert(hasRgb ? names[c] : "Y",
+                   Imf::Slice::Make(Imf::FLOAT, image.rgb.data() + c, window, xStride, yStride));
     if (channels.findChannel(kEmitterChannel)) {
       image.emitterFraction.assign(size_t(width) * height, 0.0f);
-      char *emitterBase = reinterpret_cast<char *>(image.emitterFraction.data()) -
-                          (size_t(window.min.x) + size_t(window.min.y) * image.width) * sizeof(float);
-      frame.insert(kEmitterChannel, Imf::Slice(Imf::FLOAT, emitterBase, sizeof(float), sizeof(float) * image.width));
+      frame.insert(kEmitterChannel, Imf::Slice::Make(Imf::FLOAT, image.emitterFraction.data(), window, sizeof(float),
+                                                     sizeof(float) * image.width));
     }
     if (const auto *quantity = file.header().findTypedAttribute<Imf::StringAttribute>(kQuantityAttribute))
       image.quantity = quantity->value();

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -419,6 +421,21 @@ Solution getSolution(Reader &r, const Scene &scene) {
     for (int k = 0; k < e.vertexCount; ++k)
       if (e.nodes[k] >= m.nodes.size()) r.fail("an element refers to a node that does not exist");
   }
+  // Geometry: nodes are pooled by rounding their position (Solution::nodeValues), and
+  // hits are located in patches and trees by their corners; a NaN or an infinity there
+  // overflowed the rounding (fuzz finding).
+  for (const Vec3 &v : m.nodes)
+    if (!isFinite(v)) r.fail("a node's position is not finite");
+  for (const Patch &p : m.patches)
+    if (!isFinite(p.normal) || !std::isfinite(p.area) ||
+        !std::all_of(p.corners.begin(), p.corners.end(), [](const Vec3 &c) { return isFinite(c); }))
+      r.fail("a patch's corners, normal or area are not finite");
+  for (const MeshTreeNode &t : m.tree)
+    if (!std::isfinite(t.area) ||
+        !std::all_of(t.corners.begin(), t.corners.end(), [](const Vec3 &c) { return isFinite(c); }))
+      r.fail("a subdivision node's corners or area are not finite");
+  for (const Element &e : m.elements)
+    if (!isFinite(e.centre) || !std::isfinite(e.area)) r.fail("an element's centre or area is not finite");
   m.buildPatchLookup();
   s.nodeReflectance = s.nodeValues(s.reflectance);  // derived, not stored: only after the checks above
   return s;

@@ -25,10 +25,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <memory>
 
 #include "texture/texture.h"
 #include "util/error.h"
+#include "util/exr_header.h"
 
 namespace radiant {
 
@@ -59,10 +61,11 @@ FileFormat sniffFormat(const InputLocation &where) {
 void checkSize(const InputLocation &where, long long width, long long height) {
   if (width < 1 || height < 1)
     throw InputError(where, "image is empty (" + std::to_string(width) + "x" + std::to_string(height) + ")");
-  if (width * height > Texture::kMaxTexels)
-    throw InputError(where, "image is " + std::to_string(width) + "x" + std::to_string(height) + " = " +
-                                std::to_string(width * height) + " texels, more than the limit of " +
-                                std::to_string(Texture::kMaxTexels) + " (4096x4096); scale it down");
+  // Divided, not multiplied: an OpenEXR data window may be 2^32 on a side, and the product overflow.
+  if (width > Texture::kMaxTexels / height)
+    throw InputError(where, "image is " + std::to_string(width) + "x" + std::to_string(height) +
+                                " texels, more than the limit of " + std::to_string(Texture::kMaxTexels) +
+                                " (4096x4096); scale it down");
 }
 
 /// IEC 61966-2-1 decode, V ∈ [0, 1] → linear.
@@ -108,6 +111,53 @@ struct Decoded {
   std::vector<float> texels;  ///< 3 per texel, row 0 at the top
 };
 
+/// Refuses a JPEG with a Huffman table of more than 256 codes. stb_image
+/// before 2.28 (Debian 12 ships 2.27) trusts the table's 16 code counts,
+/// whose sum can reach 4080, and writes that many code lengths and symbols
+/// into arrays of 257 and 256 (stbi__build_huffman, stbi__process_marker):
+/// a heap overflow from a 700-byte file. Walks every marker segment, those
+/// between progressive scans too, before stb_image sees the file.
+void checkJpegHuffmanTables(const InputLocation &where) {
+  std::ifstream in(where.file, std::ios::binary);
+  const std::string data{std::istreambuf_iterator<char>(in), {}};
+  auto byte = [&](size_t at) { return at < data.size() ? static_cast<unsigned char>(data[at]) : 0u; };
+  size_t at = 2;  // after SOI
+  while (at + 4 <= data.size()) {
+    if (byte(at) != 0xFF) {  // entropy-coded data: skip to the next marker (not a stuffed FF 00 or an RSTn)
+      ++at;
+      continue;
+    }
+    const unsigned marker = byte(at + 1);
+    if (marker == 0xFF || marker == 0x00 || (marker >= 0xD0 && marker <= 0xD7) || marker == 0x01) {
+      ++at;
+      continue;
+    }
+    if (marker == 0xD9) return;  // EOI
+    const size_t length = size_t(byte(at + 2)) << 8 | byte(at + 3);
+    if (marker == 0xC4) {
+      // DHT: tables of a class/id byte, 16 counts and the symbols, read as
+      // stb_image reads them: while the declared length is not used up, even
+      // past it (a DHT that claims 3 bytes still has a 17-byte table read),
+      // and on from where the last table ends. Past the end of the file stb
+      // reads zeros, as byte() does.
+      long remaining = long(length) - 2;
+      size_t table = at + 4;
+      while (remaining > 0) {
+        size_t codes = 0;
+        for (size_t i = 1; i <= 16; ++i) codes += byte(table + i);
+        if (codes > 256)
+          throw InputError(where,
+                           "corrupt JPEG: a Huffman table declares " + std::to_string(codes) + " codes (at most 256)");
+        table += 17 + codes;
+        remaining -= long(17 + codes);
+      }
+      at = table;
+      continue;
+    }
+    at += 2 + length;  // stb_image skips a segment by its length
+  }
+}
+
 Decoded readStb(const InputLocation &where, TextureEncoding encoding) {
   int width = 0, height = 0, channels = 0;
   if (!stbi_info(where.file.c_str(), &width, &height, &channels))
@@ -119,8 +169,11 @@ Decoded readStb(const InputLocation &where, TextureEncoding encoding) {
 
 /// OpenEXR, linear already: R, G, B, or Y copied to all three. Like
 /// io/image.cpp's reader, but with the texture limit checked on the header's
-/// data window before the pixels are allocated, and one open of the file.
+/// data window (read by checkExrHeaders) before anything is allocated for it.
 Decoded readExr(const InputLocation &where) {
+  // The size, before OpenEXR allocates for what the headers claim (util/exr_header.h).
+  const ExrDataWindow claimed = checkExrHeaders(where.file);
+  checkSize(where, claimed.width(), claimed.height());
   try {
     Imf::InputFile file(where.file.c_str());
     const Imath::Box2i window = file.header().dataWindow();
@@ -133,13 +186,14 @@ Decoded readExr(const InputLocation &where) {
       throw InputError(where, "OpenEXR image has neither R, G, B nor a Y channel");
     Decoded image{int(width), int(height), std::vector<float>(size_t(width) * height * 3)};
     const size_t xStride = 3 * sizeof(float), yStride = xStride * size_t(width);
-    // OpenEXR addresses the buffer by absolute pixel position in the data window.
-    char *base = reinterpret_cast<char *>(image.texels.data()) -
-                 (ptrdiff_t(window.min.x) * ptrdiff_t(xStride) + ptrdiff_t(window.min.y) * ptrdiff_t(yStride));
+    // OpenEXR addresses the buffer by absolute pixel position in the data window;
+    // Slice::Make shifts the pointer by its origin (by hand, a data window far
+    // from (0, 0) moved it below address 0: undefined pointer overflow).
     Imf::FrameBuffer frame;
     const char *names[3] = {"R", "G", "B"};
     for (int c = 0; c < (rgb ? 3 : 1); ++c)
-      frame.insert(rgb ? names[c] : "Y", Imf::Slice(Imf::FLOAT, base + c * sizeof(float), xStride, yStride));
+      frame.insert(rgb ? names[c] : "Y",
+                   Imf::Slice::Make(Imf::FLOAT, image.texels.data() + c, window, xStride, yStride));
     file.setFrameBuffer(frame);
     file.readPixels(window.min.y, window.max.y);
     if (!rgb)
@@ -175,8 +229,11 @@ Texture Texture::load(const std::string &path, TextureEncoding encoding, Texture
     throw InputError(where, "the file is empty (expected a PNG, JPEG or OpenEXR image)");
   Decoded image;
   switch (sniffFormat(where)) {
-    case FileFormat::Png:
     case FileFormat::Jpeg:
+      checkJpegHuffmanTables(where);
+      image = readStb(where, encoding);
+      break;
+    case FileFormat::Png:
       image = readStb(where, encoding);
       break;
     case FileFormat::Exr:

@@ -142,7 +142,9 @@ std::string Parameters::choice(const std::string &name) const {
 void checkParameters(const ParameterTable &table, const ParameterValues &given, const std::string &owner,
                      const std::vector<std::pair<std::string, const ParameterTable *>> &others) {
   for (const auto &[name, value] : given.all()) {
-    auto declared = std::find_if(table.begin(), table.end(), [&](const ParameterSpec &s) { return s.name == name; });
+    // By init-capture: clang before 16 (the fuzz build's clang 14) cannot capture a structured binding.
+    auto declared =
+        std::find_if(table.begin(), table.end(), [&name = name](const ParameterSpec &s) { return s.name == name; });
     if (declared != table.end()) {
       parseParameter(*declared, value.text, value.origin);
       if (!declared->excludes.empty() && given.has(declared->excludes))

@@ -1,0 +1,25 @@
+// OpenEXR files checked before OpenEXR reads them (used by io/image.cpp's
+// readImage and texture/texture_file.cpp's Texture::load).
+#pragma once
+
+#include <string>
+
+namespace radiant {
+
+/// The data window of an OpenEXR file, inclusive (OpenEXR's Box2i).
+struct ExrDataWindow {
+  int minX = 0, minY = 0, maxX = 0, maxY = 0;
+  long long width() const { return static_cast<long long>(maxX) - minX + 1; }
+  long long height() const { return static_cast<long long>(maxY) - minY + 1; }
+};
+
+/// Walks an OpenEXR file's headers before OpenEXR opens it, and returns the
+/// first part's data window, so that a reader can refuse a size before
+/// OpenEXR allocates for it. OpenEXR 3.1 allocates whatever an attribute says
+/// it holds (up to 2 GB) before reading it, and a line-offset table for the
+/// whole data window: a 100-byte file could claim gigabytes. Throws
+/// InputError naming the file for an attribute larger than what is left of
+/// the file, a header that does not end, or no box2i dataWindow.
+ExrDataWindow checkExrHeaders(const std::string &path);
+
+}  // namespace radiant

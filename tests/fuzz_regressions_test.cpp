@@ -1,0 +1,77 @@
+// The fuzz targets' inputs as regression tests (docs/fuzzing.md): every file
+// of fuzz/corpus/<target>/ (the seeds) and tests/fuzz-regressions/<target>/
+// (inputs that once crashed, hung or ran out of memory, kept after their fix)
+// is fed through the same feed as the fuzz target (fuzz/fuzz_inputs.h), and
+// must be accepted or refused with an InputError that names the file. Any
+// other exception fails here; a crash or a sanitizer report fails the run
+// (CI runs this under ASan and UBSan too).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "fuzz_inputs.h"
+#include "util/error.h"
+
+namespace radiant {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<fs::path> filesIn(const fs::path &folder) {
+  std::vector<fs::path> files;
+  std::error_code error;
+  if (!fs::is_directory(folder, error)) return files;
+  for (const fs::directory_entry &entry : fs::directory_iterator(folder))
+    if (entry.is_regular_file() && entry.path().filename() != "README.md") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+class FuzzRegressions : public testing::TestWithParam<fuzz::FuzzTarget> {};
+
+/// Feeds one input; returns whether it was accepted, fails the test on anything but an InputError naming a file.
+bool acceptedOrRefused(const fuzz::FuzzTarget &target, const fs::path &file, const fuzz::ScratchFolder &folder) {
+  SCOPED_TRACE(file.string());
+  const std::vector<uint8_t> input = fuzz::readFileBytes(file.string());
+  try {
+    target.feed(input, folder.path());
+    return true;
+  } catch (const InputError &e) {
+    // The message must lead the user to the file at fault: one the feed
+    // wrote (the input, or a file it names in the scratch folder).
+    EXPECT_NE(std::string(e.what()).find(folder.path()), std::string::npos) << e.what();
+  } catch (const std::exception &e) {
+    ADD_FAILURE() << "not an InputError: " << e.what();
+  }
+  return false;
+}
+
+// The seeds are valid files of their format (docs/fuzzing.md): each one must
+// load, or the feed has drifted from the program (a fixture missing, the
+// solution's fingerprint not patched) and the fuzzer starts from nothing.
+TEST_P(FuzzRegressions, EverySeedIsAccepted) {
+  const fuzz::FuzzTarget &target = GetParam();
+  const std::vector<fs::path> seeds = filesIn(fs::path(RADIANT_SOURCE_DIR) / "fuzz" / "corpus" / target.name);
+  ASSERT_FALSE(seeds.empty()) << "no seed corpus in fuzz/corpus/" << target.name;
+  const fuzz::ScratchFolder folder(std::string("test-") + target.name);
+  for (const fs::path &seed : seeds) EXPECT_TRUE(acceptedOrRefused(target, seed, folder)) << seed << " was refused";
+}
+
+TEST_P(FuzzRegressions, EverySavedInputIsAcceptedOrRefusedWithAnInputError) {
+  const fuzz::FuzzTarget &target = GetParam();
+  const fuzz::ScratchFolder folder(std::string("test-") + target.name);
+  for (const fs::path &input : filesIn(fs::path(RADIANT_SOURCE_DIR) / "tests" / "fuzz-regressions" / target.name))
+    acceptedOrRefused(target, input, folder);
+}
+
+INSTANTIATE_TEST_SUITE_P(Targets, FuzzRegressions,
+                         testing::ValuesIn(fuzz::fuzzTargets().begin(), fuzz::fuzzTargets().end()),
+                         [](const testing::TestParamInfo<fuzz::FuzzTarget> &info) {
+                           return std::string(info.param.name);
+                         });
+
+}  // namespace
+}  // namespace radiant
