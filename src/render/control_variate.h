@@ -34,8 +34,9 @@
 // Szechtman, "Some new perspectives on the method of control variates",
 // 2002: a coefficient estimated from the same samples leaves an O(1/n) bias;
 // only a fixed one, or one from independent samples, keeps the estimator
-// unbiased). λ = 1 costs variance only where R's noise is not in P, and
-// there the scheduler buys more pairs.
+// unbiased). With weight 1, R lowers the variance only by what it explains
+// of P's (V_P − V_D per sample, below); where that is little, the scheduler
+// buys pairs and the image is `path`'s (the specular box: docs/multipass.md).
 //
 // The same per-sample statistics forecast the image's variance after more
 // samples of either kind,
