@@ -88,24 +88,17 @@ std::vector<ControlVariateImage::TileStats> ControlVariateImage::tileStats() con
   return tiles;
 }
 
-double ControlVariateImage::bestWeight(const TileStats &t, double nR, double nP) {
-  if (nP < 2 || nR < 1) return 0;  // no pairs (or too few to know D's variance): R alone
-  const double denominator = t.bias2 + t.varianceD / nP;
-  if (denominator <= 0) return 1;  // R and P agree exactly: either is the answer
-  return std::clamp((t.bias2 - t.covarianceRD / nR) / denominator, 0.0, 1.0);
-}
-
-double ControlVariateImage::mse(const TileStats &t, double nR, double nP, double weight) {
+double ControlVariateImage::mse(const TileStats &t, double nR, double nP) {
   if (nR < 1) return INFINITY;
-  double m = sqr(1 - weight) * t.bias2 + t.varianceR / nR + 2 * weight * t.covarianceRD / nR;
-  if (nP >= 1) m += sqr(weight) * t.varianceD / nP;
-  return std::max(0.0, m);
+  // Without pairs the image is R̄, biased by b; with them R̄ + D̄, unbiased.
+  if (nP < 1) return t.bias2 + t.varianceR / nR;
+  return std::max(0.0, (t.varianceR + 2 * t.covarianceRD) / nR + t.varianceD / nP);
 }
 
 double ControlVariateImage::meanMse(const std::vector<TileStats> &tiles, double nR, double nP) {
   double sum = 0, pixels = 0;
   for (const TileStats &t : tiles) {
-    sum += t.pixels * mse(t, nR, nP, bestWeight(t, nR, nP));
+    sum += t.pixels * mse(t, nR, nP);
     pixels += t.pixels;
   }
   return pixels > 0 ? sum / pixels : 0;
@@ -115,46 +108,19 @@ double ControlVariateImage::forecastMse(double moreControls, double morePairs) c
   return meanMse(tileStats(), controlSpp_ + moreControls + morePairs, pairedSpp_ + morePairs);
 }
 
-std::vector<double> ControlVariateImage::pixelWeights(const std::vector<TileStats> &tiles) const {
-  std::vector<double> tileWeight(tiles.size());
-  for (size_t t = 0; t < tiles.size(); ++t) tileWeight[t] = bestWeight(tiles[t], controlSpp_, pairedSpp_);
-  // Bilinear between tile centres: no seams where λ changes from tile to tile.
-  auto axis = [&](int i, int tiles, int &i0, int &i1, double &f) {
-    const double u = std::clamp((i + 0.5) / tileSize_ - 0.5, 0.0, double(tiles - 1));
-    i0 = int(u), i1 = std::min(i0 + 1, tiles - 1), f = u - i0;
-  };
-  std::vector<double> weights(size_t(width_) * height_);
-  for (int y = 0; y < height_; ++y) {
-    int y0, y1;
-    double fy;
-    axis(y, tilesY_, y0, y1, fy);
-    for (int x = 0; x < width_; ++x) {
-      int x0, x1;
-      double fx;
-      axis(x, tilesX_, x0, x1, fx);
-      auto at = [&](int tx, int ty) { return tileWeight[size_t(ty) * tilesX_ + tx]; };
-      weights[size_t(y) * width_ + x] =
-          (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x1, y0)) + fy * ((1 - fx) * at(x0, y1) + fx * at(x1, y1));
-    }
-  }
-  return weights;
-}
-
 Image ControlVariateImage::mean(ControlVariateStats *stats) const {
-  const std::vector<TileStats> tiles = tileStats();
-  const std::vector<double> weights = pixelWeights(tiles);
   Image image(width_, height_);
-  double weightSum = 0;
-  for (size_t p = 0; p < weights.size(); ++p) {
+  for (size_t p = 0; p < controls_.pixelCount(); ++p) {
+    // R̄ + D̄ with weight 1 on D̄ (control_variate.h: any other weight, or
+    // one estimated from these samples, biases the image).
     const PixelStats s = pixelStats(controls_, pairs_, p);
-    const Bands value = s.meanR + s.meanD * weights[p];
+    const Bands value = s.meanR + s.meanD;
     for (int b = 0; b < 3; ++b) image.rgb[3 * p + b] = float(value[b]);
-    weightSum += weights[p];
   }
   if (stats) {
+    const std::vector<TileStats> tiles = tileStats();
     double bias2 = 0, pixels = 0;
     for (const TileStats &t : tiles) bias2 += t.pixels * t.bias2, pixels += t.pixels;
-    stats->meanWeight = weights.empty() ? 0 : weightSum / weights.size();
     stats->biasRms = pixels > 0 ? std::sqrt(bias2 / pixels) : 0;
     stats->predictedRmse = std::sqrt(meanMse(tiles, controlSpp_, pairedSpp_));
   }
@@ -162,14 +128,13 @@ Image ControlVariateImage::mean(ControlVariateStats *stats) const {
 }
 
 Image ControlVariateImage::variance() const {
-  const std::vector<double> weights = pixelWeights(tileStats());
   Image image(width_, height_);
-  for (size_t p = 0; p < weights.size(); ++p) {
+  for (size_t p = 0; p < controls_.pixelCount(); ++p) {
     const PixelStats s = pixelStats(controls_, pairs_, p);
-    const double w = weights[p];
     for (int b = 0; b < 3; ++b) {
-      double v = s.nR >= 1 ? (s.varianceR[b] + 2 * w * s.covarianceRD[b]) / s.nR : 0;
-      if (s.nP >= 1) v += w * w * s.varianceD[b] / s.nP;
+      // Var(R̄ + D̄) = Var R̄ + Var D̄ + 2 Cov(R̄, D̄), Cov(R̄, D̄) = C_RD / n_R (the pairs' R are in R̄).
+      double v = s.nR >= 1 ? (s.varianceR[b] + 2 * s.covarianceRD[b]) / s.nR : 0;
+      if (s.nP >= 1) v += s.varianceD[b] / s.nP;
       image.rgb[3 * p + b] = float(std::max(0.0, v));
     }
   }

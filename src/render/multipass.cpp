@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <optional>
 #include <stdexcept>
 
 #include "render/bump_gather.h"
@@ -31,25 +30,20 @@ double secondsSince(Clock::time_point start) {
 /// Shots of the progressive solution before the preview: the first image
 /// comes within a second on the Cornell box.
 constexpr int kPreviewShots = 32;
-/// Knaus & Zwicker (2011): r²_{i+1} = r²_i (i + α)/(i + 1) keeps the caustic
-/// estimate consistent as passes accumulate; α = 2/3 as they recommend.
-constexpr double kRadiusAlpha = 2.0 / 3.0;
 /// Samples per pixel of the preview (they average the random choices of glass
 /// in view), of the high-frequency pass and of the first paired pass.
 constexpr int kPreviewSpp = 4, kHighFrequencySpp = 2, kFirstPairedSpp = 2;
-/// Samples per pixel that share one caustic map: all maps weigh the same in
-/// the accumulated image, as Knaus & Zwicker's convergence argument assumes.
-constexpr int kSamplesPerMap = 16;
 /// Paired samples get at least this share of the passes' time whatever the
-/// forecast says, so that the bias estimate keeps sharpening and the image
-/// converges (λ → 1 wherever the solution is wrong).
+/// forecast says: D's variance is estimated from the pairs, and a few pairs
+/// that missed the rare bright paths (light through the glass sphere seen
+/// after a bounce) would otherwise keep the forecast from asking for more.
 constexpr double kMinPairedShare = 0.1;
 /// Without a time budget the schedule must not depend on measured speed
 /// (the image would change from run to run): a control sample is taken to
 /// cost this fraction of a paired one (measured 0.5–0.55 on the Cornell boxes).
 constexpr double kControlCostRatio = 0.5;
 /// A pass is never planned shorter than this (seconds; samples-per-pixel
-/// units without a budget): a photon map and an image write per pass.
+/// units without a budget): an image write per pass.
 constexpr double kMinPassSeconds = 0.1, kMinPassUnits = 4;
 
 /// SplitMix64 of the seed and a stream: distinct runs never share numbers.
@@ -110,22 +104,15 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
   // The solution the later passes read.
   passStart = Clock::now();
   const Solution solution = solve(0);
-  double radius = options.photonRadius;
-  int photonPass = 0;
-  auto causticMap = [&](MultipassPass &p) {
-    CausticPhotonMap map(tracer, options.photonsPerPass, hashSeed(options.seed, 0xCA05ULL << 48 | uint64_t(photonPass)),
-                         radius);
-    ++photonPass;  // Knaus & Zwicker's i, from 1: the radius of the next map
-    radius = map.radius() * std::sqrt((photonPass + kRadiusAlpha) / (photonPass + 1.0));
-    p.causticPhotons = map.stored(), p.photonRadius = map.radius();
-    return map;
-  };
 
   // Pass 2: high frequency — kok (direct light and the brightest reflectors
-  // per pixel, the rest of the solution interpolated) with caustics.
+  // per pixel, the rest of the solution interpolated) with caustics from a
+  // photon map. A preview: no later pass uses the map (see passes 3…).
   pass = {2, "high frequency", kHighFrequencySpp};
   {
-    const CausticPhotonMap caustics = causticMap(pass);
+    const CausticPhotonMap caustics(tracer, options.photonsPerPass, hashSeed(options.seed, 0xCA05ULL << 48),
+                                    options.photonRadius);
+    pass.causticPhotons = caustics.stored(), pass.photonRadius = caustics.radius();
     RenderContext o = options.context;
     o.solution = &solution;
     o.caustics = &caustics;
@@ -141,12 +128,19 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
   // Passes 3…: path tracing that reads the solution after one non-specular
   // bounce (control samples R), and the same paths continued to their end
   // beside it (paired samples: P and R from the same numbers). The image is
-  // R̄ + λ D̄ (render/control_variate.h); each pass adds the kind of sample
-  // that the forecast says lowers the error more per second, so that the
-  // cheap, biased R carry the short budgets and the unbiased pairs the long ones.
+  // R̄ + D̄ (render/control_variate.h), unbiased; each pass adds the kind of
+  // sample that the forecast says lowers its variance more per second.
+  //
+  // No photon map here, in P or in R. In P, a progressive map's caustic is
+  // consistent but biased (blurred over its radius), and P must be `path`
+  // itself for E[image] = E[path]. In R, D would correct a map's bias only
+  // if every R sample had the same expectation, which a radius shrinking
+  // from map to map breaks (R̄ over all samples and the pairs' R would then
+  // expect different values); and without the map, the caustic a path finds
+  // through the glass before it reads the solution is the same in P and R,
+  // so it cancels in D and is averaged over all n_R samples of R̄ instead of
+  // the n_P pairs.
   ControlVariateImage combined(width, height);
-  std::optional<CausticPhotonMap> map;
-  int mapServed = kSamplesPerMap;  // samples per pixel rendered with the current map
   // Time (or, without a budget, cost units) spent on each kind, and per sample.
   double controlSpent = 0, pairedSpent = 0, controlCost = 0, pairedCost = 0;
   // The samples-per-pixel budget counts paired-sample equivalents: a control costs kControlCostRatio.
@@ -154,8 +148,11 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
   for (int index = 3; !spent(); ++index) {
     const double unitsLeft = options.samplesPerPixel - unitsSpent;
     if (unitsLeft < kControlCostRatio) break;
-    // What to render: pairs first (nothing is known of R's bias before), then
-    // by the forecast, with a floor on the pairs' share.
+    // What to render: pairs first (the image needs D̄, and nothing is known of
+    // D's variance before), then by the forecast, with a floor on the pairs'
+    // share. Each pass's kind and length are fixed before its samples are
+    // drawn, from image-wide variances and measured times only, so the
+    // schedule does not bias R̄ + D̄ (control_variate.h).
     const double spentSoFar = controlSpent + pairedSpent;
     const double pairCost = budgeted ? pairedCost : 1.0;
     const double controlCostNow =
@@ -190,24 +187,20 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
     passStart = Clock::now();
     pass = {index, paired ? "unbiased, the solution as control variate" : "low frequency, solution after 1 bounce",
             spp};
-    for (int chunk = 0, remaining = spp; remaining > 0; ++chunk) {
-      if (mapServed >= kSamplesPerMap) map.emplace(causticMap(pass)), mapServed = 0;
-      const int n = std::min(remaining, kSamplesPerMap - mapServed);
+    {
       RenderContext o = options.context;
       o.solution = &solution;
-      o.caustics = &*map;
       o.readSolutionDepth = 1;
       const auto renderer = createRenderer("path", tracer, o, forMethod(options.parameters, "path"));
       if (paired) {
         Film film(width, height, {"control"});
-        renderImage(camera, *renderer, driverFor(pass, n, chunk), film, progressFor(pass));
+        renderImage(camera, *renderer, driverFor(pass, spp, 0), film, progressFor(pass));
         combined.addPairs(film);
       } else {
         Film film(width, height);
-        renderImage(camera, *renderer, driverFor(pass, n, chunk), film, progressFor(pass));
+        renderImage(camera, *renderer, driverFor(pass, spp, 0), film, progressFor(pass));
         combined.addControls(film);
       }
-      mapServed += n, remaining -= n;
     }
     const double seconds = secondsSince(passStart);
     const double units = spp * (paired ? 1.0 : kControlCostRatio);
@@ -221,7 +214,6 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
     pass.unbiased = paired;
     pass.controlSamples = combined.controlSamples();
     pass.pairedSamples = combined.pairedSamples();
-    pass.unbiasedWeight = stats.meanWeight;
     pass.estimatedBias = stats.biasRms;
     output(pass, mean, combined.variance());
   }
@@ -234,8 +226,8 @@ std::string describePass(const MultipassPass &pass) {
           ? fmt::format(", {} caustic photons within {:.1f} mm", pass.causticPhotons, pass.photonRadius * 1e3)
           : std::string(),
       pass.index >= 3 ? fmt::format("; so far {} spp reading the solution, {} of them paired with the unbiased "
-                                    "path, which weighs {:.2f} (the solution's bias {:.3g} W/(sr m²) RMS)",
-                                    pass.controlSamples, pass.pairedSamples, pass.unbiasedWeight, pass.estimatedBias)
+                                    "path, whose difference corrects the solution's bias ({:.3g} W/(sr m²) RMS)",
+                                    pass.controlSamples, pass.pairedSamples, pass.estimatedBias)
                       : std::string());
 }
 

@@ -13,14 +13,11 @@
 //   pass 3… the solution as a control variate (render/control_variate.h):
 //           low-frequency passes trace paths that read the solution after one
 //           non-specular bounce (rushmeier-like, R); unbiased passes trace the
-//           same paths to their end (Russian roulette) beside R, from the same
-//           numbers. The image is R̄ + λ·(P − R)‾ with λ per tile estimated from
-//           the pairs, → 1 wherever the solution is wrong; each pass renders
-//           the kind the error forecast favours. Caustics come from photon
-//           maps at every non-specular vertex, a new map with a smaller radius
-//           every 16 samples per pixel (progressive photon mapping, Knaus &
-//           Zwicker 2011). All these samples accumulate, and the image
-//           converges to the true solution.
+//           same paths to their end beside R, from the same numbers (P, which
+//           is `path`'s estimator exactly). The image is R̄ + (P − R)‾:
+//           unbiased at every pass, E[image] = E[path], with the variance of
+//           R where the solution is right. Each pass renders the kind the
+//           error forecast favours. All these samples accumulate.
 #pragma once
 
 #include <functional>
@@ -41,8 +38,8 @@ struct MultipassOptions {
   int samplesPerPixel = 64;
   uint64_t seed = 1;
   int threads = 0;
-  size_t photonsPerPass = 200000;  ///< emitted per caustic map
-  double photonRadius = 0;         ///< first map's radius, metres; ≤ 0: 1 % of the scene's diagonal
+  size_t photonsPerPass = 200000;  ///< emitted for pass 2's caustic map
+  double photonRadius = 0;         ///< pass 2's map's radius, metres; ≤ 0: 1 % of the scene's diagonal
   RenderContext context;           ///< pixel spread (the passes set the solution and caustics)
   /// Values for multipassParameters(): max-depth (the path passes), sources,
   /// source-fraction (pass 2's kok), bump-orientations (passes 1 and 2).
@@ -58,9 +55,8 @@ struct MultipassPass {
   // Passes 3…, all passes so far together (render/control_variate.h):
   int controlSamples = 0;     ///< R samples per pixel (R-only passes and pairs)
   int pairedSamples = 0;      ///< paired samples per pixel
-  double unbiasedWeight = 0;  ///< λ, the weight of the pairs' correction, averaged over the pixels
   double estimatedBias = 0;   ///< RMS of R's bias as the pairs measure it, W·sr⁻¹·m⁻²
-  size_t causticPhotons = 0;  ///< stored in this pass's map
+  size_t causticPhotons = 0;  ///< stored in this pass's map (pass 2)
   double photonRadius = 0;
 };
 
