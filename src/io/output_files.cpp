@@ -36,7 +36,8 @@ void checkOutputFiles(const std::vector<OutputFile> &outputs, const std::vector<
     fs::path folder = fs::path(path).parent_path();
     if (folder.empty()) folder = ".";
     if (!fs::is_directory(folder, ec)) fail("the folder '" + folder.string() + "' does not exist");
-    if (::access(folder.c_str(), W_OK | X_OK) != 0) fail("no permission to write in the folder '" + folder.string() + "'");
+    if (::access(folder.c_str(), W_OK | X_OK) != 0)
+      fail("no permission to write in the folder '" + folder.string() + "'");
     const fs::path here = resolved(path);
     for (const std::string &input : inputs)
       if (!input.empty() && resolved(input) == here) fail("it is an input of this command and would be overwritten");

@@ -109,8 +109,9 @@ std::vector<FaceOverlap> findOverlappingFaces(const Scene &scene, size_t maxPair
       }
     if (found.size() >= maxPairs) break;
   }
-  std::sort(found.begin(), found.end(),
-            [](const FaceOverlap &a, const FaceOverlap &b) { return std::tie(a.first, a.second) < std::tie(b.first, b.second); });
+  std::sort(found.begin(), found.end(), [](const FaceOverlap &a, const FaceOverlap &b) {
+    return std::tie(a.first, a.second) < std::tie(b.first, b.second);
+  });
   return found;
 }
 
@@ -121,10 +122,11 @@ std::string describeOverlappingFaces(const Scene &scene, const std::vector<FaceO
     const uint32_t object = scene.faces[face].object;
     return object < scene.objects.size() ? scene.objects[object].name : std::string("?");
   };
-  return fmt::format("{} pair{} of faces overlap in one plane, facing the same way (the first: face {} of object "
-                     "'{}' and face {} of '{}', sharing {:.3g} m²)",
-                     overlaps.size(), overlaps.size() == 1 ? "" : "s", o.first, objectOf(o.first), o.second,
-                     objectOf(o.second), o.area);
+  return fmt::format(
+      "{} pair{} of faces overlap in one plane, facing the same way (the first: face {} of object "
+      "'{}' and face {} of '{}', sharing {:.3g} m²)",
+      overlaps.size(), overlaps.size() == 1 ? "" : "s", o.first, objectOf(o.first), o.second, objectOf(o.second),
+      o.area);
 }
 
 }  // namespace radiant
