@@ -220,7 +220,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
     if (!(scene.camera.verticalFovDegrees > 0 && scene.camera.verticalFovDegrees < 180))
       throw InputError(flag("--fov"), "the field of view must be strictly between 0 and 180 degrees");
     for (const Vec3 &point : {scene.camera.eye, scene.camera.target})
-      if (!(std::max({std::abs(point.x), std::abs(point.y), std::abs(point.z)}) <= kMaxCoordinateMetres))
+      if (!withinCoordinateRange(point))
         throw InputError(flag("--eye/--target"),
                          fmt::format("the camera is more than {:g} m from the origin; the ray tracer works in single "
                                      "precision and cannot trace rays from there",

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -22,6 +23,11 @@ namespace radiant {
 /// ray tracer (Embree) works in single precision, where 10⁹ m already has a
 /// resolution of 64 m, and refuses (aborts on) rays from beyond 1.8·10¹⁸.
 constexpr double kMaxCoordinateMetres = 1e9;
+/// Every coordinate of `p` (metres) within ±kMaxCoordinateMetres; false for NaN.
+inline bool withinCoordinateRange(const Vec3 &p) {
+  return std::abs(p.x) <= kMaxCoordinateMetres && std::abs(p.y) <= kMaxCoordinateMetres &&
+         std::abs(p.z) <= kMaxCoordinateMetres;
+}
 
 struct Face {
   int vertexCount = 3;

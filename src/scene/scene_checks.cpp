@@ -78,11 +78,6 @@ void detail::checkMaterial(const Material &m, const InputLocation &where, const 
 
 constexpr size_t kMaxReportedOverlaps = 10000;
 
-static bool withinCoordinateRange(const Vec3 &p) {
-  return std::abs(p.x) <= kMaxCoordinateMetres && std::abs(p.y) <= kMaxCoordinateMetres &&
-         std::abs(p.z) <= kMaxCoordinateMetres;
-}
-
 void detail::checkCamera(const CameraSettings &c, const InputLocation &where) {
   if (!isFinite(c.eye)) throw InputError(fieldLocation(where, "eye"), "camera eye is not finite");
   if (!isFinite(c.target)) throw InputError(fieldLocation(where, "target"), "camera target is not finite");
