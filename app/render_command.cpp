@@ -19,6 +19,7 @@
 #include "radiosity_options.h"
 #include "raytrace/ray_tracer.h"
 #include "render/driver.h"
+#include "render/multipass.h"
 #include "render/registry.h"
 #include "render/renderer.h"
 #include "render/spectral_film.h"
@@ -276,8 +277,10 @@ CommandRunner addRenderCommand(CLI::App &app) {
       job.seed = r.seed;
       job.threads = o->threads;
       job.solve = [&](int maxShots) {
-        return maxShots > 0 ? solvePreview(scene, tracer, o->radiosity, maxShots, r.seed, o->threads)
-                            : solveScene(scene, tracer, o->radiosity, r.seed, o->threads, o->quiet);
+        if (maxShots > 0) return solvePreview(scene, tracer, o->radiosity, maxShots, r.seed, o->threads);
+        RadiosityCommandOptions radiosity = o->radiosity;
+        radiosity.solver = multipassSolverName(radiosity.solver, r.timeBudgetSeconds);
+        return solveScene(scene, tracer, radiosity, r.seed, o->threads, o->quiet);
       };
       runImageMethod(method, parameters, job, command);
       return interruptRequested() ? interruptedExitStatus() : 0;

@@ -204,7 +204,7 @@ int main(int argc, char **argv) {
           options.threads = threads;
           auto solve = [&](int maxShots) {
             SolverOptions solverOptions;
-            solverOptions.solver = maxShots > 0 ? "progressive" : solverName;
+            solverOptions.solver = maxShots > 0 ? "progressive" : multipassSolverName(solverName, budget);
             solverOptions.seed = uint64_t(repeat);
             solverOptions.threads = threads;
             if (maxShots > 0) solverOptions.maxIterations = maxShots;

@@ -114,7 +114,7 @@ int main(int argc, char **argv) {
         options.threads = threads;
         auto solve = [&](int maxShots) {  // as the command line: the preview progressive, then --solver
           SolverOptions solver;
-          solver.solver = maxShots > 0 ? "progressive" : solverName;
+          solver.solver = maxShots > 0 ? "progressive" : multipassSolverName(solverName, budget);
           solver.seed = uint64_t(repeat);
           solver.threads = threads;
           if (maxShots > 0) solver.maxIterations = maxShots;
@@ -124,7 +124,8 @@ int main(int argc, char **argv) {
         const auto start = std::chrono::steady_clock::now();
         renderMultipass(tracer, camera, size, size, options, solve,
                         [&](const MultipassPass &pass, const Image &, const Image &) {
-                          if (pass.index == 2) run.fixedSeconds = secondsSince(start);
+                          if (pass.index <= 2)
+                            run.fixedSeconds = secondsSince(start);  // pass 2 is skipped under short budgets
                           run.passes = pass.index, run.lastPassSeconds = pass.seconds;
                           run.controlSamples = pass.controlSamples, run.pairedSamples = pass.pairedSamples;
                         });

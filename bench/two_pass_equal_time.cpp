@@ -194,7 +194,7 @@ int main(int argc, char **argv) {
             options.context = baseOptions;
             auto solve = [&](int maxShots) {  // the preview progressive, then --solver as the others
               SolverOptions solverOptions;
-              solverOptions.solver = maxShots > 0 ? "progressive" : solverName;
+              solverOptions.solver = maxShots > 0 ? "progressive" : multipassSolverName(solverName, budget);
               solverOptions.seed = uint64_t(repeat);
               solverOptions.threads = threads;
               if (maxShots > 0) solverOptions.maxIterations = maxShots;

@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include "film_metrics.h"
 #include "radiosity/form_factor.h"
@@ -396,6 +398,51 @@ TEST(Multipass, ABudgetNotSpentRunsToTheSampleCap) {
   EXPECT_GE(last, 4) << "the preview, pass 2, the first pairs and at least one planned pass";
   EXPECT_LE(units2, 2 * spp) << "--spp caps the work";
   EXPECT_GE(units2, 2 * spp - 1) << "--spp is used: the budget did not end the render";
+}
+
+// Under a short budget the previews must not eat it (multipass.cpp,
+// kOwnSolveBudget and kHighFrequencyBudget): measured against the preview's
+// time t₁, a budget under 10 t₁ keeps the preview's solution for the
+// control variate (no second solve) and skips pass 2; one under 25 × the
+// time spent after the solve skips pass 2 only. The preview is made to
+// take 0.2 s (a sleep, so that the outcome does not depend on the machine's
+// speed: the 8 × 8 image's passes take milliseconds); the assertions hold
+// unless a pass stalls for 0.1 s.
+TEST(Multipass, AShortBudgetSkipsWhatNoUnbiasedPassUses) {
+  Scene scene = loadScene(kSpecularBox);
+  RayTracer tracer(scene);
+  const int size = 8;
+  PinholeCamera camera(scene.camera, size, size);
+  const Solution preview = progressiveOn(tracer, 0.25)(32), full = progressiveOn(tracer, 0.25)(0);
+  struct Outcome {
+    std::vector<int> passes;
+    int fullSolves = 0;
+  };
+  auto run = [&](double budget) {
+    Outcome outcome;
+    MultipassOptions options;
+    options.timeBudgetSeconds = budget;
+    options.samplesPerPixel = 1 << 20;
+    options.photonsPerPass = 5000;
+    const MultipassSolver solve = [&](int maxShots) {
+      if (maxShots == 0) return ++outcome.fullSolves, full;
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      return preview;
+    };
+    renderMultipass(
+        tracer, camera, size, size, options, solve,
+        [&](const MultipassPass &pass, const Image &, const Image &) { outcome.passes.push_back(pass.index); });
+    return outcome;
+  };
+  const Outcome veryShort = run(1.0);  // 5 t₁
+  EXPECT_EQ(veryShort.fullSolves, 0) << "the preview's solution serves as the control variate";
+  ASSERT_GE(veryShort.passes.size(), 2u);
+  EXPECT_EQ(veryShort.passes[0], 1);
+  EXPECT_EQ(veryShort.passes[1], 3) << "no pass 2";
+  const Outcome shortish = run(3.0);  // 15 t₁: its own solve, still no pass 2 (it would need 25 × 0.2 s)
+  EXPECT_EQ(shortish.fullSolves, 1);
+  ASSERT_GE(shortish.passes.size(), 2u);
+  EXPECT_EQ(shortish.passes[1], 3) << "no pass 2";
 }
 
 // Converging (the second test): with a deliberately coarse first-pass

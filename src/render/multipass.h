@@ -69,6 +69,15 @@ using MultipassOutput = std::function<void(const MultipassPass &pass, const Imag
 /// A progress reporter for one pass (driver.h), or none.
 using MultipassProgress = std::function<ProgressCallback(const std::string &label)>;
 
+/// The solver of the solution that passes 3… read, for --solver `requested`:
+/// under a time budget "auto" is the stochastic solver, whose solve is a
+/// fraction of a second on the boxes (the specular box: 4652 elements) where
+/// "auto" elsewhere picks hierarchical-exact (27 701 elements, 8.5 s there).
+/// The solution is a control variate: its error raises the variance of the
+/// correction, never the image's bias, and a solve no short budget can pay
+/// for leaves it no samples.
+std::string multipassSolverName(const std::string &requested, double timeBudgetSeconds);
+
 /// One line for a person: what the pass did (samples, time, photons, the control variate's weight).
 std::string describePass(const MultipassPass &pass);
 
