@@ -254,7 +254,7 @@ int main(int argc, char **argv) {
           for (const ChannelComparison &channel : c.channels)
             m.biasPercent += 100 * std::abs(channel.meanRatio - 1) / 3;
           m.nonFinitePixels = c.nonFinitePixels;
-          std::fprintf(stderr, "[%gs] %-11s %d/%d: solve %.3f s, %d spp, total %.2f s, RMSE %.4g, bias %.2f%%%s\n",
+          std::fprintf(stderr, "[%gs] %-11s %d/%d: solve %.3f s, %d spp, total %.2f s, RMSE %.4g, bias %.3f%%%s\n",
                        budget, method.c_str(), repeat, repeats, m.solveSeconds, stats.samplesPerPixel, m.totalSeconds,
                        m.rmse, m.biasPercent, c.nonFinitePixels ? " (NON-FINITE PIXELS)" : "");
           runs.push_back(m);
