@@ -195,8 +195,13 @@ static Image readPfm(const std::string &path) {
   in.seekg(0, std::ios::end);
   const std::streamoff fileSize = in.tellg();
   in.seekg(pixelsStart);
-  if (!in || fileSize - pixelsStart < static_cast<std::streamoff>(width * height * channels * sizeof(float)))
-    throw InputError(where, "truncated PFM pixel data");
+  const long long pixelBytes = width * height * channels * static_cast<long long>(sizeof(float));
+  if (!in || fileSize - pixelsStart < pixelBytes)
+    throw InputError(where,
+                     fmt::format("truncated: the header says {}x{} {}, {} bytes of pixels, and the file holds {} "
+                                 "after its header",
+                                 width, height, channels == 3 ? "colour" : "grey", pixelBytes,
+                                 in ? static_cast<long long>(fileSize - pixelsStart) : 0LL));
   std::vector<float> raw(size_t(width) * height * channels);
   in.read(reinterpret_cast<char *>(raw.data()), std::streamsize(raw.size() * sizeof(float)));
   if (!in) throw InputError(where, "truncated PFM pixel data");

@@ -94,7 +94,9 @@ class Reader {
 
  private:
   void need(size_t n) {
-    if (data_.size() - offset_ < n) fail("the file is truncated");
+    if (data_.size() - offset_ < n)
+      fail(fmt::format("the file is truncated: it ends after {} bytes, and the value at byte {} needs {}", data_.size(),
+                       offset_, n));
   }
   std::string data_, path_;
   size_t offset_ = 0;
@@ -390,13 +392,19 @@ Solution getSolution(Reader &r, const Scene &scene) {
         (p.treeRoot < 0 &&
          p.elementCount != uint32_t(p.vertexCount == 4 ? p.divisionsU * p.divisionsV : p.divisionsU * p.divisionsU)))
       r.fail("a patch's subdivision is inconsistent");
-  // Trees: children inside the array and after their parent (no cycles), leaves name elements.
+  // Trees: children inside the array and after their parent (no cycles), leaves name elements,
+  // no deeper than a solver subdivides (the renderers' walks assume it, and would name no file).
+  std::vector<int> depth(m.tree.size(), 0);
   for (size_t n = 0; n < m.tree.size(); ++n) {
     const MeshTreeNode &t = m.tree[n];
     bool leaf = t.children[0] < 0;
     for (int32_t c : t.children)
       if ((leaf && c >= 0) || (!leaf && (c <= int32_t(n) || c >= int32_t(m.tree.size()))))
         r.fail("the subdivision tree is inconsistent");
+    if (!leaf)
+      for (int32_t c : t.children) depth[size_t(c)] = std::max(depth[size_t(c)], depth[n] + 1);
+    if (depth[n] > kMaxSolutionTreeDepth)
+      r.fail(fmt::format("a patch's subdivision tree is deeper than {} levels", kMaxSolutionTreeDepth));
     if (leaf && (t.element < 0 || t.element >= int32_t(m.elements.size())))
       r.fail("a subdivision leaf refers to an element that does not exist");
     if (t.patch >= m.patches.size() || (leaf && m.elements[t.element].patch != t.patch))

@@ -36,6 +36,11 @@ struct MeshOptions {
   const std::vector<FaceSplit> *faceSplits = nullptr;
 };
 
+/// The deepest subdivision tree a solution may hold: far more levels than any
+/// refinement makes (each halves the node's edges); the solution reader refuses
+/// a file with deeper trees, and the walks over trees rely on it.
+constexpr int kMaxSolutionTreeDepth = 64;
+
 /// A node of a patch's subdivision tree (hierarchical radiosity): four
 /// children, or a leaf that is an element. Quads split at their bilinear
 /// midpoints, triangles into four by their edge midpoints (children: the

@@ -39,7 +39,7 @@ struct SourcePiece {
 /// from the sum of its leaves' by round-off). Throws on a tree deeper than
 /// any the solver builds (a damaged solution file).
 void addTreePieces(const Solution &s, int32_t root, std::vector<SourcePiece> &pieces) {
-  constexpr int kMaxDepth = 64;
+  constexpr int kMaxDepth = kMaxSolutionTreeDepth;  // readSolution refuses deeper trees, naming the file
   const size_t first = pieces.size();
   // Pre-order with an explicit stack: (tree node, its piece's parent piece, depth).
   struct Pending {

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,6 +31,9 @@ struct MaterialFieldNames {
   const char *emission = "emission";
   const char *ior = "ior";
   const char *roughness = "roughness";
+  /// MTL: the line of each statement ("Kd" → 12), so that a bad value is
+  /// reported at its own line rather than at newmtl's.
+  std::map<std::string, int> lines;
 };
 void checkMaterial(const Material &material, const InputLocation &where, const MaterialFieldNames &names = {});
 
@@ -80,8 +84,8 @@ Bands parseBandValue(const JsonNode &material, const std::string &key, const Ban
 void checkSpectra(const Material &material, const InputLocation &where, const MaterialFieldNames &names = {});
 /// After loading a spectral scene: every material is grey or spectral, glossy
 /// sums ≤ 1 at every wavelength; then the bands get the spectra's sRGB colour.
-/// `materialLocations` locates the JSON materials (by index) for messages.
-void checkSpectralScene(Scene &scene, const std::vector<InputLocation> &materialLocations);
+/// Messages name each material where it was defined (Material::definedAt).
+void checkSpectralScene(Scene &scene);
 
 /// Loads every image the materials name into Scene::textures (each file once
 /// per encoding and wrap) and sets the materials' texture indices. A file that

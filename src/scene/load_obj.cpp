@@ -93,6 +93,7 @@ constexpr const char *kReferenceKinds[3] = {"vertex", "texture coordinate", "nor
 struct ObjScan {
   std::vector<std::string> faceMaterialName;  ///< usemtl in effect per face, in file order
   std::vector<std::string> mtlFiles;          ///< resolved paths of the mtllib files
+  std::vector<int> vertexLines;               ///< the line of each 'v', for the coordinate check
 };
 
 /// Checks every v/vt/vn/f/usemtl/mtllib line; throws with the OBJ line on the first bad one.
@@ -125,6 +126,7 @@ ObjScan scanObj(const std::string &objPath, const std::string &text) {
                   "'" + keyword + "' expects at least " + std::to_string(minimum) + " numbers, got " +
                       std::to_string(numbers));
       ++counts[keyword == "v" ? 0 : (keyword == "vt" ? 1 : 2)];
+      if (keyword == "v") scan.vertexLines.push_back(line);
     } else if (keyword == "f") {
       if (words.size() < 4)
         fileError(objPath, line, "a face needs at least 3 vertices, got " + std::to_string(words.size() - 1));
@@ -183,6 +185,7 @@ struct MtlSource {
   int newmtlLine = 0;
   int mapKdLine = 0;
   int bumpLine = 0;
+  std::map<std::string, int> lines;  ///< the line of each value statement (Kd, Ks, …) in this material
 };
 
 std::map<std::string, MtlSource> scanMtlFiles(const std::vector<std::string> &mtlFiles) {
@@ -212,6 +215,7 @@ std::map<std::string, MtlSource> scanMtlFiles(const std::vector<std::string> &mt
       } else if (keyword == "Kd" || keyword == "Ks" || keyword == "Ke" || keyword == "Ka" || keyword == "Tf" ||
                  keyword == "Kt" || keyword == "Ni" || keyword == "Ns" || keyword == "d" || keyword == "Tr" ||
                  keyword == "illum") {
+        if (current) current->lines[keyword] = line;
         if (words.size() > 1 && (words[1] == "spectral" || words[1] == "xyz")) continue;
         if (words.size() < 2) fileError(file, line, "'" + keyword + "' expects a value");
         for (size_t k = 1; k < words.size() && words[k][0] != '#'; ++k) {
@@ -297,7 +301,8 @@ Material convertMtlMaterial(const tinyobj::material_t &m, const MtlSource &sourc
   out.diffuse = toBands(m.diffuse);
   out.emission = toBands(m.emission);
   Bands specular = toBands(m.specular);
-  detail::MaterialFieldNames names{"Kd", "Ks", "Ke", "Ni", "Ns"};
+  out.definedAt = InputLocation{source.file, source.newmtlLine, 0, ""};
+  detail::MaterialFieldNames names{"Kd", "Ks", "Ke", "Ni", "Ns", source.lines};
   if (m.illum == 3 && specular.max() > 0) {
     out.kind = MaterialKind::Mirror;
     out.specular = specular;
@@ -336,7 +341,7 @@ Material convertMtlMaterial(const tinyobj::material_t &m, const MtlSource &sourc
     out.bumpScale = widen(m.bump_texopt.bump_multiplier);
   }
   conserveEnergy(out, source, warnings);
-  detail::checkMaterial(out, InputLocation{source.file, source.newmtlLine, 0, ""}, names);
+  detail::checkMaterial(out, out.definedAt, names);
   return out;
 }
 
@@ -413,8 +418,17 @@ void detail::appendObjFromScene(Scene &scene, const std::string &objPath, const 
   const uint32_t positionOffset = static_cast<uint32_t>(scene.positions.size());
   const int32_t normalOffset = static_cast<int32_t>(scene.normals.size());
   const int32_t uvOffset = static_cast<int32_t>(scene.uvs.size() / 2);
-  for (size_t i = 0; i + 2 < attrib.vertices.size(); i += 3)
+  for (size_t i = 0; i + 2 < attrib.vertices.size(); i += 3) {
     scene.positions.push_back(toWorld.point(toVec3(attrib.vertices, i)));
+    // validateScene checks the same, but could name only the file, not the line (nor the JSON entry placing it).
+    if (!withinCoordinateRange(scene.positions.back()))
+      fileError(objPath, i / 3 < scan.vertexLines.size() ? scan.vertexLines[i / 3] : 0,
+                fmt::format("this vertex lies at ({:g}, {:g}, {:g}) m in the scene{}, more than {:g} m from the "
+                            "origin; the ray tracer works in single precision",
+                            scene.positions.back().x, scene.positions.back().y, scene.positions.back().z,
+                            fileFrom.file == objPath ? "" : " (placed by " + fileFrom.toString() + ")",
+                            kMaxCoordinateMetres));
+  }
   for (size_t i = 0; i + 2 < attrib.normals.size(); i += 3)
     scene.normals.push_back(toWorld.normal(toVec3(attrib.normals, i)));
   for (size_t i = 0; i + 1 < attrib.texcoords.size(); i += 2) {

@@ -12,6 +12,8 @@
 
 #include "scene/load_scene.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
@@ -110,6 +112,7 @@ Material parseMaterial(const JsonNode &node, const std::string &name, const fs::
                  type, "material");
   Material m;
   m.name = name;
+  m.definedAt = node.location();
   detail::MaterialFieldNames names;
   auto value = [&](const char *key, const Bands &fallback, std::optional<SampledSpectrum> &spectrum) {
     return detail::parseBandValue(node, key, fallback, spectralScene, spectrum);
@@ -202,6 +205,18 @@ struct SceneParser {
   double metres = 1.0;
   std::map<std::string, std::string> objectPathByName;  // for duplicate names
 
+  /// Fails at `node` (the vertex, centre or radius that put them there) when a
+  /// vertex added since `first` lies where the ray tracer cannot work
+  /// (scene.h): validateScene checks the same, but could name only the file.
+  void checkPositions(size_t first, const JsonNode &node) const {
+    for (size_t i = first; i < scene.positions.size(); ++i)
+      if (!withinCoordinateRange(scene.positions[i]))
+        node.fail(
+            fmt::format("a vertex at ({:g}, {:g}, {:g}) m, after units and transform, is more than {:g} m "
+                        "from the origin; the ray tracer works in single precision",
+                        scene.positions[i].x, scene.positions[i].y, scene.positions[i].z, kMaxCoordinateMetres));
+  }
+
   uint32_t materialFor(const JsonNode &object) {
     if (!object.has("material")) return detail::defaultMaterialIndex(scene);
     JsonNode node = object.child("material");
@@ -260,7 +275,9 @@ struct SceneParser {
       double radius = radiusNode.asNumber();
       if (!(radius > 0)) radiusNode.fail("sphere radius " + radiusNode.value().dump() + " must be > 0");
       int segments = static_cast<int>(node.integer("segments", 48, 4, 1024));
+      const size_t first = scene.positions.size();
       detail::addUvSphere(scene, center, radius, segments, toWorld, material, object);
+      checkPositions(first, withinCoordinateRange(toWorld.point(center)) ? radiusNode : node.child("center"));
       return;
     }
     const size_t count = type == "quad" ? 4 : 3;
@@ -268,6 +285,7 @@ struct SceneParser {
     for (const JsonNode &vertex : node.child("vertices").asArray(count, count)) {
       vertices.push_back(static_cast<uint32_t>(scene.positions.size()));
       scene.positions.push_back(toWorld.point(vertex.asVec3()));
+      checkPositions(vertices.back(), vertex);
     }
     // Texture coordinates: given, or the unit square (triangle) in vertex order.
     static constexpr double kDefaultUv[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
@@ -331,7 +349,6 @@ struct SceneParser {
       scene.spectral = detail::parseSpectralSettings(root.child("spectral"));
     else if (root.has("materials") && detail::materialsGiveSpectra(root.child("materials")))
       scene.spectral = detail::defaultSpectralSettings();
-    std::vector<InputLocation> materialLocations;
     if (root.has("materials")) {
       JsonNode materials = root.child("materials");
       materials.expectObject();
@@ -340,7 +357,6 @@ struct SceneParser {
         JsonNode node = materials.child(it.key());
         if (it.key().empty()) node.fail("a material name cannot be empty");
         scene.materials.push_back(parseMaterial(node, it.key(), directory, scene.spectral.enabled()));
-        materialLocations.push_back(node.location());
       }
     }
     JsonNode objects = root.child("objects");
@@ -348,7 +364,7 @@ struct SceneParser {
     for (size_t i = 0; i < entries.size(); ++i) parseObject(entries[i], i);
 
     if (!hasCamera) scene.camera = detail::frameBounds(scene);
-    if (scene.spectral.enabled()) detail::checkSpectralScene(scene, materialLocations);
+    if (scene.spectral.enabled()) detail::checkSpectralScene(scene);
   }
 };
 

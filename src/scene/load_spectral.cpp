@@ -127,10 +127,13 @@ void checkSpectra(const Material &m, const InputLocation &where, const MaterialF
   check(m.spectra.emission, names.emission, HUGE_VAL, false, "");
 }
 
-void checkSpectralScene(Scene &scene, const std::vector<InputLocation> &materialLocations) {
+void checkSpectralScene(Scene &scene) {
+  auto definedAt = [&](const Material &m) {
+    return m.definedAt.file.empty() ? InputLocation{scene.sourceFile} : m.definedAt;
+  };
   for (size_t i = 0; i < scene.materials.size(); ++i) {
     Material &m = scene.materials[i];
-    InputLocation where = i < materialLocations.size() ? materialLocations[i] : InputLocation{scene.sourceFile};
+    const InputLocation where = definedAt(m);
     for (const Bands *b : {&m.diffuse, &m.specular, &m.emission})
       if (!m.spectra.any() && ((*b)[0] != (*b)[1] || (*b)[1] != (*b)[2]))
         throw InputError(where, "material '" + m.name +
@@ -164,7 +167,7 @@ void checkSpectralScene(Scene &scene, const std::vector<InputLocation> &material
       if (m.kind != MaterialKind::Glossy || !m.spectra.any()) continue;
       for (int b = 0; b < kBandCount; ++b)
         if (m.diffuse[b] + m.specular[b] > 1.0)
-          throw InputError(i < materialLocations.size() ? materialLocations[i] : InputLocation{scene.sourceFile},
+          throw InputError(definedAt(m),
                            fmt::format("material '{}': reflectance + specular = {} at {} nm exceeds 1: the surface "
                                        "would reflect more than it receives",
                                        m.name, m.diffuse[b] + m.specular[b], scene.spectral.wavelength(pass, b)));

@@ -63,6 +63,9 @@ struct Material {
   double uvScale[2] = {1, 1};  ///< -s u v / "texture_scale": texture coordinates are multiplied by it
   /// Where the maps were named (MTL file and line, or JSON path), for messages.
   InputLocation diffuseTextureFrom, bumpTextureFrom, normalTextureFrom;
+  /// Where the material was defined (its JSON path, or the MTL file and its
+  /// newmtl line): checks made after loading name it there.
+  InputLocation definedAt;
 
   bool isEmitter() const { return emission.max() > 0.0; }
   bool hasSurfaceDetail() const { return diffuseTextureIndex >= 0 || bumpTextureIndex >= 0 || normalTextureIndex >= 0; }

@@ -33,15 +33,22 @@ InputLocation fieldLocation(const InputLocation &where, const char *field) {
   return at;
 }
 
-void checkBands(const Bands &b, const InputLocation &where, const std::string &subject, const char *field,
-                double maximum, bool maximumExclusive, const char *whyMaximum) {
+/// fieldLocation, at the field's own MTL line when `names` knows it.
+InputLocation fieldLocation(const InputLocation &where, const char *field, const detail::MaterialFieldNames &names) {
+  InputLocation at = fieldLocation(where, field);
+  if (auto it = names.lines.find(field); it != names.lines.end() && at.jsonPath.empty()) at.line = it->second;
+  return at;
+}
+
+void checkBands(const Bands &b, const InputLocation &at, const std::string &subject, const char *field, double maximum,
+                bool maximumExclusive, const char *whyMaximum) {
   for (int i = 0; i < kBandCount; ++i) {
     std::string value = std::string(field) + " " + formatNumber(b[i]) + " (band " + bandName(i) + ")";
-    if (!std::isfinite(b[i])) throw InputError(fieldLocation(where, field), subject + value + " is not finite");
-    if (b[i] < 0) throw InputError(fieldLocation(where, field), subject + value + " is negative; expected ≥ 0");
+    if (!std::isfinite(b[i])) throw InputError(at, subject + value + " is not finite");
+    if (b[i] < 0) throw InputError(at, subject + value + " is negative; expected ≥ 0");
     if (maximumExclusive ? b[i] >= maximum : b[i] > maximum)
-      throw InputError(fieldLocation(where, field), subject + value + " must be " + (maximumExclusive ? "< " : "≤ ") +
-                                                        formatNumber(maximum) + whyMaximum);
+      throw InputError(
+          at, subject + value + " must be " + (maximumExclusive ? "< " : "≤ ") + formatNumber(maximum) + whyMaximum);
   }
 }
 
@@ -54,11 +61,11 @@ void detail::checkMaterial(const Material &m, const InputLocation &where, const 
   // matrix is diagonally dominant only while every ρ < 1).
   // With a texture, ρ(x) = Kd × texel is clamped below 1 where it is used
   // (raytrace/surface_detail.h), so Kd = 1, common in MTL files with map_Kd, is fine.
-  checkBands(m.diffuse, where, subject, names.diffuse, 1.0, m.diffuseTexture.empty(),
-             ": a diffuse reflectance of 1 or more makes radiosity diverge");
-  checkBands(m.specular, where, subject, names.specular, 1.0, false,
+  checkBands(m.diffuse, fieldLocation(where, names.diffuse, names), subject, names.diffuse, 1.0,
+             m.diffuseTexture.empty(), ": a diffuse reflectance of 1 or more makes radiosity diverge");
+  checkBands(m.specular, fieldLocation(where, names.specular, names), subject, names.specular, 1.0, false,
              ": a surface cannot reflect more than it receives");
-  checkBands(m.emission, where, subject, names.emission, kInfinity, false, "");
+  checkBands(m.emission, fieldLocation(where, names.emission, names), subject, names.emission, kInfinity, false, "");
   if (m.kind == MaterialKind::Glossy) {
     for (int i = 0; i < kBandCount; ++i)
       if (m.diffuse[i] + m.specular[i] > 1.0)
@@ -66,12 +73,13 @@ void detail::checkMaterial(const Material &m, const InputLocation &where, const 
                                     formatNumber(m.diffuse[i] + m.specular[i]) + " in band " + bandName(i) +
                                     " exceeds 1: the surface would reflect more than it receives");
     if (!(m.roughness > 0 && m.roughness <= 1))
-      throw InputError(fieldLocation(where, names.roughness), subject + names.roughness + " gives GGX α = " +
-                                                                  formatNumber(m.roughness) + "; expected α in (0, 1]");
+      throw InputError(
+          fieldLocation(where, names.roughness, names),
+          subject + names.roughness + " gives GGX α = " + formatNumber(m.roughness) + "; expected α in (0, 1]");
   }
   if (!std::isfinite(m.ior) || !(m.ior > 0))
-    throw InputError(fieldLocation(where, names.ior), subject + names.ior + " " + formatNumber(m.ior) +
-                                                          " is not a valid index of refraction; expected > 0");
+    throw InputError(fieldLocation(where, names.ior, names), subject + names.ior + " " + formatNumber(m.ior) +
+                                                                 " is not a valid index of refraction; expected > 0");
   if (!std::isfinite(m.bumpScale))
     throw InputError(fieldLocation(where, "bump_scale"), subject + "bump scale is not finite");
 }
@@ -134,7 +142,7 @@ void detail::checkRenderSettings(const RenderSettings &r, const InputLocation &w
 
 void validateScene(Scene &scene) {
   const InputLocation where{scene.sourceFile, 0, 0, ""};
-  for (const Material &m : scene.materials) detail::checkMaterial(m, where);
+  for (const Material &m : scene.materials) detail::checkMaterial(m, m.definedAt.file.empty() ? where : m.definedAt);
   for (size_t i = 0; i < scene.positions.size(); ++i)
     if (!isFinite(scene.positions[i]))
       throw InputError(where, "vertex position " + std::to_string(i) + " is not finite");

@@ -98,7 +98,14 @@ std::vector<float> decodeStb(const InputLocation &where, int width, int height, 
     pixels.reset(stbi_load_16(where.file.c_str(), &w, &h, &channels, 3));
   else
     pixels.reset(stbi_load(where.file.c_str(), &w, &h, &channels, 3));
-  if (!pixels) throw InputError(where, "cannot decode the image (corrupt or truncated?): " + stbReason());
+  if (!pixels) {
+    // The header's size and the file's length tell a truncated file from a corrupt one.
+    std::error_code error;
+    const auto bytes = std::filesystem::file_size(where.file, error);
+    throw InputError(where, "cannot decode the " + std::to_string(width) + "x" + std::to_string(height) +
+                                " image from the file's " + (error ? std::string("?") : std::to_string(bytes)) +
+                                " bytes (corrupt or truncated?): " + stbReason());
+  }
   if (w != width || h != height) throw InputError(where, "image size changed between header and pixels");
   const std::vector<float> table = codeTable(sizeof(Sample) == 2 ? 65535 : 255, encoding);
   std::vector<float> texels(size_t(width) * height * 3);
