@@ -181,7 +181,8 @@ CommandRunner addRenderCommand(CLI::App &app) {
     for (const std::string &path : outputs)
       if (!isSupportedImageExtension(path))
         throw InputError(flag("--output"), "'" + path + "': unknown image extension (expected .exr, .pfm or .png)");
-    if (!o->variancePath.empty() && !isSupportedImageExtension(o->variancePath))
+    // A variance is a linear quantity in (W·sr⁻¹·m⁻²)²: a display-mapped PNG of it would say nothing.
+    if (!o->variancePath.empty() && !isLinearImageExtension(o->variancePath))
       throw InputError(flag("--variance"), "'" + o->variancePath + "': expected a .exr or .pfm file");
     {
       std::vector<OutputFile> files;

@@ -157,6 +157,10 @@ expect "MTL negative Kd, at its line" "^radiant: error: .*m2/box\\.mtl:5: materi
 obj_case m3 '' '3s/.*/illum 4\nNi 0/'
 expect "MTL Ni 0, at its line" "^radiant: error: .*m3/box\\.mtl:4: material 'white': Ni 0 is not a valid index" \
   render m3/box.obj
+obj_case m7 '' '3s/.*/Ks -1 0 0/'
+expect "MTL negative Ks, at its line" "^radiant: error: .*m7/box\\.mtl:3: Ks = -1 0 0 is negative" render m7/box.obj
+obj_case m8 '' '3s/.*/Tf 0.5 -1 0.5\nillum 4\nNi 1.5/'
+expect "MTL negative Tf, at its line" "^radiant: error: .*m8/box\\.mtl:3: Tf = 0.5 -1 0.5 is negative" render m8/box.obj
 obj_case m4 '10s/.*/usemtl checker/' '9s/.*/map_Kd nosuch.png/'
 expect "MTL missing texture" "^radiant: error: .*m4/box\\.mtl:9: cannot open texture '.*nosuch\\.png' named by map_Kd" \
   render m4/box.obj
@@ -241,6 +245,8 @@ expect "--mesh-size -1" '^radiant: error: --mesh-size: must be in > 0, got -1' \
   "$radiant" solve "$furnace" -q --mesh-size -1
 expect "--range a,b" "^radiant: error: --range: expected MIN,MAX like 0,500, got 'a,b'" \
   "$radiant" tonemap a.exr -o m.png --falsecolor --range a,b
+expect "--variance v.png" "^radiant: error: --variance: 'v\\.png': expected a \\.exr or \\.pfm file" \
+  "$radiant" render "$cornell" "${small[@]}" --variance v.png
 expect "--diff x.exr" "^radiant: error: --diff: 'x\\.exr': expected a \\.png file" "$radiant" compare a.exr a.exr --diff x.exr
 expect "--spp x (CLI11)" 'spp' "$radiant" render "$cornell" --spp x -q
 

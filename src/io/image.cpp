@@ -55,6 +55,11 @@ bool isSupportedImageExtension(const std::string &path) {
   return ext == ".exr" || ext == ".pfm" || ext == ".png";
 }
 
+bool isLinearImageExtension(const std::string &path) {
+  std::string ext = extensionOf(path);
+  return ext == ".exr" || ext == ".pfm";
+}
+
 void writeImage(const Image &image, const std::string &path, double exposureStops) {
   std::string ext = extensionOf(path);
   if (ext == ".exr") return writeExr(image, path);

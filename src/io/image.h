@@ -67,5 +67,7 @@ double srgbEncode(double linear);
 
 /// True if the extension is one writeImage knows.
 bool isSupportedImageExtension(const std::string &path);
+/// True for the formats that keep linear values as they are (.exr, .pfm), not display-mapped (.png).
+bool isLinearImageExtension(const std::string &path);
 
 }  // namespace radiant

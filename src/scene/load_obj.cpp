@@ -303,6 +303,17 @@ Material convertMtlMaterial(const tinyobj::material_t &m, const MtlSource &sourc
   Bands specular = toBands(m.specular);
   out.definedAt = InputLocation{source.file, source.newmtlLine, 0, ""};
   detail::MaterialFieldNames names{"Kd", "Ks", "Ke", "Ni", "Ns", source.lines};
+  // A negative Ks or Tf would otherwise choose the material's kind silently
+  // (no positive component: Lambertian, or a clear dielectric).
+  for (const char *keyword : {"Ks", "Tf"}) {
+    const Bands value = toBands(keyword[0] == 'K' ? m.specular : m.transmittance);
+    const auto line = source.lines.find(keyword);
+    if (value.min() < 0)
+      fileError(source.file, line != source.lines.end() ? line->second : source.newmtlLine,
+                std::string(keyword) + " = " + bandsText(value) +
+                    " is negative: a surface cannot reflect or transmit "
+                    "less than nothing");
+  }
   if (m.illum == 3 && specular.max() > 0) {
     out.kind = MaterialKind::Mirror;
     out.specular = specular;
