@@ -80,15 +80,22 @@ void reportDisplayMapping(const DisplayMapping &mapping, bool describe) {
 }
 
 void writeRenderOutputs(Image &image, const std::vector<std::string> &outputs, const DisplaySettings &display,
-                        bool describeDisplay, const RayTracer &tracer, const PinholeCamera &camera, bool quiet) {
+                        bool describeDisplay, const RayTracer &tracer, const PinholeCamera &camera, bool quiet,
+                        std::vector<float> *coverage) {
   bool png = false, exr = false;
   for (const std::string &path : outputs) {
     png = png || isPng(path);
     exr = exr || lowerExtension(path) == ".exr";
   }
   if (image.quantity.empty()) image.quantity = "radiance";
-  if (exr || (png && display.toneOperator == "max-reflected"))
-    image.emitterFraction = emitterCoverage(tracer, camera, image.width, image.height);
+  if (exr || (png && display.toneOperator == "max-reflected")) {
+    if (!coverage)
+      image.emitterFraction = emitterCoverage(tracer, camera, image.width, image.height);
+    else {
+      if (coverage->empty()) *coverage = emitterCoverage(tracer, camera, image.width, image.height);
+      image.emitterFraction = *coverage;
+    }
+  }
   std::optional<DisplayMapping> mapping;
   if (png) {
     mapping.emplace(image, display);

@@ -41,8 +41,11 @@ DisplaySettings renderDisplaySettings(const CLI::App &app, const DisplayCommandO
 void reportDisplayMapping(const DisplayMapping &mapping, bool describe);
 
 /// render's outputs: EXR and PFM get the linear radiance (the EXR with the
-/// emitter coverage channel), PNG the display mapping.
+/// emitter coverage channel), PNG the display mapping. `coverage`, when
+/// given, caches the emitter coverage between calls for the same camera
+/// (one ray per pixel: traced once, not once per pass).
 void writeRenderOutputs(Image &image, const std::vector<std::string> &outputs, const DisplaySettings &display,
-                        bool describeDisplay, const RayTracer &tracer, const PinholeCamera &camera, bool quiet);
+                        bool describeDisplay, const RayTracer &tracer, const PinholeCamera &camera, bool quiet,
+                        std::vector<float> *coverage = nullptr);
 
 }  // namespace radiant

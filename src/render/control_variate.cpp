@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "util/math.h"
 
@@ -29,6 +30,19 @@ void ControlVariateImage::addPairs(const PairedFilm &pairs) {
     controls_.samples[p] += pairs.samples[p];
   }
   if (pairs.pixelCount()) controlSpp_ += int(pairs.samples[0]), pairedSpp_ += int(pairs.samples[0]);
+}
+
+void ControlVariateImage::addPairs(const Film &film) {
+  const FilmChannel *c = film.channel("control");
+  if (!c) throw std::logic_error("a paired film needs the channel 'control'");
+  for (size_t p = 0; p < film.pixelCount(); ++p) {
+    pairs_.sumControl[p] += c->sum[p], pairs_.sumControlSquares[p] += c->sumSquares[p];
+    pairs_.sumDifference[p] += c->sumDifference[p], pairs_.sumDifferenceSquares[p] += c->sumDifferenceSquares[p];
+    pairs_.sumProducts[p] += c->sumProducts[p], pairs_.samples[p] += film.samples[p];
+    controls_.sum[p] += c->sum[p], controls_.sumSquares[p] += c->sumSquares[p];
+    controls_.samples[p] += film.samples[p];
+  }
+  if (film.pixelCount()) controlSpp_ += int(film.samples[0]), pairedSpp_ += int(film.samples[0]);
 }
 
 namespace {

@@ -71,8 +71,9 @@ class ControlVariateImage {
   void addControls(const Film &controls);
   /// A paired round: its R join the controls.
   void addPairs(const PairedFilm &pairs);
-  /// The same from a film whose channel "control" holds R (Renderer::channels).
-  void addPairs(const Film &film) { addPairs(PairedFilm(film, "control")); }
+  /// The same from a film whose channel "control" holds R (Renderer::channels),
+  /// read in place.
+  void addPairs(const Film &film);
 
   /// The combined image R̄ + D̄ (R̄ alone before any pair) and the variance of each pixel's estimate.
   Image mean(ControlVariateStats *stats = nullptr) const;

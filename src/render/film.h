@@ -3,6 +3,7 @@
 // pixel it falls in.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -54,6 +55,17 @@ struct Film {
   }
 
   size_t pixelCount() const { return size_t(width) * height; }
+  /// No samples again, keeping the memory: a film reused pass after pass
+  /// (multipass) is not allocated, zeroed by the kernel page by page and
+  /// freed every pass (35–50 ms a pass at 256²).
+  void clear() {
+    std::fill(sum.begin(), sum.end(), Bands(0.0));
+    std::fill(sumSquares.begin(), sumSquares.end(), Bands(0.0));
+    std::fill(samples.begin(), samples.end(), 0u);
+    for (FilmChannel &c : channels)
+      for (std::vector<Bands> *v : {&c.sum, &c.sumSquares, &c.sumDifference, &c.sumDifferenceSquares, &c.sumProducts})
+        std::fill(v->begin(), v->end(), Bands(0.0));
+  }
   /// One sample: its radiance and, when the film has channels, their values in the film's order.
   void add(size_t pixel, const Bands &radiance, const Bands *channelValues = nullptr) {
     sum[pixel] += radiance;

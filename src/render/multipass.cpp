@@ -157,6 +157,8 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
   // so it cancels in D and is averaged over all n_R samples of R̄ instead of
   // the n_P pairs.
   ControlVariateImage combined(width, height);
+  // One film of each kind, cleared for every pass rather than allocated anew.
+  Film pairedFilm(width, height, {"control"}), controlFilm(width, height);
   // Time (or, without a budget, cost units) spent on each kind, and per sample.
   double controlSpent = 0, pairedSpent = 0, controlCost = 0, pairedCost = 0;
   // The samples-per-pixel budget counts paired-sample equivalents: a control costs kControlCostRatio.
@@ -208,15 +210,13 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
       o.solution = &solution;
       o.readSolutionDepth = 1;
       const auto renderer = createRenderer("path", tracer, o, forMethod(options.parameters, "path"));
-      if (paired) {
-        Film film(width, height, {"control"});
-        renderImage(camera, *renderer, driverFor(pass, spp, 0), film, progressFor(pass));
+      Film &film = paired ? pairedFilm : controlFilm;
+      film.clear();
+      renderImage(camera, *renderer, driverFor(pass, spp, 0), film, progressFor(pass));
+      if (paired)
         combined.addPairs(film);
-      } else {
-        Film film(width, height);
-        renderImage(camera, *renderer, driverFor(pass, spp, 0), film, progressFor(pass));
+      else
         combined.addControls(film);
-      }
     }
     const double seconds = secondsSince(passStart);
     const double units = spp * (paired ? 1.0 : kControlCostRatio);
