@@ -6,6 +6,7 @@
 // other exception fails here; a crash or a sanitizer report fails the run
 // (CI runs this under ASan and UBSan too).
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "fuzz_inputs.h"
+#include "io/image.h"
 #include "util/error.h"
 
 namespace radiant {
@@ -65,6 +67,30 @@ TEST_P(FuzzRegressions, EverySavedInputIsAcceptedOrRefusedWithAnInputError) {
   const fuzz::ScratchFolder folder(std::string("test-") + target.name);
   for (const fs::path &input : filesIn(fs::path(RADIANT_SOURCE_DIR) / "tests" / "fuzz-regressions" / target.name))
     acceptedOrRefused(target, input, folder);
+}
+
+/// The process's peak resident memory so far, bytes (Linux: ru_maxrss in KiB).
+double peakResidentBytes() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return double(usage.ru_maxrss) * 1024;
+}
+
+// No huge allocation for bad input: a 500-byte OpenEXR file whose header
+// claims 313 345 × 513 pixels (within readImage's limit of 2^28) made readExr
+// allocate the whole image, 1.9 GB, before OpenEXR found the pixels missing.
+// Read in strips, it fails at the first one. The peak resident memory must
+// not grow by more than 256 MB (the vector was value-initialised, so every
+// page of it was touched and counted); it fails with the old reader.
+TEST(FuzzRegressions, AnExrClaimingMorePixelsThanItHoldsAllocatesLittle) {
+  const std::string file =
+      std::string(RADIANT_SOURCE_DIR) + "/tests/fuzz-regressions/image/oom-exr-claims-313345x513-within-pixel-limit";
+  const double before = peakResidentBytes();
+  const fuzz::ScratchFolder folder("test-exr-strips");
+  const std::string exr = folder.path() + "/claims-160M-pixels.exr";
+  fs::copy_file(file, exr, fs::copy_options::overwrite_existing);
+  EXPECT_THROW(readImage(exr), InputError);
+  EXPECT_LT(peakResidentBytes() - before, 256.0 * (1 << 20)) << "bytes more at the peak";
 }
 
 INSTANTIATE_TEST_SUITE_P(Targets, FuzzRegressions,

@@ -238,35 +238,52 @@ static Image readExr(const std::string &path) {
     long long height = static_cast<long long>(window.max.y) - window.min.y + 1;
     if (width < 1 || height < 1 || width * height > (1LL << 28))
       throw InputError(where, "EXR data window is empty or too large");
-    Image image(static_cast<int>(width), static_cast<int>(height));
+    // A row is the least OpenEXR reads at once: wider than 2^20 pixels (no
+    // panorama is), one row of a file that holds nothing would cost 12 MB and more.
+    if (width > (1LL << 20))
+      throw InputError(where, fmt::format("EXR data window is {} pixels wide; at most 1048576 are read", width));
+    Image image;
+    image.width = static_cast<int>(width), image.height = static_cast<int>(height);
     const Imf::ChannelList &channels = file.header().channels();
     bool hasRgb = channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
     bool hasY = channels.findChannel("Y");
     if (!hasRgb && !hasY) throw InputError(where, "EXR file has neither R, G, B nor Y channels");
-    Imf::FrameBuffer frame;
-    const size_t xStride = 3 * sizeof(float), yStride = xStride * image.width;
-    // OpenEXR addresses the buffer by absolute pixel position in the data window;
-    // Slice::Make shifts the pointer by its origin (a negative origin wrapped
-    // the size_t arithmetic this did by hand: undefined pointer overflow).
-    const char *names[3] = {"R", "G", "B"};
-    for (int c = 0; c < (hasRgb ? 3 : 1); ++c)
-      frame.insert(hasRgb ? names[c] : "Y",
-                   Imf::Slice::Make(Imf::FLOAT, image.rgb.data() + c, window, xStride, yStride));
-    if (channels.findChannel(kEmitterChannel)) {
-      image.emitterFraction.assign(size_t(width) * height, 0.0f);
-      frame.insert(kEmitterChannel, Imf::Slice::Make(Imf::FLOAT, image.emitterFraction.data(), window, sizeof(float),
-                                                     sizeof(float) * image.width));
-    }
+    const bool hasEmitter = channels.findChannel(kEmitterChannel) != nullptr;
     if (const auto *quantity = file.header().findTypedAttribute<Imf::StringAttribute>(kQuantityAttribute))
       image.quantity = quantity->value();
     if (const auto *samples = file.header().findTypedAttribute<Imf::IntAttribute>(kSamplesAttribute))
       image.samplesPerPixel = samples->value();
     if (const auto *interrupted = file.header().findTypedAttribute<Imf::IntAttribute>(kInterruptedAttribute))
       image.interrupted = interrupted->value() != 0;
-    file.setFrameBuffer(frame);
-    file.readPixels(window.min.y, window.max.y);
-    if (!hasRgb)  // grey image: luminance into all three channels
-      for (size_t i = 0; i < image.rgb.size(); i += 3) image.rgb[i + 1] = image.rgb[i + 2] = image.rgb[i];
+    // Read in strips of about 2^20 pixels, the image growing only by what was
+    // decoded: a file whose header claims 2^28 pixels but holds a few bytes
+    // fails at its first strip, having allocated 12 MB, not 3 GB (issue 17's
+    // fuzzing: no huge allocation for bad input).
+    const int stripRows = static_cast<int>(std::clamp<long long>((1LL << 20) / width, 1, height));
+    std::vector<float> strip(size_t(stripRows) * width * 3), stripEmitter(hasEmitter ? size_t(stripRows) * width : 0);
+    const size_t xStride = 3 * sizeof(float), yStride = xStride * size_t(width);
+    const char *names[3] = {"R", "G", "B"};
+    for (long long y0 = window.min.y; y0 <= window.max.y; y0 += stripRows) {
+      const int y1 = static_cast<int>(std::min<long long>(window.max.y, y0 + stripRows - 1));
+      // OpenEXR addresses the buffer by absolute pixel position; Slice::Make
+      // shifts the pointer by the strip's origin (a negative origin wrapped
+      // the size_t arithmetic this once did by hand: undefined pointer overflow).
+      const Imath::Box2i rows(Imath::V2i(window.min.x, static_cast<int>(y0)), Imath::V2i(window.max.x, y1));
+      Imf::FrameBuffer frame;
+      for (int c = 0; c < (hasRgb ? 3 : 1); ++c)
+        frame.insert(hasRgb ? names[c] : "Y", Imf::Slice::Make(Imf::FLOAT, strip.data() + c, rows, xStride, yStride));
+      if (hasEmitter)
+        frame.insert(kEmitterChannel,
+                     Imf::Slice::Make(Imf::FLOAT, stripEmitter.data(), rows, sizeof(float), sizeof(float) * width));
+      file.setFrameBuffer(frame);
+      file.readPixels(static_cast<int>(y0), y1);
+      const size_t pixels = size_t(y1 - y0 + 1) * width;
+      if (!hasRgb)  // grey image: luminance into all three channels
+        for (size_t i = 0; i < 3 * pixels; i += 3) strip[i + 1] = strip[i + 2] = strip[i];
+      image.rgb.insert(image.rgb.end(), strip.begin(), strip.begin() + 3 * pixels);
+      if (hasEmitter)
+        image.emitterFraction.insert(image.emitterFraction.end(), stripEmitter.begin(), stripEmitter.begin() + pixels);
+    }
     return image;
   } catch (const InputError &) {
     throw;
