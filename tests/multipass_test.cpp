@@ -405,9 +405,9 @@ TEST(Multipass, ABudgetNotSpentRunsToTheSampleCap) {
 // time t₁, a budget under 10 t₁ keeps the preview's solution for the
 // control variate (no second solve) and skips pass 2; one under 25 × the
 // time spent after the solve skips pass 2 only. The preview is made to
-// take 0.2 s (a sleep, so that the outcome does not depend on the machine's
+// take 0.15 s (a sleep, so that the outcome does not depend on the machine's
 // speed: the 8 × 8 image's passes take milliseconds); the assertions hold
-// unless a pass stalls for 0.1 s.
+// unless pass 1's 8 × 8 render stalls for 0.15 s (3 s would then be under 10 t₁).
 TEST(Multipass, AShortBudgetSkipsWhatNoUnbiasedPassUses) {
   Scene scene = loadScene(kSpecularBox);
   RayTracer tracer(scene);
@@ -426,7 +426,7 @@ TEST(Multipass, AShortBudgetSkipsWhatNoUnbiasedPassUses) {
     options.photonsPerPass = 5000;
     const MultipassSolver solve = [&](int maxShots) {
       if (maxShots == 0) return ++outcome.fullSolves, full;
-      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      std::this_thread::sleep_for(std::chrono::milliseconds(150));
       return preview;
     };
     renderMultipass(
@@ -434,12 +434,12 @@ TEST(Multipass, AShortBudgetSkipsWhatNoUnbiasedPassUses) {
         [&](const MultipassPass &pass, const Image &, const Image &) { outcome.passes.push_back(pass.index); });
     return outcome;
   };
-  const Outcome veryShort = run(1.0);  // 5 t₁
+  const Outcome veryShort = run(1.0);  // under 7 t₁
   EXPECT_EQ(veryShort.fullSolves, 0) << "the preview's solution serves as the control variate";
   ASSERT_GE(veryShort.passes.size(), 2u);
   EXPECT_EQ(veryShort.passes[0], 1);
   EXPECT_EQ(veryShort.passes[1], 3) << "no pass 2";
-  const Outcome shortish = run(3.0);  // 15 t₁: its own solve, still no pass 2 (it would need 25 × 0.2 s)
+  const Outcome shortish = run(3.0);  // 20 t₁: its own solve, still no pass 2 (it would need 25 × 0.15 s)
   EXPECT_EQ(shortish.fullSolves, 1);
   ASSERT_GE(shortish.passes.size(), 2u);
   EXPECT_EQ(shortish.passes[1], 3) << "no pass 2";
