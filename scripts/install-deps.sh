@@ -6,10 +6,16 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config git
   libembree-dev libtbb-dev libopenexr-dev libstb-dev libpng-dev libtinyobjloader-dev
-  nlohmann-json3-dev libcli11-dev libfmt-dev
+  nlohmann-json3-dev libcli11-dev libfmt-dev libtinygltf-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   clang-format-14
+  chromium
 )
+# The browser viewer (viewer/) and its tests run on Node.js: Debian's, unless
+# the machine already has a node and npm of its own (e.g. NodeSource's, whose
+# nodejs package conflicts with Debian's npm).
+command -v node >/dev/null || packages+=(nodejs)
+command -v npm >/dev/null || packages+=(npm)
 
 missing=()
 for p in "${packages[@]}"; do
@@ -18,15 +24,25 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install-deps: all ${#packages[@]} packages already installed"
-  exit 0
+else
+  sudo=""
+  if [ "$(id -u)" -ne 0 ]; then
+    command -v sudo >/dev/null || { echo "install-deps: run as root or install sudo" >&2; exit 1; }
+    sudo="sudo"
+  fi
+  echo "install-deps: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -q
+  $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-sudo=""
-if [ "$(id -u)" -ne 0 ]; then
-  command -v sudo >/dev/null || { echo "install-deps: run as root or install sudo" >&2; exit 1; }
-  sudo="sudo"
+# The viewer's npm packages (three.js; the browser tests' puppeteer-core and
+# gltf-validator), exactly as viewer/package-lock.json pins them, into
+# viewer/node_modules; skipped when that lock file is what was installed last.
+viewer="$(dirname "$0")/../viewer"
+if [ -f "$viewer/package-lock.json" ] &&
+  ! cmp -s "$viewer/package-lock.json" "$viewer/node_modules/.package-lock.json.installed"; then
+  echo "install-deps: npm ci in viewer/"
+  (cd "$viewer" && npm ci --no-audit --no-fund --loglevel=error)
+  cp "$viewer/package-lock.json" "$viewer/node_modules/.package-lock.json.installed"
 fi
-echo "install-deps: installing ${missing[*]}"
-export DEBIAN_FRONTEND=noninteractive
-$sudo apt-get update -q
-$sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
