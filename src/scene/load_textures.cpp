@@ -30,8 +30,10 @@ void detail::loadTextures(Scene &scene) {
       throw InputError(m.diffuseTextureFrom, "material '" + m.name +
                                                  "': a texture is an sRGB image, and this scene is spectral: "
                                                  "spectral textures are not supported (docs/spectral.md)");
-    m.diffuseTextureIndex =
-        load(m.diffuseTexture, TextureEncoding::Colour, m.textureWrap, m.diffuseTextureFrom, "texture");
+    // An image embedded in a glTF file was decoded by its loader already (diffuseTexture names it for messages).
+    if (m.diffuseTextureIndex < 0)
+      m.diffuseTextureIndex =
+          load(m.diffuseTexture, TextureEncoding::Colour, m.textureWrap, m.diffuseTextureFrom, "texture");
     m.bumpTextureIndex = load(m.bumpTexture, TextureEncoding::Data, m.textureWrap, m.bumpTextureFrom, "bump map");
     m.normalTextureIndex =
         load(m.normalTexture, TextureEncoding::Data, m.textureWrap, m.normalTextureFrom, "normal map");

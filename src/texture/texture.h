@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "util/error.h"
 #include "util/spectrum.h"
 
 namespace radiant {
@@ -41,6 +42,11 @@ class Texture {
   /// or Y channels, linear). Throws InputError naming the file for a missing,
   /// unreadable, corrupt, empty or too large file.
   static Texture load(const std::string &path, TextureEncoding encoding, TextureWrap wrap = TextureWrap::Repeat);
+  /// A PNG or JPEG image held in memory (one embedded in a glTF file), decoded
+  /// as load() decodes a file; errors are InputErrors at `source` (the file
+  /// and JSON path of the image).
+  static Texture decode(std::span<const unsigned char> bytes, const InputLocation &source, TextureEncoding encoding,
+                        TextureWrap wrap = TextureWrap::Repeat);
 
   /// A texture from linear texels, `width` × `height`, row 0 at the top (v = 1).
   Texture(int width, int height, std::vector<Bands> texels, TextureWrap wrap = TextureWrap::Repeat);

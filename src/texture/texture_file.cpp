@@ -26,7 +26,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <memory>
+#include <span>
+#include <vector>
 
 #include "texture/texture.h"
 #include "util/error.h"
@@ -44,17 +47,22 @@ std::string stbReason() {
   return std::string("stb_image: ") + (reason ? reason : "unknown error");
 }
 
+/// The format from the first bytes (fewer than 8 are fine).
+FileFormat sniffFormat(std::span<const unsigned char> head) {
+  constexpr std::array<unsigned char, 8> png{0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  const size_t got = head.size();
+  if (got >= 8 && std::equal(png.begin(), png.end(), head.begin())) return FileFormat::Png;
+  if (got >= 3 && head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF) return FileFormat::Jpeg;
+  if (got >= 4 && head[0] == 0x76 && head[1] == 0x2F && head[2] == 0x31 && head[3] == 0x01) return FileFormat::Exr;
+  return FileFormat::Unknown;
+}
+
 FileFormat sniffFormat(const InputLocation &where) {
   std::array<unsigned char, 8> head{};
   std::ifstream in(where.file, std::ios::binary);
   if (!in.is_open()) throw InputError(where, "cannot open the file (permissions?)");
   in.read(reinterpret_cast<char *>(head.data()), head.size());
-  const auto got = in.gcount();
-  constexpr std::array<unsigned char, 8> png{0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
-  if (got >= 8 && head == png) return FileFormat::Png;
-  if (got >= 3 && head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF) return FileFormat::Jpeg;
-  if (got >= 4 && head[0] == 0x76 && head[1] == 0x2F && head[2] == 0x31 && head[3] == 0x01) return FileFormat::Exr;
-  return FileFormat::Unknown;
+  return sniffFormat(std::span<const unsigned char>(head.data(), size_t(in.gcount())));
 }
 
 /// Refuses a texture above the limit before its pixels are allocated.
@@ -91,20 +99,20 @@ struct StbFree {
 /// Decodes with stb_image, asking for three channels: stb copies grey to all
 /// three and drops alpha, which is what the texture wants.
 template <typename Sample>
-std::vector<float> decodeStb(const InputLocation &where, int width, int height, TextureEncoding encoding) {
+std::vector<float> decodeStb(const InputLocation &where, std::span<const unsigned char> bytes, int width, int height,
+                             TextureEncoding encoding) {
   int w = 0, h = 0, channels = 0;
   std::unique_ptr<Sample, StbFree> pixels;
+  const int size = int(bytes.size());  // readStb checked that it fits
   if constexpr (sizeof(Sample) == 2)
-    pixels.reset(stbi_load_16(where.file.c_str(), &w, &h, &channels, 3));
+    pixels.reset(stbi_load_16_from_memory(bytes.data(), size, &w, &h, &channels, 3));
   else
-    pixels.reset(stbi_load(where.file.c_str(), &w, &h, &channels, 3));
+    pixels.reset(stbi_load_from_memory(bytes.data(), size, &w, &h, &channels, 3));
   if (!pixels) {
-    // The header's size and the file's length tell a truncated file from a corrupt one.
-    std::error_code error;
-    const auto bytes = std::filesystem::file_size(where.file, error);
+    // The header's size and the data's length tell a truncated image from a corrupt one.
     throw InputError(where, "cannot decode the " + std::to_string(width) + "x" + std::to_string(height) +
-                                " image from the file's " + (error ? std::string("?") : std::to_string(bytes)) +
-                                " bytes (corrupt or truncated?): " + stbReason());
+                                " image from the " + std::string(where.jsonPath.empty() ? "file" : "image") + "'s " +
+                                std::to_string(bytes.size()) + " bytes (corrupt or truncated?): " + stbReason());
   }
   if (w != width || h != height) throw InputError(where, "image size changed between header and pixels");
   const std::vector<float> table = codeTable(sizeof(Sample) == 2 ? 65535 : 255, encoding);
@@ -124,10 +132,8 @@ struct Decoded {
 /// into arrays of 257 and 256 (stbi__build_huffman, stbi__process_marker):
 /// a heap overflow from a 700-byte file. Walks every marker segment, those
 /// between progressive scans too, before stb_image sees the file.
-void checkJpegHuffmanTables(const InputLocation &where) {
-  std::ifstream in(where.file, std::ios::binary);
-  const std::string data{std::istreambuf_iterator<char>(in), {}};
-  auto byte = [&](size_t at) { return at < data.size() ? static_cast<unsigned char>(data[at]) : 0u; };
+void checkJpegHuffmanTables(const InputLocation &where, std::span<const unsigned char> data) {
+  auto byte = [&](size_t at) { return at < data.size() ? static_cast<unsigned int>(data[at]) : 0u; };
   size_t at = 2;  // after SOI
   while (at + 4 <= data.size()) {
     if (byte(at) != 0xFF) {  // entropy-coded data: skip to the next marker (not a stuffed FF 00 or an RSTn)
@@ -165,13 +171,36 @@ void checkJpegHuffmanTables(const InputLocation &where) {
   }
 }
 
-Decoded readStb(const InputLocation &where, TextureEncoding encoding) {
+/// PNG or JPEG from memory: the size from the header, checked against the
+/// limit, before any pixel is decoded.
+Decoded readStb(const InputLocation &where, std::span<const unsigned char> bytes, TextureEncoding encoding) {
+  if (bytes.size() > size_t(std::numeric_limits<int>::max()))
+    throw InputError(where, "image of " + std::to_string(bytes.size()) + " bytes; stb_image reads at most 2 GiB");
+  const int size = int(bytes.size());
   int width = 0, height = 0, channels = 0;
-  if (!stbi_info(where.file.c_str(), &width, &height, &channels))
+  if (!stbi_info_from_memory(bytes.data(), size, &width, &height, &channels))
     throw InputError(where, "cannot read the image header: " + stbReason());
   checkSize(where, width, height);
-  if (stbi_is_16_bit(where.file.c_str())) return {width, height, decodeStb<stbi_us>(where, width, height, encoding)};
-  return {width, height, decodeStb<stbi_uc>(where, width, height, encoding)};
+  if (stbi_is_16_bit_from_memory(bytes.data(), size))
+    return {width, height, decodeStb<stbi_us>(where, bytes, width, height, encoding)};
+  return {width, height, decodeStb<stbi_uc>(where, bytes, width, height, encoding)};
+}
+
+/// A PNG or JPEG in memory (a file's contents, or an image embedded in a glTF file).
+Decoded decodeStbImage(const InputLocation &where, std::span<const unsigned char> bytes, TextureEncoding encoding) {
+  switch (sniffFormat(bytes)) {
+    case FileFormat::Jpeg:
+      checkJpegHuffmanTables(where, bytes);
+      return readStb(where, bytes, encoding);
+    case FileFormat::Png:
+      return readStb(where, bytes, encoding);
+    case FileFormat::Exr:
+    case FileFormat::Unknown:
+      break;
+  }
+  throw InputError(where,
+                   "not an image this program reads: expected PNG or JPEG (the data starts with neither "
+                   "signature)");
 }
 
 /// OpenEXR, linear already: R, G, B, or Y copied to all three. Like
@@ -224,6 +253,15 @@ void checkFinite(const InputLocation &where, const Decoded &image) {
     }
 }
 
+/// The checks and the clamp every decoded texture gets.
+void finish(const InputLocation &where, Decoded &image, TextureEncoding encoding) {
+  checkFinite(where, image);
+  // A colour texture is a reflectance: an EXR's values outside [0, 1] are
+  // clamped once here, so that ρ̄ (the mean) and ρ(x) see the same texels.
+  if (encoding == TextureEncoding::Colour)
+    for (float &v : image.texels) v = std::clamp(v, 0.0f, 1.0f);
+}
+
 }  // namespace
 
 Texture Texture::load(const std::string &path, TextureEncoding encoding, TextureWrap wrap) {
@@ -237,12 +275,12 @@ Texture Texture::load(const std::string &path, TextureEncoding encoding, Texture
   Decoded image;
   switch (sniffFormat(where)) {
     case FileFormat::Jpeg:
-      checkJpegHuffmanTables(where);
-      image = readStb(where, encoding);
+    case FileFormat::Png: {
+      std::ifstream in(path, std::ios::binary);
+      const std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(in), {}};
+      image = decodeStbImage(where, bytes, encoding);
       break;
-    case FileFormat::Png:
-      image = readStb(where, encoding);
-      break;
+    }
     case FileFormat::Exr:
       image = readExr(where);
       break;
@@ -251,11 +289,17 @@ Texture Texture::load(const std::string &path, TextureEncoding encoding, Texture
                        "not an image this program reads: expected PNG, JPEG or OpenEXR (the file starts with "
                        "none of their signatures)");
   }
-  checkFinite(where, image);
-  // A colour texture is a reflectance: an EXR's values outside [0, 1] are
-  // clamped once here, so that ρ̄ (the mean) and ρ(x) see the same texels.
-  if (encoding == TextureEncoding::Colour)
-    for (float &v : image.texels) v = std::clamp(v, 0.0f, 1.0f);
+  finish(where, image, encoding);
+  return Texture(Level{image.width, image.height, std::move(image.texels)}, wrap);
+}
+
+Texture Texture::decode(std::span<const unsigned char> bytes, const InputLocation &source, TextureEncoding encoding,
+                        TextureWrap wrap) {
+  if (bytes.empty()) throw InputError(source, "the image is empty (expected a PNG or JPEG image)");
+  if (sniffFormat(bytes) == FileFormat::Exr)
+    throw InputError(source, "an embedded OpenEXR image; embedded images are read as PNG or JPEG");
+  Decoded image = decodeStbImage(source, bytes, encoding);
+  finish(source, image, encoding);
   return Texture(Level{image.width, image.height, std::move(image.texels)}, wrap);
 }
 
