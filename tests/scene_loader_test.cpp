@@ -867,7 +867,7 @@ TEST(SceneLoaderMalformed, ExactRepeatsAreDroppedAndOverlapsNamed) {
 
 TEST(SceneLoaderMalformed, OtherFormatsAreNamed) {
   TempDir dir;
-  EXPECT_NE(loadError(dir.write("m.gltf", "{\"asset\": {\"version\": \"2.0\"}}")).find("this is a glTF file"),
+  EXPECT_NE(loadError(dir.write("m.dae", "<?xml version=\"1.0\"?><COLLADA/>")).find("this is a COLLADA file"),
             std::string::npos);
   EXPECT_NE(loadError(dir.write("m.dat", "ply\nformat ascii 1.0\n")).find("this is a PLY file"), std::string::npos);
   EXPECT_NE(loadError(dir.write("m.mgf", "c red\n")).find("MGF"), std::string::npos);

@@ -67,6 +67,24 @@ void appendObjFromScene(Scene &scene, const std::string &objPath, const Transfor
                         const std::string &objectName, int defaultMaterial, const std::string &defaultMaterialName,
                         const InputLocation &fileFrom, const InputLocation &materialFrom);
 
+/// What a glTF file says about the view (load_gltf.cpp).
+struct GltfView {
+  bool hasCamera = false;    ///< the scene has a perspective camera
+  CameraSettings camera;     ///< that camera, placed by its node and the entry's transform
+  double aspectRatio = 0;    ///< its width / height, 0 when the file does not say
+  InputLocation cameraFrom;  ///< the camera's JSON path in the glTF file
+};
+
+/// Appends the meshes of a glTF 2.0 file's scene (.gltf or .glb, docs/scene-format.md),
+/// transformed by `toWorld`: one SceneObject per node with a mesh, named
+/// `objectName/NODE`. Primitives without a material get `defaultMaterial`
+/// (−1: "default"); a glTF material named like one of the scene's first
+/// `overridableMaterials` materials (the JSON scene's) is replaced by it.
+/// `fileFrom` locates the reference to a file that cannot be opened; every
+/// other error names the glTF file and the JSON path in it.
+GltfView appendGltf(Scene &scene, const std::string &path, const Transform &toWorld, const std::string &objectName,
+                    int defaultMaterial, size_t overridableMaterials, const InputLocation &fileFrom);
+
 // Spectral scenes (load_spectral.cpp).
 /// A material value {"spectrum": [[nm, value], …], "scale": s}.
 SampledSpectrum parseSpectrum(const JsonNode &node);

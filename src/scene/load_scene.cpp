@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -204,6 +205,7 @@ struct SceneParser {
   fs::path directory;
   double metres = 1.0;
   std::map<std::string, std::string> objectPathByName;  // for duplicate names
+  size_t jsonMaterialCount = 0;                         // the JSON's materials, which override glTF ones by name
 
   /// Fails at `node` (the vertex, centre or radius that put them there) when a
   /// vertex added since `first` lies where the ray tracer cannot work
@@ -232,12 +234,13 @@ struct SceneParser {
 
   void parseObject(const JsonNode &node, size_t index) {
     node.expectObject();
-    static const std::vector<std::string> kTypes = {"quad", "triangle", "obj", "sphere"};
+    static const std::vector<std::string> kTypes = {"quad", "triangle", "obj", "gltf", "sphere"};
     std::string type = parseType(node, kTypes, "", "object");
     checkTypedKeys(node, {"name", "type", "material", "transform"},
                    {{"quad", {"vertices", "uv"}},
                     {"triangle", {"vertices", "uv"}},
                     {"obj", {"file"}},
+                    {"gltf", {"file"}},
                     {"sphere", {"center", "radius", "segments"}}},
                    type, "object");
     std::string name = node.string("name", type + "-" + std::to_string(index));
@@ -263,6 +266,17 @@ struct SceneParser {
       detail::appendObjFromScene(scene, objPath, toWorld, name, material, materialName, fileLocation, materialLocation);
       if (scene.objects.size() == objectsBefore)
         scene.warnings.push_back("object '" + name + "' (" + objPath + ") has no faces");
+      return;
+    }
+
+    if (type == "gltf") {
+      // Its cameras are not read: the scene's camera (or the framing one) is the view.
+      std::string gltfPath = (directory / node.child("file").asString()).string();
+      const int material = node.has("material") ? static_cast<int>(materialFor(node)) : -1;
+      size_t objectsBefore = scene.objects.size();
+      detail::appendGltf(scene, gltfPath, toWorld, name, material, jsonMaterialCount, node.child("file").location());
+      if (scene.objects.size() == objectsBefore)
+        scene.warnings.push_back("object '" + name + "' (" + gltfPath + ") has no meshes in its scene");
       return;
     }
 
@@ -359,6 +373,7 @@ struct SceneParser {
         scene.materials.push_back(parseMaterial(node, it.key(), directory, scene.spectral.enabled()));
       }
     }
+    jsonMaterialCount = scene.materials.size();
     JsonNode objects = root.child("objects");
     std::vector<JsonNode> entries = objects.asArray();
     for (size_t i = 0; i < entries.size(); ++i) parseObject(entries[i], i);
@@ -381,19 +396,49 @@ std::string unreadFormat(const std::string &extension, const std::string &head) 
     const char *extension, *name;
   };
   static constexpr Known kKnown[] = {
-      {".gltf", "glTF"},   {".glb", "binary glTF"},    {".ply", "PLY"},  {".mgf", "MGF"},       {".fbx", "FBX"},
-      {".dae", "COLLADA"}, {".3ds", "3D Studio"},      {".stl", "STL"},  {".blend", "Blender"}, {".usd", "USD"},
-      {".usda", "USD"},    {".usdc", "USD"},           {".usdz", "USD"}, {".x3d", "X3D"},       {".wrl", "VRML"},
-      {".pbrt", "pbrt"},   {".xml", "XML (Mitsuba?)"}, {".off", "OFF"},
+      {".ply", "PLY"},  {".mgf", "MGF"},       {".fbx", "FBX"},  {".dae", "COLLADA"}, {".3ds", "3D Studio"},
+      {".stl", "STL"},  {".blend", "Blender"}, {".usd", "USD"},  {".usda", "USD"},    {".usdc", "USD"},
+      {".usdz", "USD"}, {".x3d", "X3D"},       {".wrl", "VRML"}, {".pbrt", "pbrt"},   {".xml", "XML (Mitsuba?)"},
+      {".off", "OFF"},
   };
   for (const Known &k : kKnown)
     if (extension == k.extension) return k.name;
-  if (head.rfind("glTF", 0) == 0) return "binary glTF";
   if (head.rfind("ply\n", 0) == 0 || head.rfind("ply\r\n", 0) == 0) return "PLY";
   if (head.rfind("Kaydara FBX Binary", 0) == 0) return "FBX";
   if (head.rfind("solid ", 0) == 0) return "STL";
   if (head.rfind("BLENDER", 0) == 0) return "Blender";
   return "";
+}
+
+/// True for a file that starts like a GLB ("glTF"), whatever its name.
+bool startsWithGlbMagic(const std::string &path) {
+  char head[4] = {};
+  std::ifstream in(path, std::ios::binary);
+  return in.read(head, 4) && std::string(head, 4) == "glTF";
+}
+
+/// A bare .gltf/.glb: its default scene in metres (glTF's unit), viewed from
+/// its first perspective camera or, without one, the bare-OBJ framing camera.
+Scene loadGltfScene(const std::string &path) {
+  Scene scene;
+  scene.sourceFile = path;
+  const detail::GltfView view = detail::appendGltf(scene, path, Transform{}, fs::path(path).stem().string(), -1, 0,
+                                                   InputLocation{path, 0, 0, ""});
+  detail::dropRepeatedFaces(scene);
+  if (view.hasCamera) {
+    scene.camera = view.camera;
+    detail::checkCamera(scene.camera, view.cameraFrom);
+    if (view.aspectRatio > 0) {
+      // The image keeps the default width; the height follows the camera's aspect ratio.
+      const double height = std::round(scene.render.width / view.aspectRatio);
+      scene.render.height = static_cast<int>(std::clamp(height, 1.0, double(kMaxImageDimension)));
+    }
+  } else {
+    scene.camera = detail::frameBounds(scene);
+  }
+  detail::loadTextures(scene);
+  validateScene(scene);
+  return scene;
 }
 
 }  // namespace
@@ -423,6 +468,7 @@ Scene loadScene(const std::string &path) {
     validateScene(scene);
     return scene;
   }
+  if (extension == ".gltf" || extension == ".glb" || startsWithGlbMagic(path)) return loadGltfScene(path);
   std::error_code ec;
   std::ifstream in(path, std::ios::binary);
   if (!fs::is_regular_file(path, ec) || !in)
@@ -439,7 +485,7 @@ Scene loadScene(const std::string &path) {
     throw InputError(InputLocation{path, 0, 0, ""},
                      "this is a " + format +
                          " file, which Radiant does not read: a scene is a JSON scene file "
-                         "(docs/scene-format.md) or a Wavefront OBJ model (.obj)");
+                         "(docs/scene-format.md), a Wavefront OBJ model (.obj) or a glTF 2.0 file (.gltf, .glb)");
   try {
     return parseSceneJson(text.str(), path);
   } catch (const InputError &e) {
@@ -447,7 +493,7 @@ Scene loadScene(const std::string &path) {
     // what Radiant expected rather than only where the JSON broke.
     if (extension == ".json" || e.message().rfind("invalid JSON", 0) != 0 || e.location().line > 1) throw;
     throw InputError(e.location(), e.message() + " (Radiant reads JSON scene files and .obj models; '" + path +
-                                       "' is read as JSON because its name does not end in .obj)");
+                                       "' is read as JSON because its name does not end in .obj, .gltf or .glb)");
   }
 }
 
