@@ -233,6 +233,25 @@ expect "missing solution" '^radiant: error: nosuch\.sol: cannot open the solutio
   render "$furnace" -m flat --solution nosuch.sol
 expect "missing scene" "^radiant: error: nosuch\\.json: cannot open scene file" render nosuch.json
 
+# ---- glTF: the glTF file and the JSON path inside it. One triangle, one value changed.
+gltf() {  # gltf NAME MODE COUNT: writes NAME.gltf
+  cat >"$1.gltf" <<EOF
+{"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+ "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "mode": $2}]}],
+ "accessors": [{"bufferView": 0, "componentType": 5126, "count": $3, "type": "VEC3"}],
+ "bufferViews": [{"buffer": 0, "byteLength": 36}],
+ "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]}
+EOF
+}
+gltf points 0 3
+expect "glTF points" '^radiant: error: points\.gltf: at /meshes/0/primitives/0/mode: mode 0 \(points\)' render points.gltf
+gltf count 4 10
+expect "glTF accessor count" '^radiant: error: count\.gltf: at /accessors/0: count 10 exceeds buffer view 0' \
+  render count.gltf
+echo '{"objects": [{"type": "gltf", "file": "nosuch.glb"}]}' >gltf-entry.json
+expect "glTF file missing" "^radiant: error: gltf-entry\\.json: at /objects/0/file: cannot open glTF file '.*nosuch\\.glb'" \
+  render gltf-entry.json
+
 # ---- Flags: the flag.
 expect "--spp 0" '^radiant: error: --spp: samples per pixel must be in' "$radiant" render "$cornell" --spp 0 -q
 expect "--eye 1,2" '^radiant: error: --eye: expected three comma-separated numbers' \
