@@ -14,5 +14,7 @@ CommandRunner addCompareCommand(CLI::App &app);
 CommandRunner addSolveCommand(CLI::App &app);
 CommandRunner addTonemapCommand(CLI::App &app);
 CommandRunner addMethodsCommand(CLI::App &app);
+CommandRunner addExportCommand(CLI::App &app);
+CommandRunner addServeCommand(CLI::App &app);
 
 }  // namespace radiant
