@@ -98,7 +98,9 @@ void writeSelectiveMap(const Film &film, const std::string &channelName, const s
 
 CommandRunner addRenderCommand(CLI::App &app) {
   auto o = std::make_shared<RenderCommandOptions>();
-  app.add_option("scene", o->scenePath, "Scene file: JSON (docs/scene-format.md) or a bare .obj model")->required();
+  app.add_option("scene", o->scenePath,
+                 "Scene file: JSON (docs/scene-format.md), a bare .obj model or a glTF 2.0 file (.gltf, .glb)")
+      ->required();
   std::string methods;
   for (const RendererInfo &info : rendererRegistry()) methods += fmt::format("\n  {:<12} {}", info.name, info.summary);
   app.add_option("-m,--method", o->method, "Rendering method:" + methods)->default_val("path");

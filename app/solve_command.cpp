@@ -29,7 +29,9 @@ struct SolveCommandOptions {
 
 CommandRunner addSolveCommand(CLI::App &app) {
   auto o = std::make_shared<SolveCommandOptions>();
-  app.add_option("scene", o->scenePath, "Scene file: JSON (docs/scene-format.md) or a bare .obj model")->required();
+  app.add_option("scene", o->scenePath,
+                 "Scene file: JSON (docs/scene-format.md), a bare .obj model or a glTF 2.0 file (.gltf, .glb)")
+      ->required();
   app.add_option("-o,--output", o->outputPath, "Save the solution (docs/solution-format.md), e.g. scene.rad");
   app.add_option("--report", o->reportPath,
                  "Write a CSV with one row per object: area, mean radiosity and irradiance (W/m²), "
