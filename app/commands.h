@@ -14,5 +14,6 @@ CommandRunner addCompareCommand(CLI::App &app);
 CommandRunner addSolveCommand(CLI::App &app);
 CommandRunner addTonemapCommand(CLI::App &app);
 CommandRunner addMethodsCommand(CLI::App &app);
+CommandRunner addExportCommand(CLI::App &app);
 
 }  // namespace radiant

@@ -46,11 +46,14 @@ int main(int argc, char **argv) {
       app.add_subcommand("tonemap", "Map a linear image (EXR/PFM) to a display PNG or a false-colour luminance map");
   CLI::App *methods =
       app.add_subcommand("methods", "List the rendering methods and radiosity solvers with their parameters");
+  CLI::App *exportCommand = app.add_subcommand(
+      "export", "Write the radiosity solution as a mesh with light at its vertices: glTF 2.0 (.glb, .gltf) or PLY");
   radiant::CommandRunner runRender = radiant::addRenderCommand(*render);
   radiant::CommandRunner runSolve = radiant::addSolveCommand(*solve);
   radiant::CommandRunner runCompare = radiant::addCompareCommand(*compare);
   radiant::CommandRunner runTonemap = radiant::addTonemapCommand(*tonemap);
   radiant::CommandRunner runMethods = radiant::addMethodsCommand(*methods);
+  radiant::CommandRunner runExport = radiant::addExportCommand(*exportCommand);
 
   try {
     app.parse(argc, argv);
@@ -58,7 +61,7 @@ int main(int argc, char **argv) {
     // --help and --version exit 0; a bad flag is bad input, exit 2 like every other.
     const int status = app.exit(e);
     if (dynamic_cast<const CLI::ExtrasError *>(&e))
-      for (CLI::App *command : {render, solve, compare, tonemap, methods})
+      for (CLI::App *command : {render, solve, compare, tonemap, methods, exportCommand})
         if (command->parsed()) suggestFlags(app, *command);
     return status == 0 ? 0 : 2;
   }
@@ -68,6 +71,7 @@ int main(int argc, char **argv) {
     if (compare->parsed()) return runCompare();
     if (tonemap->parsed()) return runTonemap();
     if (methods->parsed()) return runMethods();
+    if (exportCommand->parsed()) return runExport();
   } catch (const radiant::Interrupted &) {
     fmt::print(stderr, "radiant: interrupted before anything was complete; nothing written\n");
     return radiant::interruptedExitStatus();

@@ -27,6 +27,7 @@
 #include "scene/spectral_scene.h"
 #include "util/error.h"
 #include "util/interrupt.h"
+#include "view_options.h"
 
 namespace radiant {
 
@@ -37,10 +38,11 @@ struct RenderCommandOptions {
   std::string method = "path";
   std::vector<std::string> outputs;
   std::string variancePath;
-  std::optional<int> spp, width, height;
-  std::optional<double> time, fov;
+  std::optional<int> spp;
+  std::optional<double> time;
   std::optional<uint64_t> seed;
-  std::string eye, target, up, pixel;
+  ViewCommandOptions view;
+  std::string pixel;
   int threads = 0;
   bool quiet = false;
   std::string solutionPath;
@@ -54,15 +56,6 @@ struct RenderCommandOptions {
 
 InputLocation flag(const std::string &name) {
   return InputLocation{name};
-}
-
-Vec3 parseVector(const std::string &text, const std::string &flagName) {
-  Vec3 v;
-  char c1 = 0, c2 = 0;
-  std::istringstream in(text);
-  if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',' || !isFinite(v) || !(in >> std::ws).eof())
-    throw InputError(flag(flagName), "expected three comma-separated numbers like 1,2.5,-3, got '" + text + "'");
-  return v;
 }
 
 /// The default output name: the scene's folder for `…/name/scene.json`, else the file's stem.
@@ -128,12 +121,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
   app.add_option("--threads", o->threads, "Worker threads (0: all cores); does not change the image")
       ->default_val(0)
       ->check(CLI::Range(0, 4096));
-  app.add_option("--eye", o->eye, "Camera position x,y,z in scene units (overrides the scene)");
-  app.add_option("--target", o->target, "Camera target x,y,z in scene units");
-  app.add_option("--up", o->up, "Camera up vector x,y,z");
-  app.add_option("--fov", o->fov, "Vertical field of view, degrees");
-  app.add_option("--width", o->width, "Image width, pixels");
-  app.add_option("--height", o->height, "Image height, pixels");
+  addViewOptions(app, o->view);
   app.add_option("--pixel", o->pixel, "Render only pixel x,y (debugging; other pixels stay black)");
   app.add_flag("-q,--quiet", o->quiet, "No progress or summary on stderr");
   app.add_option("--solution", o->solutionPath,
@@ -195,13 +183,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
     InterruptHandler interrupts;
     Scene scene = loadScene(o->scenePath);
     const WhiteBalance balance = applyColourOptions(app, o->colour, scene);
-    const double unit = scene.metresPerUnit;
-    if (!o->eye.empty()) scene.camera.eye = parseVector(o->eye, "--eye") * unit;
-    if (!o->target.empty()) scene.camera.target = parseVector(o->target, "--target") * unit;
-    if (!o->up.empty()) scene.camera.up = parseVector(o->up, "--up");
-    if (o->fov) scene.camera.verticalFovDegrees = *o->fov;
-    if (o->width) scene.render.width = *o->width;
-    if (o->height) scene.render.height = *o->height;
+    applyViewOptions(o->view, scene);
     if (o->spp) scene.render.samplesPerPixel = *o->spp;
     if (o->time) scene.render.timeBudgetSeconds = *o->time;
     if (o->seed) scene.render.seed = *o->seed;
@@ -209,28 +191,11 @@ CommandRunner addRenderCommand(CLI::App &app) {
 
     // Command-line values get the same checks as the scene file's, before any allocation.
     const RenderSettings &r = scene.render;
-    if (r.width < 1 || r.height < 1 || r.width > kMaxImageDimension || r.height > kMaxImageDimension ||
-        static_cast<long long>(r.width) * r.height > kMaxImagePixels)
-      throw InputError(flag("--width/--height"),
-                       fmt::format("image size {}x{} is out of range (each side 1..{}, at most {} pixels)", r.width,
-                                   r.height, kMaxImageDimension, kMaxImagePixels));
     if (r.samplesPerPixel < 1 || r.samplesPerPixel > kMaxSamplesPerPixel)
       throw InputError(flag("--spp"), fmt::format("samples per pixel must be in 1..{}, got {}", kMaxSamplesPerPixel,
                                                   r.samplesPerPixel));
     if (!(r.timeBudgetSeconds >= 0) || !std::isfinite(r.timeBudgetSeconds))
       throw InputError(flag("--time"), "the time budget must be a non-negative number of seconds");
-    if (!(scene.camera.verticalFovDegrees > 0 && scene.camera.verticalFovDegrees < 180))
-      throw InputError(flag("--fov"), "the field of view must be strictly between 0 and 180 degrees");
-    for (const Vec3 &point : {scene.camera.eye, scene.camera.target})
-      if (!withinCoordinateRange(point))
-        throw InputError(flag("--eye/--target"),
-                         fmt::format("the camera is more than {:g} m from the origin; the ray tracer works in single "
-                                     "precision and cannot trace rays from there",
-                                     kMaxCoordinateMetres));
-    Vec3 view = scene.camera.target - scene.camera.eye;
-    if (!(length(view) > 0) || !(length(cross(normalize(view), normalize(scene.camera.up))) > 1e-6))
-      throw InputError(flag("--eye/--target/--up"),
-                       "the camera needs eye ≠ target and an up vector not parallel to the view direction");
 
     const DisplaySettings display = renderDisplaySettings(app, o->display, r.exposure, outputs);
 

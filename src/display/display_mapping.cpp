@@ -44,9 +44,13 @@ DisplayMapping::DisplayMapping(const Image &radiance, const DisplaySettings &set
   operator_ = findToneOperator(settings.toneOperator).create(radiance, settings.parameters, warnings_);
 }
 
+void DisplayMapping::displayLinear(const float radiance[3], double display[3]) const {
+  operator_->map(radiance, display);
+  applyGamutRule(settings_.gamut, display);
+}
+
 void DisplayMapping::encode(const float radiance[3], double encoded[3]) const {
-  operator_->map(radiance, encoded);
-  applyGamutRule(settings_.gamut, encoded);
+  displayLinear(radiance, encoded);
   for (int c = 0; c < 3; ++c)
     encoded[c] =
         settings_.transfer == TransferCurve::Srgb ? srgbEncode(encoded[c]) : gammaEncode(encoded[c], settings_.gamma);

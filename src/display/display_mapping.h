@@ -48,6 +48,9 @@ class DisplayMapping {
   DisplayMapping(const Image &radiance, const DisplaySettings &settings);
   /// Encoded values V ∈ [0, 1] for one pixel (steps 1–3).
   void encode(const float radiance[3], double encoded[3]) const;
+  /// Steps 1 and 2 only: display-linear I/k per channel in [0, 1], before the
+  /// transfer curve (what glTF's linear vertex colours hold).
+  void displayLinear(const float radiance[3], double display[3]) const;
   /// Every pixel, quantised: 3 values per pixel, 0 … 2^bits − 1.
   std::vector<uint16_t> quantiseImage(const Image &radiance) const;
   /// Writes a PNG of the image at settings.bits, atomically.

@@ -1,0 +1,181 @@
+// radiant export SCENE -o out.glb — the radiosity solution as a mesh with
+// light at its vertices, for real-time viewers (C&W §9.7; docs/export.md):
+// glTF 2.0 (.glb, .gltf) or PLY. Solves first unless --solution is given.
+#include <fmt/format.h>
+
+#include <chrono>
+#include <filesystem>
+
+#include "colour_options.h"
+#include "commands.h"
+#include "display_options.h"
+#include "export/baked_mesh.h"
+#include "export/gltf_writer.h"
+#include "export/ply_writer.h"
+#include "interrupt_handler.h"
+#include "io/output_files.h"
+#include "io/solution_file.h"
+#include "radiosity_options.h"
+#include "render/driver.h"
+#include "render/emitter_coverage.h"
+#include "render/film_image.h"
+#include "render/registry.h"
+#include "scene/load_scene.h"
+#include "util/error.h"
+#include "util/interrupt.h"
+#include "view_options.h"
+
+namespace radiant {
+
+namespace {
+
+struct ExportCommandOptions {
+  std::string scenePath, outputPath, solutionPath, format;
+  ViewCommandOptions view;
+  RadiosityCommandOptions radiosity;
+  DisplayCommandOptions display;
+  ColourCommandOptions colour;
+  uint64_t seed = 1;
+  int threads = 0;
+  bool quiet = false;
+};
+
+std::string lowerExtension(const std::string &path) {
+  std::string e = std::filesystem::path(path).extension().string();
+  for (char &c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return e;
+}
+
+/// The file's format: --format, else the output's extension; the two must agree.
+std::string exportFormat(const ExportCommandOptions &o) {
+  const std::string extension = lowerExtension(o.outputPath);
+  const std::string fromExtension = extension.size() > 1 ? extension.substr(1) : "";
+  if (o.format.empty()) {
+    if (fromExtension == "glb" || fromExtension == "gltf" || fromExtension == "ply") return fromExtension;
+    throw InputError(InputLocation{"--output"},
+                     "'" + o.outputPath + "': unknown extension (expected .glb, .gltf or .ply, or give --format)");
+  }
+  if (fromExtension != o.format)
+    throw InputError(InputLocation{"--format"}, "--format " + o.format + " does not match the output '" + o.outputPath +
+                                                    "' (expected ." + o.format + ")");
+  return o.format;
+}
+
+/// The interpolate display of the camera's view, 4 samples per pixel: what the
+/// tone operators adapt to (log-average luminance, brightest reflecting pixel),
+/// exactly as they would for `radiant render --method interpolate`.
+Image cameraView(const Scene &scene, const RayTracer &tracer, const Solution &solution, int threads) {
+  const PinholeCamera camera(scene.camera, scene.render.width, scene.render.height);
+  RenderContext context;
+  context.solution = &solution;
+  context.pixelSpreadAngle = texturePixelSpread(scene.camera, scene.render.height, 4);
+  const std::unique_ptr<Renderer> renderer = createRenderer("interpolate", tracer, context);
+  DriverOptions driver;
+  driver.samplesPerPixel = 4;
+  driver.seed = scene.render.seed;
+  driver.threads = threads;
+  Film film(scene.render.width, scene.render.height);
+  renderImage(camera, *renderer, driver, film, {});
+  Image image = meanImage(film);
+  image.quantity = "radiance";
+  image.emitterFraction = emitterCoverage(tracer, camera, image.width, image.height);
+  return image;
+}
+
+/// The operator's parameters as the file records them, named as the flags are.
+std::vector<std::pair<std::string, double>> toneParameterList(const DisplaySettings &s) {
+  const ToneParameters &p = s.parameters;
+  std::vector<std::pair<std::string, double>> list;
+  const std::string &op = s.toneOperator;
+  if (op == "linear") {
+    if (p.autoExposure)
+      list.push_back({"key", p.key});
+    else
+      list.push_back({"exposure", p.exposureStops});
+  }
+  if (op == "max-reflected") list.push_back({"reflected-level", p.reflectedLevel});
+  if (op == "reinhard" || op == "aces") list.push_back({"key", p.key});
+  if (op == "reinhard" && p.whiteCdM2) list.push_back({"white", *p.whiteCdM2});
+  if (op == "tumblin-rushmeier") list.push_back({"display-contrast", p.displayContrast});
+  if ((op == "tumblin-rushmeier" || op == "ward") && p.displayMaxCdM2)
+    list.push_back({"display-max", *p.displayMaxCdM2});
+  if ((op == "tumblin-rushmeier" || op == "ward") && p.adaptationCdM2)
+    list.push_back({"adaptation", *p.adaptationCdM2});
+  return list;
+}
+
+}  // namespace
+
+CommandRunner addExportCommand(CLI::App &app) {
+  auto o = std::make_shared<ExportCommandOptions>();
+  app.add_option("scene", o->scenePath, "Scene file: JSON (docs/scene-format.md) or a bare .obj model")->required();
+  app.add_option("-o,--output", o->outputPath, "The file to write: .glb, .gltf or .ply (docs/export.md)")->required();
+  app.add_option("--format", o->format, "glb, gltf or ply (default: from the output's extension)")
+      ->check(CLI::IsMember({"glb", "gltf", "ply"}));
+  app.add_option("--solution", o->solutionPath, "Radiosity solution from `radiant solve -o` (default: solve now)");
+  addViewOptions(app, o->view);
+  addRadiosityOptions(app, o->radiosity);
+  addDisplayOptions(app, o->display);
+  addColourOptions(app, o->colour);
+  app.add_option("--seed", o->seed, "Random seed of the solve and of the view the tone operator adapts to")
+      ->default_val(1)
+      ->check(seedRange());
+  app.add_option("--threads", o->threads, "Worker threads (0: all cores); does not change the file")
+      ->default_val(0)
+      ->check(CLI::Range(0, 4096));
+  app.add_flag("-q,--quiet", o->quiet, "No progress or summary on stderr");
+
+  return [o, &app]() {
+    const std::string format = exportFormat(*o);
+    checkRadiosityOptions(o->radiosity, o->solutionPath.empty(), "the solution comes from --solution");
+    // glTF's vertex colours are linear (the viewer applies the sRGB curve); PLY's are 8-bit display values.
+    if (app.count("--bits")) throw InputError(InputLocation{"--bits"}, "exported vertex colours have no bit depth");
+    if (format != "ply" && (app.count("--gamma") || app.count("--srgb")))
+      throw InputError(InputLocation{app.count("--gamma") ? "--gamma" : "--srgb"},
+                       "glTF vertex colours are linear: the viewer applies its display's transfer curve");
+    checkOutputFiles({{o->outputPath, InputLocation{"--output"}}}, {o->scenePath, o->solutionPath});
+    InterruptHandler interrupts;
+    const auto start = std::chrono::steady_clock::now();
+    Scene scene = loadScene(o->scenePath);
+    applyColourOptions(app, o->colour, scene);
+    applyViewOptions(o->view, scene);
+    if (scene.spectral.enabled())
+      throw InputError(InputLocation{o->scenePath}, "export of spectral scenes is not supported yet: add --colour rgb");
+    const DisplaySettings display = displaySettings(app, o->display, scene.render.exposure);
+    if (!o->quiet)
+      for (const std::string &warning : scene.warnings) fmt::print(stderr, "radiant: warning: {}\n", warning);
+
+    RayTracer tracer(scene);
+    const Solution solution = o->solutionPath.empty()
+                                  ? solveScene(scene, tracer, o->radiosity, o->seed, o->threads, o->quiet)
+                                  : readSolution(o->solutionPath, scene);
+    if (interruptRequested()) throw Interrupted();
+
+    const DisplayMapping mapping(cameraView(scene, tracer, solution, o->threads), display);
+    if (!o->quiet) reportDisplayMapping(mapping, app.count("--tonemap") > 0);
+    const BakedMesh baked = bakeSolution(
+        scene, solution, [&](const float radiance[3], double out[3]) { mapping.displayLinear(radiance, out); });
+    if (format == "ply") {
+      writePly(
+          baked, [&](const float radiance[3], double out[3]) { mapping.encode(radiance, out); }, o->outputPath);
+    } else {
+      ExportProvenance provenance;
+      provenance.solver = solution.stats.solver;
+      provenance.toneOperator = display.toneOperator;
+      provenance.toneParameters = toneParameterList(display);
+      provenance.adaptedTo = mapping.describe();
+      writeGltf(scene, baked, provenance, o->outputPath);
+    }
+    if (!o->quiet) {
+      size_t vertices = 0, triangles = 0;
+      for (const BakedPrimitive &p : baked.primitives) vertices += p.vertexCount(), triangles += p.triangleCount();
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      fmt::print(stderr, "radiant: wrote {} ({} elements, {} triangles, {} vertices, {:.2f} MB) in {:.2f} s\n",
+                 o->outputPath, baked.elements, triangles, vertices,
+                 double(std::filesystem::file_size(o->outputPath)) * 1e-6, seconds);
+    }
+    return 0;
+  };
+}
+
+}  // namespace radiant
