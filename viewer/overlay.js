@@ -43,6 +43,8 @@ export class Overlay {
     const box = $('parameters');
     box.replaceChildren();
     for (const spec of op.parameters) {
+      // linear's key counts only with auto exposure (radiant refuses it otherwise).
+      if (op.name === 'linear' && spec.name === 'key' && this.settings.parameters.exposure !== 'auto') continue;
       const label = document.createElement('label');
       label.textContent = `${spec.label} `;
       const value = this.settings.parameters[spec.name];
@@ -71,7 +73,7 @@ export class Overlay {
         });
         auto.addEventListener('change', () => {
           this.settings.parameters.exposure = auto.checked ? 'auto' : Number(slider.value);
-          sync();
+          this.buildParameters();
           this.onChange();
         });
         sync();
@@ -84,7 +86,7 @@ export class Overlay {
       input.step = spec.step;
       if (Number.isFinite(spec.min)) input.min = spec.min;
       if (Number.isFinite(spec.max)) input.max = spec.max;
-      input.placeholder = spec.default === null ? 'from the view' : String(spec.default);
+      input.placeholder = spec.default === null ? (spec.unset ?? 'from the view') : String(spec.default);
       input.value = value === undefined || value === null || value === spec.default ? '' : value;
       input.addEventListener('change', () => {
         const x = input.value === '' ? null : Number(input.value);

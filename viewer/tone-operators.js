@@ -140,7 +140,7 @@ export const TONE_OPERATORS = [
     summary: 'Reinhard et al. 2002 global operator',
     parameters: [
       { name: 'key', label: 'Key', default: 0.18, min: 1e-9, max: Infinity, step: 0.01 },
-      { name: 'white', label: 'White (cd/m²)', default: null, min: 1e-9, max: Infinity, step: 'any' },
+      { name: 'white', label: 'White (cd/m²)', default: null, unset: 'none', min: 1e-9, max: Infinity, step: 'any' },
     ],
     adaptive: () => true,
     create(stats, p) {
