@@ -240,8 +240,8 @@ class Viewer {
     const irradiance = read(OUTPUT_IRRADIANCE);
     this.setOutput(OUTPUT_RADIANCE);
     this.camera.clearViewOffset();
-    // A pixel that shows no surface reads 0 radiance and 0 irradiance; depth tells them apart from a black surface,
-    // but a black readout there is what a photometer would say too.
+    // A pixel that shows no surface reads 0 radiance and 0 irradiance, as a photometer pointed at the void would.
+    this.lastPick = { radiance: Array.from(radiance.subarray(0, 3)), irradiance: Array.from(irradiance.subarray(0, 3)) };
     this.overlay.readout(
       LUMINOUS_EFFICACY * relativeLuminance(radiance[0], radiance[1], radiance[2]),
       LUMINOUS_EFFICACY * relativeLuminance(irradiance[0], irradiance[1], irradiance[2]),

@@ -11,14 +11,19 @@
 //  3. the same comparison rejects the view one stop too bright (the test can
 //     fail), and a missing model gives a clear error on the page.
 //
-// Usage: node viewer_test.mjs path/to/radiant SOURCE_DIR
+// With a third argument, another scene of scenes/ (cornell-textured: the
+// texture rule L = L_e + ρ(x)·H/π), only 1 and the linear comparison of 2.
+//
+// Usage: node viewer_test.mjs path/to/radiant SOURCE_DIR [SCENE]
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { decodePng, importViewerPackage, launchChromium, openViewer, requireBrowserDependencies, runRadiant, serveStatic } from './harness.mjs';
 import { compareImages } from './image-compare.mjs';
 
-const [radiant, repo] = process.argv.slice(2).map((p) => path.resolve(p));
+const [radiant, repo] = process.argv.slice(2, 4).map((p) => path.resolve(p));
+const sceneName = process.argv[4] ?? 'cornell-box';
+const full = sceneName === 'cornell-box';
 const SIZE = 256;
 const MEAN_TOLERANCE = 0.02;
 const MIN_SSIM = 0.95;
@@ -56,10 +61,62 @@ async function validate(file) {
   check(numErrors === 0, `gltf-validator ${validator.version()}: ${numErrors} errors, ${numWarnings} warnings, ${numInfos} infos`);
 }
 
+/** The checks made on the Cornell box only: the adaptive operators, the readout, walking, the test's power, errors. */
+async function fullChecks(shoot, browser, baseUrl, work, expected) {
+  for (const [name, , query] of ADAPTIVE) {
+    const view = await shoot(`model=box.glb&ui=0&${query}`);
+    const c = compareImages(view.image, decodePng(fs.readFileSync(path.join(work, `box-${name}.png`))));
+    check(
+      Math.abs(c.meanRatio - 1) <= (name === 'tumblin-rushmeier' ? MEAN_TOLERANCE_TUMBLIN_RUSHMEIER : MEAN_TOLERANCE) && c.ssim >= MIN_SSIM && view.consoleErrors.length === 0,
+      `${query}: mean ratio ${c.meanRatio.toFixed(4)}, SSIM ${c.ssim.toFixed(4)}${view.consoleErrors.map((e) => `\n       ${e}`).join('')}`,
+    );
+  }
+
+  // Under the cursor: on the back wall (white, untextured, no emission) L = ρH/π per channel, as at every
+  // mesh node (B = E + ρH), and the readouts are 683 × Y of L and of H.
+  const walk = await openViewer(browser, baseUrl, 'model=box.glb&tonemap=linear&ui=0', SIZE, SIZE);
+  await walk.page.mouse.move(SIZE / 2, SIZE / 3);
+  await walk.page.waitForFunction(() => window.radiantViewer.lastPick !== undefined, { timeout: 10000 });
+  const pick = await walk.page.evaluate(() => ({
+    ...window.radiantViewer.lastPick,
+    luminance: document.getElementById('luminance').textContent,
+    illuminance: document.getElementById('illuminance').textContent,
+  }));
+  const white = [0.885809, 0.698859, 0.666422];
+  const worst = Math.max(...[0, 1, 2].map((c) => Math.abs(pick.radiance[c] / ((white[c] * pick.irradiance[c]) / Math.PI) - 1)));
+  const y = (v) => 683 * (0.212639 * v[0] + 0.7151687 * v[1] + 0.0721923 * v[2]);
+  check(
+    worst < 1e-3 && Math.abs(parseFloat(pick.luminance) / y(pick.radiance) - 1) < 0.01 && Math.abs(parseFloat(pick.illuminance) / y(pick.irradiance) - 1) < 0.01,
+    `readout on the back wall: ${pick.luminance}, ${pick.illuminance}; L = ρH/π within ${(worst * 100).toFixed(3)} %`,
+  );
+  // Walking: W moves the camera forward (+z, the file's camera looks down the box), a drag turns it.
+  const before = await walk.page.evaluate(() => window.radiantViewer.camera.position.z);
+  await walk.page.keyboard.down('KeyW');
+  await new Promise((resolve) => setTimeout(resolve, 400));
+  await walk.page.keyboard.up('KeyW');
+  await walk.page.mouse.down();
+  await walk.page.mouse.move(SIZE / 2 + 40, SIZE / 3, { steps: 4 });
+  await walk.page.mouse.up();
+  const after = await walk.page.evaluate(() => ({ z: window.radiantViewer.camera.position.z, yaw: window.radiantViewer.controls.yaw }));
+  check(after.z > before + 0.01 && after.yaw < 0, `W walks forward (z ${before.toFixed(3)} → ${after.z.toFixed(3)} m), a drag turns (yaw ${after.yaw.toFixed(3)} rad)`);
+  check(walk.consoleErrors.length === 0, `no console error while walking${walk.consoleErrors.map((e) => `\n       ${e}`).join('')}`);
+  await walk.page.close();
+
+  // The comparison has power: one stop too bright must fail it.
+  const bright = await shoot('model=box.glb&ui=0&tonemap=linear&exposure=1');
+  const wrong = compareImages(bright.image, expected);
+  check(Math.abs(wrong.meanRatio - 1) > MEAN_TOLERANCE, `exposure=1 is told apart: mean ratio ${wrong.meanRatio.toFixed(3)}, SSIM ${wrong.ssim.toFixed(3)}`);
+
+  const missing = await openViewer(browser, baseUrl, 'model=no-such-file.glb', SIZE, SIZE);
+  const shown = await missing.page.$eval('#error', (e) => (e.hidden ? '' : e.textContent));
+  check(/404/.test(shown), `a missing model is reported on the page: '${shown}'`);
+  await missing.page.close();
+}
+
 async function main() {
   requireBrowserDependencies(repo);
   const work = fs.mkdtempSync(path.join(os.tmpdir(), 'radiant-viewer-'));
-  const scene = path.join(repo, 'scenes', 'cornell-box', 'scene.json');
+  const scene = path.join(repo, 'scenes', sceneName, 'scene.json');
   const solution = path.join(work, 'box.rad');
   const glb = path.join(work, 'box.glb');
   const reference = path.join(work, 'box.png');
@@ -70,8 +127,9 @@ async function main() {
   runRadiant(radiant, ['export', scene, '--solution', solution, '-o', glb]);
   runRadiant(radiant, ['render', scene, '--method', 'interpolate', '--solution', solution, '--tonemap', 'linear',
     '--width', String(SIZE), '--height', String(SIZE), '-o', reference, '-o', referenceExr]);
-  for (const [name] of ADAPTIVE)
-    runRadiant(radiant, ['tonemap', referenceExr, '-o', path.join(work, `box-${name}.png`), ...ADAPTIVE.find((a) => a[0] === name)[1]]);
+  if (full)
+    for (const [name] of ADAPTIVE)
+      runRadiant(radiant, ['tonemap', referenceExr, '-o', path.join(work, `box-${name}.png`), ...ADAPTIVE.find((a) => a[0] === name)[1]]);
   console.log(`     radiant solve, export and render: ${((performance.now() - started) / 1000).toFixed(1)} s`);
 
   await validate(glb);
@@ -99,24 +157,7 @@ async function main() {
       fs.copyFileSync(reference, path.join(process.env.RADIANT_VIEWER_TEST_KEEP, 'radiant.png'));
     }
 
-    for (const [name, , query] of ADAPTIVE) {
-      const view = await shoot(`model=box.glb&ui=0&${query}`);
-      const c = compareImages(view.image, decodePng(fs.readFileSync(path.join(work, `box-${name}.png`))));
-      check(
-        Math.abs(c.meanRatio - 1) <= (name === 'tumblin-rushmeier' ? MEAN_TOLERANCE_TUMBLIN_RUSHMEIER : MEAN_TOLERANCE) && c.ssim >= MIN_SSIM && view.consoleErrors.length === 0,
-        `${query}: mean ratio ${c.meanRatio.toFixed(4)}, SSIM ${c.ssim.toFixed(4)}${view.consoleErrors.map((e) => `\n       ${e}`).join('')}`,
-      );
-    }
-
-    // The comparison has power: one stop too bright must fail it.
-    const bright = await shoot('model=box.glb&ui=0&tonemap=linear&exposure=1');
-    const wrong = compareImages(bright.image, expected);
-    check(Math.abs(wrong.meanRatio - 1) > MEAN_TOLERANCE, `exposure=1 is told apart: mean ratio ${wrong.meanRatio.toFixed(3)}, SSIM ${wrong.ssim.toFixed(3)}`);
-
-    const missing = await openViewer(browser, server.url, 'model=no-such-file.glb', SIZE, SIZE);
-    const shown = await missing.page.$eval('#error', (e) => (e.hidden ? '' : e.textContent));
-    check(/404/.test(shown), `a missing model is reported on the page: '${shown}'`);
-    await missing.page.close();
+    if (full) await fullChecks(shoot, browser, server.url, work, expected);
     console.log(`     browser: ${((performance.now() - started) / 1000).toFixed(1)} s`);
   } finally {
     await browser.close();
