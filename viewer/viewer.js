@@ -74,6 +74,9 @@ async function loadModel(url) {
       const count = geometry.getAttribute('position').count;
       geometry.setAttribute('_irradiance', new THREE.BufferAttribute(new Float32Array(3 * count), 3));
     }
+    // The shader reads only these; COLOR_0 (for plain viewers) and NORMAL would take GPU memory for nothing.
+    geometry.deleteAttribute('color');
+    geometry.deleteAttribute('normal');
     const index = gltf.parser.associations.get(object.material)?.materials;
     object.material = createRadianceMaterial(index !== undefined ? json.materials[index] : undefined, object.material);
   });
