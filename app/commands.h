@@ -15,5 +15,6 @@ CommandRunner addSolveCommand(CLI::App &app);
 CommandRunner addTonemapCommand(CLI::App &app);
 CommandRunner addMethodsCommand(CLI::App &app);
 CommandRunner addExportCommand(CLI::App &app);
+CommandRunner addServeCommand(CLI::App &app);
 
 }  // namespace radiant

@@ -48,12 +48,15 @@ int main(int argc, char **argv) {
       app.add_subcommand("methods", "List the rendering methods and radiosity solvers with their parameters");
   CLI::App *exportCommand = app.add_subcommand(
       "export", "Write the radiosity solution as a mesh with light at its vertices: glTF 2.0 (.glb, .gltf) or PLY");
+  CLI::App *serve =
+      app.add_subcommand("serve", "Serve the browser viewer and a .glb on a local web server (127.0.0.1)");
   radiant::CommandRunner runRender = radiant::addRenderCommand(*render);
   radiant::CommandRunner runSolve = radiant::addSolveCommand(*solve);
   radiant::CommandRunner runCompare = radiant::addCompareCommand(*compare);
   radiant::CommandRunner runTonemap = radiant::addTonemapCommand(*tonemap);
   radiant::CommandRunner runMethods = radiant::addMethodsCommand(*methods);
   radiant::CommandRunner runExport = radiant::addExportCommand(*exportCommand);
+  radiant::CommandRunner runServe = radiant::addServeCommand(*serve);
 
   try {
     app.parse(argc, argv);
@@ -61,7 +64,7 @@ int main(int argc, char **argv) {
     // --help and --version exit 0; a bad flag is bad input, exit 2 like every other.
     const int status = app.exit(e);
     if (dynamic_cast<const CLI::ExtrasError *>(&e))
-      for (CLI::App *command : {render, solve, compare, tonemap, methods, exportCommand})
+      for (CLI::App *command : {render, solve, compare, tonemap, methods, exportCommand, serve})
         if (command->parsed()) suggestFlags(app, *command);
     return status == 0 ? 0 : 2;
   }
@@ -72,6 +75,7 @@ int main(int argc, char **argv) {
     if (tonemap->parsed()) return runTonemap();
     if (methods->parsed()) return runMethods();
     if (exportCommand->parsed()) return runExport();
+    if (serve->parsed()) return runServe();
   } catch (const radiant::Interrupted &) {
     fmt::print(stderr, "radiant: interrupted before anything was complete; nothing written\n");
     return radiant::interruptedExitStatus();

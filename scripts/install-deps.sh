@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config git
   libembree-dev libtbb-dev libopenexr-dev libstb-dev libpng-dev libtinyobjloader-dev
-  nlohmann-json3-dev libcli11-dev libfmt-dev libtinygltf-dev
+  nlohmann-json3-dev libcli11-dev libfmt-dev libtinygltf-dev libcpp-httplib-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   clang-format-14
   chromium

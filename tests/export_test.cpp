@@ -1,0 +1,263 @@
+// radiant export (docs/export.md): the baked mesh's light against closed
+// forms and against the solution it came from, and the glTF and PLY files
+// read back.
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "display/luminance.h"
+#include "export/baked_mesh.h"
+#include "export/gltf_writer.h"
+#include "export/ply_writer.h"
+#include "radiosity/solution_query.h"
+#include "radiosity/solver.h"
+#include "raytrace/surface_detail.h"
+#include "scene/load_scene.h"
+#include "test_scenes.h"
+
+namespace radiant {
+namespace {
+
+Solution solveWith(const Scene &scene, const std::string &solver, double meshSize, double tolerance) {
+  RayTracer tracer(scene);
+  MeshOptions meshOptions;
+  meshOptions.maxEdgeLength = meshSize;
+  Solution s = initialSolution(scene, buildMesh(scene, meshOptions));
+  SolverOptions options;
+  options.solver = solver;
+  options.tolerance = tolerance;
+  solveRadiosity(tracer, s, options);
+  return s;
+}
+
+/// linear, exposure 0: display value = radiance.
+void identityDisplay(const float radiance[3], double display[3]) {
+  for (int c = 0; c < 3; ++c) display[c] = std::clamp(double(radiance[c]), 0.0, 1.0);
+}
+
+double triangleArea(const BakedPrimitive &p, size_t t) {
+  Vec3 v[3];
+  for (int k = 0; k < 3; ++k) {
+    const uint32_t i = p.indices[3 * t + k];
+    v[k] = Vec3(p.positions[3 * i], p.positions[3 * i + 1], p.positions[3 * i + 2]);
+  }
+  return 0.5 * length(cross(v[1] - v[0], v[2] - v[0]));
+}
+
+std::string temporaryPath(const std::string &name) {
+  return (std::filesystem::temp_directory_path() / ("radiant-export-test-" + name)).string();
+}
+
+// The furnace (every wall emits L_e = 1 and reflects ρ = ½): L = L_e/(1 − ρ) = 2
+// W·sr⁻¹·m⁻² at every vertex, and H = (B − E)/ρ = π·2 W·m⁻²; Gauss–Seidel to 1e-9
+// leaves an error of that order, so 1e-6 is the round-off of the float attributes.
+TEST(Export, TheFurnaceBakesItsClosedFormAtEveryVertex) {
+  const Scene scene = test::furnace(1.0, 0.5);
+  const Solution solution = solveWith(scene, "gauss-seidel", 0.25, 1e-9);
+  const BakedMesh baked = bakeSolution(scene, solution, identityDisplay);
+  ASSERT_EQ(baked.primitives.size(), 1u);
+  const BakedPrimitive &p = baked.primitives[0];
+  ASSERT_GT(p.vertexCount(), 0u);
+  for (size_t v = 0; v < p.vertexCount(); ++v)
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_NEAR(p.radiance[3 * v + c], 2.0, 1e-6) << "vertex " << v;
+      ASSERT_NEAR(p.irradiance[3 * v + c], 2.0 * kPi, 1e-5) << "vertex " << v;
+      // COLOR_0 = T(L)/ρ̄ clamped: T(2) = 1 (clipped), /0.5 = 2, clamped to 1.
+      ASSERT_FLOAT_EQ(p.colour[3 * v + c], 1.0f);
+    }
+}
+
+// The triangles cover exactly the elements (a quad's four triangles around its
+// centre, no gaps, no overlaps), per material, with the front side's normal,
+// and every node's light is the solution's there.
+TEST(Export, TheTrianglesCoverTheElementsAndCarryTheNodesLight) {
+  const Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
+  const Solution solution = solveWith(scene, "gauss-seidel", 0.1, 1e-4);
+  const BakedMesh baked = bakeSolution(scene, solution, identityDisplay);
+  std::vector<double> elementArea(scene.materials.size(), 0.0), bakedArea(scene.materials.size(), 0.0);
+  for (const Element &e : solution.mesh.elements) elementArea[solution.mesh.patches[e.patch].material] += e.area;
+  size_t triangles = 0;
+  for (const BakedPrimitive &p : baked.primitives) {
+    for (size_t t = 0; t < p.triangleCount(); ++t) {
+      bakedArea[p.material] += triangleArea(p, t);
+      // Winding: the triangle's normal is the vertices' (front) normal.
+      const uint32_t i0 = p.indices[3 * t], i1 = p.indices[3 * t + 1], i2 = p.indices[3 * t + 2];
+      auto at = [&](uint32_t i) { return Vec3(p.positions[3 * i], p.positions[3 * i + 1], p.positions[3 * i + 2]); };
+      const Vec3 n = normalize(cross(at(i1) - at(i0), at(i2) - at(i0)));
+      const Vec3 stored(p.normals[3 * i0], p.normals[3 * i0 + 1], p.normals[3 * i0 + 2]);
+      ASSERT_GT(dot(n, stored), 0.999) << "material " << p.material << " triangle " << t;
+    }
+    triangles += p.triangleCount();
+  }
+  for (size_t m = 0; m < scene.materials.size(); ++m)
+    EXPECT_NEAR(bakedArea[m], elementArea[m], 1e-6 * elementArea[m]) << scene.materials[m].name;
+  size_t quads = 0, tris = 0;
+  for (const Element &e : solution.mesh.elements) (e.vertexCount == 4 ? quads : tris)++;
+  EXPECT_EQ(triangles, 4 * quads + tris);
+
+  // Every node's radiance is max(B, E)/π of its node value; ρ̄H + E = B there.
+  size_t checked = 0;
+  for (const BakedPrimitive &p : baked.primitives)
+    for (size_t v = 0; v < p.vertexCount(); ++v) {
+      const Vec3 x(p.positions[3 * v], p.positions[3 * v + 1], p.positions[3 * v + 2]);
+      const Vec3 normal(p.normals[3 * v], p.normals[3 * v + 1], p.normals[3 * v + 2]);
+      for (size_t n = 0; n < solution.mesh.nodes.size(); ++n) {
+        // The node at this place on this surface (nodes of neighbouring patches of one plane are pooled).
+        const Patch &patch = solution.mesh.patches[solution.mesh.nodePatch[n]];
+        if (length(solution.mesh.nodes[n] - x) > 1e-6 || patch.material != p.material ||
+            dot(patch.normal, normal) < 0.999)
+          continue;
+        const Bands &b = solution.nodeRadiosity[n];
+        const Bands e = scene.materials[p.material].emission * kPi;
+        for (int c = 0; c < 3; ++c) {
+          EXPECT_NEAR(p.radiance[3 * v + c], std::max(b[c], e[c]) / kPi, 1e-6 * (1 + b[c]));
+          EXPECT_NEAR(e[c] + solution.nodeReflectance[n][c] * p.irradiance[3 * v + c], std::max(b[c], e[c]),
+                      1e-5 * (1 + b[c]));
+        }
+        ++checked;
+        break;
+      }
+      if (checked > 400) break;
+    }
+  EXPECT_GT(checked, 100u);
+}
+
+// A textured surface carries its texture coordinates (the material's, scale
+// applied) at every vertex: the renderer's own parameterisation there.
+TEST(Export, TexturedSurfacesKeepTheirTextureCoordinates) {
+  const Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-textured/scene.json");
+  const Solution solution = solveWith(scene, "gauss-seidel", 0.1, 1e-3);
+  const BakedMesh baked = bakeSolution(scene, solution, identityDisplay);
+  RayTracer tracer(scene);
+  size_t textured = 0;
+  for (const BakedPrimitive &p : baked.primitives) {
+    EXPECT_EQ(p.hasUv, scene.materials[p.material].diffuseTextureIndex >= 0);
+    if (!p.hasUv) continue;
+    ASSERT_EQ(p.uvs.size(), 2 * p.vertexCount());
+    for (size_t v = 0; v < p.vertexCount(); ++v) {
+      // Trace to the vertex from just in front of it, and compare with the hit's parameterisation.
+      const Vec3 x(p.positions[3 * v], p.positions[3 * v + 1], p.positions[3 * v + 2]);
+      const Vec3 n(p.normals[3 * v], p.normals[3 * v + 1], p.normals[3 * v + 2]);
+      Hit hit;
+      // Vertices on a face's edge are left out: the ray may find the neighbouring face there.
+      if (!tracer.intersect(Ray{x + n * 1e-3, n * -1.0}, hit, 2e-3) ||
+          std::min({hit.b1, hit.b2, 1 - hit.b1 - hit.b2}) < 1e-3)
+        continue;
+      const SurfaceParameterisation s = surfaceParameterisation(scene, scene.triangles[hit.triangle], hit.b1, hit.b2);
+      EXPECT_NEAR(p.uvs[2 * v], s.u, 1e-4);
+      EXPECT_NEAR(p.uvs[2 * v + 1], s.v, 1e-4);
+      ++textured;
+    }
+  }
+  EXPECT_GT(textured, 20u);
+}
+
+tinygltf::Model readGltf(const std::string &path) {
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model model;
+  std::string error, warning;
+  const bool ok = path.ends_with(".glb") ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
+                                         : loader.LoadASCIIFromFile(&model, &error, &warning, path);
+  EXPECT_TRUE(ok) << error;
+  return model;
+}
+
+const float *attribute(const tinygltf::Model &model, const tinygltf::Primitive &p, const std::string &name,
+                       size_t &count) {
+  const tinygltf::Accessor &a = model.accessors[size_t(p.attributes.at(name))];
+  const tinygltf::BufferView &view = model.bufferViews[size_t(a.bufferView)];
+  count = a.count;
+  return reinterpret_cast<const float *>(model.buffers[size_t(view.buffer)].data.data() + view.byteOffset +
+                                         a.byteOffset);
+}
+
+// The file read back by tinygltf holds what was baked: attributes, the
+// camera (its −Z the view direction, +Y up), emitters' L_e as factor ×
+// strength, the material in extras.radiant; .glb and .gltf alike.
+TEST(Export, TheGltfFileReadsBackAsBaked) {
+  const Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
+  const Solution solution = solveWith(scene, "gauss-seidel", 0.15, 1e-3);
+  const BakedMesh baked = bakeSolution(scene, solution, identityDisplay);
+  for (const std::string extension : {".glb", ".gltf"}) {
+    const std::string path = temporaryPath("box" + extension);
+    writeGltf(scene, baked, ExportProvenance{"gauss-seidel", "linear", {{"exposure", 0.0}}, "linear"}, path);
+    const tinygltf::Model model = readGltf(path);
+    std::filesystem::remove(path);
+    ASSERT_EQ(model.meshes.size(), 1u);
+    ASSERT_EQ(model.meshes[0].primitives.size(), baked.primitives.size());
+    for (size_t i = 0; i < baked.primitives.size(); ++i) {
+      const BakedPrimitive &b = baked.primitives[i];
+      const tinygltf::Primitive &p = model.meshes[0].primitives[i];
+      size_t count = 0;
+      const float *radiance = attribute(model, p, "_RADIANCE", count);
+      ASSERT_EQ(count, b.vertexCount());
+      for (size_t k = 0; k < 3 * count; ++k) ASSERT_EQ(radiance[k], b.radiance[k]);
+      const float *irradiance = attribute(model, p, "_IRRADIANCE", count);
+      for (size_t k = 0; k < 3 * count; ++k) ASSERT_EQ(irradiance[k], b.irradiance[k]);
+      EXPECT_EQ(model.accessors[size_t(p.indices)].count, b.indices.size());
+      const tinygltf::Material &m = model.materials[size_t(p.material)];
+      const Material &original = scene.materials[b.material];
+      EXPECT_EQ(m.name, original.name);
+      for (int c = 0; c < 3; ++c)
+        EXPECT_DOUBLE_EQ(m.pbrMetallicRoughness.baseColorFactor[size_t(c)], original.diffuse[c]);
+      EXPECT_TRUE(m.extensions.count("KHR_materials_unlit"));
+      const double strength =
+          m.extensions.count("KHR_materials_emissive_strength")
+              ? m.extensions.at("KHR_materials_emissive_strength").Get("emissiveStrength").GetNumberAsDouble()
+              : 1.0;
+      for (int c = 0; c < 3; ++c) {
+        const double factor = m.emissiveFactor.empty() ? 0.0 : m.emissiveFactor[size_t(c)];
+        EXPECT_NEAR(factor * strength, original.emission[c], 1e-9 * (1 + original.emission[c]));
+        EXPECT_DOUBLE_EQ(m.extras.Get("radiant").Get("emission").Get(c).GetNumberAsDouble(), original.emission[c]);
+      }
+      EXPECT_EQ(m.extras.Get("radiant").Get("kind").Get<std::string>(), materialKindName(original.kind));
+    }
+    // The camera node: translation the eye, rotation taking −Z to the view direction and +Y to up.
+    ASSERT_EQ(model.cameras.size(), 1u);
+    EXPECT_NEAR(model.cameras[0].perspective.yfov, scene.camera.verticalFovDegrees * kPi / 180, 1e-12);
+    const tinygltf::Node &node = model.nodes[1];
+    ASSERT_EQ(node.camera, 0);
+    const double x = node.rotation[0], y = node.rotation[1], z = node.rotation[2], w = node.rotation[3];
+    auto rotate = [&](Vec3 v) {  // q v q*
+      const Vec3 u(x, y, z);
+      return u * (2 * dot(u, v)) + v * (w * w - dot(u, u)) + cross(u, v) * (2 * w);
+    };
+    const Vec3 forward = normalize(scene.camera.target - scene.camera.eye);
+    EXPECT_GT(dot(rotate(Vec3(0, 0, -1)), forward), 1 - 1e-9);
+    EXPECT_GT(dot(rotate(Vec3(0, 1, 0)), normalize(scene.camera.up)), 0.999);
+    EXPECT_NEAR(node.translation[0], scene.camera.eye.x, 1e-12);
+    EXPECT_EQ(model.asset.extras.Get("radiant").Get("elements").GetNumberAsInt(), int(baked.elements));
+  }
+}
+
+// The PLY file: its header's counts, and exactly as many bytes as they say.
+TEST(Export, ThePlyFileHoldsWhatItsHeaderSays) {
+  const Scene scene = test::furnace(1.0, 0.5);
+  const Solution solution = solveWith(scene, "gauss-seidel", 0.5, 1e-6);
+  const BakedMesh baked = bakeSolution(scene, solution, identityDisplay);
+  const std::string path = temporaryPath("furnace.ply");
+  writePly(baked, identityDisplay, path);
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::filesystem::remove(path);
+  const size_t headerEnd = bytes.find("end_header\n");
+  ASSERT_NE(headerEnd, std::string::npos);
+  const size_t vertices = baked.primitives[0].vertexCount(), triangles = baked.primitives[0].triangleCount();
+  EXPECT_NE(bytes.find("element vertex " + std::to_string(vertices) + "\n"), std::string::npos);
+  EXPECT_NE(bytes.find("element face " + std::to_string(triangles) + "\n"), std::string::npos);
+  // x y z nx ny nz (floats), r g b (bytes), 6 floats of light; a face is a count byte and 3 uints.
+  EXPECT_EQ(bytes.size(), headerEnd + 11 + vertices * (6 * 4 + 3 + 6 * 4) + triangles * 13);
+  // The first vertex: L = 2 → display 1 → red 255, radiance_r = 2.
+  const char *first = bytes.data() + headerEnd + 11;
+  EXPECT_EQ(uint8_t(first[24]), 255);
+  float radiance = 0;
+  std::memcpy(&radiance, first + 27, 4);
+  EXPECT_NEAR(radiance, 2.0f, 1e-5);
+}
+
+}  // namespace
+}  // namespace radiant
