@@ -30,6 +30,7 @@ import { WalkControls } from './walk-controls.js';
 const STATISTICS_INTERVAL_MS = 250;
 // Above this many pixels the statistics are taken from a view averaged down by an integer factor.
 const STATISTICS_MAX_PIXELS = 512 * 512;
+const MAX_RADIANCE_SAMPLES = 16 * 1024 * 1024;
 
 const query = new URLSearchParams(window.location.search);
 
@@ -179,7 +180,12 @@ class Viewer {
     this.height = size.y;
     this.camera.aspect = this.width / this.height; // yfov kept, the width follows the window
     this.camera.updateProjectionMatrix();
-    const s = this.settings.samplesPerPixel;
+    // ss × ss samples per pixel, fewer on a large window: 16 M float samples (256 MiB) at most, and no side
+    // beyond the GPU's limit.
+    const limit = this.renderer.capabilities.maxTextureSize;
+    let s = this.settings.samplesPerPixel;
+    while (s > 1 && (this.width * this.height * s * s > MAX_RADIANCE_SAMPLES || Math.max(this.width, this.height) * s > limit)) --s;
+    this.samplesPerPixel = s;
     this.radiance.setSize(this.width * s, this.height * s);
     this.statisticsReduction = Math.max(1, Math.ceil(Math.sqrt((this.width * this.height) / STATISTICS_MAX_PIXELS)));
     this.statisticsTarget.setSize(Math.floor(this.width / this.statisticsReduction), Math.floor(this.height / this.statisticsReduction));
@@ -212,7 +218,7 @@ class Viewer {
   /** The view's per-pixel mean radiance and emitter fraction, read back: what radiant's operators read from an image. */
   readStatistics() {
     const target = this.statisticsTarget;
-    this.display.draw(this.renderer, this.radiance, this.settings.samplesPerPixel * this.statisticsReduction, target, false);
+    this.display.draw(this.renderer, this.radiance, this.samplesPerPixel * this.statisticsReduction, target, false);
     const pixels = new Float32Array(target.width * target.height * 4);
     this.renderer.readRenderTargetPixels(target, 0, 0, target.width, target.height, pixels);
     this.statistics = viewStatistics(pixels, target.width, target.height);
@@ -268,7 +274,7 @@ class Viewer {
       const mapped = op.create(this.statistics, parameters);
       setToneUniforms(this.display.uniforms, mapped);
       this.overlay.describe(mapped.describe);
-      this.display.draw(this.renderer, this.radiance, this.settings.samplesPerPixel, null);
+      this.display.draw(this.renderer, this.radiance, this.samplesPerPixel, null);
       ++this.frameCount;
       // Done when the picture shows the statistics of its own view; otherwise draw again when they may be read.
       this.needsDraw = this.statisticsStale && adaptive;

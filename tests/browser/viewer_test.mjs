@@ -15,6 +15,7 @@
 // texture rule L = L_e + ρ(x)·H/π), only 1 and the linear comparison of 2.
 //
 // Usage: node viewer_test.mjs path/to/radiant SOURCE_DIR [SCENE]
+import { spawn } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -113,6 +114,31 @@ async function fullChecks(shoot, browser, baseUrl, work, expected) {
   await missing.page.close();
 }
 
+/** `radiant serve` (the viewer's folder and the model at /model.glb) shows the same pixels as the test's server. */
+async function serveCheck(browser, glb, expectedImage) {
+  const server = spawn(radiant, ['serve', glb, '--port', '0'], { stdio: ['ignore', 'pipe', 'ignore'] });
+  try {
+    const address = await new Promise((resolve, reject) => {
+      let out = '';
+      server.stdout.on('data', (data) => {
+        out += data;
+        const match = /(http:\/\/[^\s]+)\/index\.html/.exec(out);
+        if (match) resolve(match[1]);
+      });
+      server.on('exit', (code) => reject(new Error(`radiant serve exited (${code}) before printing its address`)));
+      setTimeout(() => reject(new Error('radiant serve printed no address in 10 s')), 10000);
+    });
+    const viewer = await openViewer(browser, address, 'model=model.glb&ui=0&tonemap=linear&exposure=0', SIZE, SIZE);
+    const image = decodePng(Buffer.from(await viewer.page.screenshot({ type: 'png' })));
+    await viewer.page.close();
+    const same = image.rgb.every((v, i) => v === expectedImage.rgb[i]);
+    check(viewer.title === 'ready' && viewer.consoleErrors.length === 0 && same,
+      `through radiant serve (${address}): '${viewer.title}', ${viewer.consoleErrors.length} console errors, ${same ? 'the same pixels' : 'other pixels'}`);
+  } finally {
+    server.kill();
+  }
+}
+
 async function main() {
   requireBrowserDependencies(repo);
   const work = fs.mkdtempSync(path.join(os.tmpdir(), 'radiant-viewer-'));
@@ -157,7 +183,10 @@ async function main() {
       fs.copyFileSync(reference, path.join(process.env.RADIANT_VIEWER_TEST_KEEP, 'radiant.png'));
     }
 
-    if (full) await fullChecks(shoot, browser, server.url, work, expected);
+    if (full) {
+      await fullChecks(shoot, browser, server.url, work, expected);
+      await serveCheck(browser, glb, linear.image);
+    }
     console.log(`     browser: ${((performance.now() - started) / 1000).toFixed(1)} s`);
   } finally {
     await browser.close();
