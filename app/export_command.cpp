@@ -20,7 +20,9 @@
 #include "render/emitter_coverage.h"
 #include "render/film_image.h"
 #include "render/registry.h"
+#include "render/spectral_film.h"
 #include "scene/load_scene.h"
+#include "scene/spectral_scene.h"
 #include "util/error.h"
 #include "util/interrupt.h"
 #include "view_options.h"
@@ -63,23 +65,40 @@ std::string exportFormat(const ExportCommandOptions &o) {
 
 /// The interpolate display of the camera's view, 4 samples per pixel: what the
 /// tone operators adapt to (log-average luminance, brightest reflecting pixel),
-/// exactly as they would for `radiant render --method interpolate`.
-Image cameraView(const Scene &scene, const RayTracer &tracer, const Solution &solution, int threads) {
+/// exactly as they would for `radiant render --method interpolate` (one pass
+/// per solution of a spectral scene, its colour formed as render forms it).
+Image cameraView(Scene &scene, const RayTracer &tracer, const std::vector<Solution> &solutions, WhiteBalance balance,
+                 int threads) {
   const PinholeCamera camera(scene.camera, scene.render.width, scene.render.height);
-  RenderContext context;
-  context.solution = &solution;
-  context.pixelSpreadAngle = texturePixelSpread(scene.camera, scene.render.height, 4);
-  const std::unique_ptr<Renderer> renderer = createRenderer("interpolate", tracer, context);
-  DriverOptions driver;
-  driver.samplesPerPixel = 4;
-  driver.seed = scene.render.seed;
-  driver.threads = threads;
-  Film film(scene.render.width, scene.render.height);
-  renderImage(camera, *renderer, driver, film, {});
-  Image image = meanImage(film);
+  auto renderPass = [&](int pass, Film &film) {
+    RenderContext context;
+    context.solution = &solutions[size_t(pass)];
+    context.pixelSpreadAngle = texturePixelSpread(scene.camera, scene.render.height, 4);
+    const std::unique_ptr<Renderer> renderer = createRenderer("interpolate", tracer, context);
+    DriverOptions driver;
+    driver.samplesPerPixel = 4;
+    driver.seed = scene.render.seed;
+    driver.threads = threads;
+    renderImage(camera, *renderer, driver, film, {});
+  };
+  Image image = renderPasses(scene, scene.render.width, scene.render.height, balance, renderPass).colour;
   image.quantity = "radiance";
   image.emitterFraction = emitterCoverage(tracer, camera, image.width, image.height);
   return image;
+}
+
+/// The solutions baked, one RGB mesh (a spectral scene's passes combined); colours not set.
+BakedMesh bakeSolutions(Scene &scene, const std::vector<Solution> &solutions, WhiteBalance balance) {
+  if (!scene.spectral.enabled()) return bakeSolution(scene, solutions[0]);
+  // Each pass refined its own mesh: the first pass's vertices, the others' light read there.
+  std::vector<BakedMesh> passes;
+  for (int pass = 0; pass < scene.spectral.passCount(); ++pass) {
+    applySpectralPass(scene, pass);
+    passes.push_back(pass == 0 ? bakeSolution(scene, solutions[0])
+                               : resampleLight(passes[0], scene, solutions[size_t(pass)]));
+  }
+  applySpectralColour(scene, balance);
+  return combineSpectralPasses(passes, scene, balance);
 }
 
 /// The operator's parameters as the file records them, named as the flags are.
@@ -137,30 +156,38 @@ CommandRunner addExportCommand(CLI::App &app) {
     InterruptHandler interrupts;
     const auto start = std::chrono::steady_clock::now();
     Scene scene = loadScene(o->scenePath);
-    applyColourOptions(app, o->colour, scene);
+    const WhiteBalance balance = applyColourOptions(app, o->colour, scene);
     applyViewOptions(o->view, scene);
-    if (scene.spectral.enabled())
-      throw InputError(InputLocation{o->scenePath}, "export of spectral scenes is not supported yet: add --colour rgb");
     const DisplaySettings display = displaySettings(app, o->display, scene.render.exposure);
     if (!o->quiet)
       for (const std::string &warning : scene.warnings) fmt::print(stderr, "radiant: warning: {}\n", warning);
 
-    RayTracer tracer(scene);
-    const Solution solution = o->solutionPath.empty()
-                                  ? solveScene(scene, tracer, o->radiosity, o->seed, o->threads, o->quiet)
-                                  : readSolution(o->solutionPath, scene);
+    RayTracer tracer(scene);  // geometry only: a spectral pass changes the materials, not the rays
+    // One solution for an RGB scene, one per pass of three wavelengths for a spectral one.
+    std::vector<Solution> solutions;
+    if (!o->solutionPath.empty()) solutions = readSolutionPasses(o->solutionPath, scene);
+    const int passes = scene.spectral.enabled() ? scene.spectral.passCount() : 1;
+    for (int pass = 0; solutions.empty() || int(solutions.size()) < passes; ++pass) {
+      if (scene.spectral.enabled()) {
+        applySpectralPass(scene, pass);
+        if (!o->quiet)
+          fmt::print(stderr, "radiant: solving at {} ({}/{})\n", passWavelengthLabel(scene, pass), pass + 1, passes);
+      }
+      solutions.push_back(solveScene(scene, tracer, o->radiosity, o->seed, o->threads, o->quiet));
+    }
+    if (scene.spectral.enabled()) applySpectralColour(scene, balance);
     if (interruptRequested()) throw Interrupted();
 
-    const DisplayMapping mapping(cameraView(scene, tracer, solution, o->threads), display);
+    const DisplayMapping mapping(cameraView(scene, tracer, solutions, balance, o->threads), display);
     if (!o->quiet) reportDisplayMapping(mapping, app.count("--tonemap") > 0);
-    const BakedMesh baked = bakeSolution(
-        scene, solution, [&](const float radiance[3], double out[3]) { mapping.displayLinear(radiance, out); });
+    BakedMesh baked = bakeSolutions(scene, solutions, balance);
+    applyDisplayColours(baked, [&](const float radiance[3], double out[3]) { mapping.displayLinear(radiance, out); });
     if (format == "ply") {
       writePly(
           baked, [&](const float radiance[3], double out[3]) { mapping.encode(radiance, out); }, o->outputPath);
     } else {
       ExportProvenance provenance;
-      provenance.solver = solution.stats.solver;
+      provenance.solver = solutions[0].stats.solver;
       provenance.toneOperator = display.toneOperator;
       provenance.toneParameters = toneParameterList(display);
       provenance.adaptedTo = mapping.describe();

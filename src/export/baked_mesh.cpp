@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <stdexcept>
+#include <unordered_map>
 
 #include "raytrace/surface_detail.h"
 
@@ -36,25 +38,32 @@ constexpr double kSmallestReflectance = 1e-4;
 /// The light at every node, as the `interpolate` display reads it: B̂ (ambient
 /// included), L = max(B̂, E)/π, and H such that ρ̄H = B̂ − E at the node, so
 /// that a viewer's E + ρ(x)·H reproduces C&W eq. 9.11's E + (B̂ − E)·ρ(x)/ρ̄.
-std::vector<VertexLight> nodeLight(const Scene &scene, const Solution &solution) {
-  const RadiosityMesh &mesh = solution.mesh;
+VertexLight lightFrom(const Bands &b, const Bands &rho, const Bands &elementsIrradiance, const Bands &emitted) {
+  VertexLight v;
+  v.reflectance = rho;
+  for (int c = 0; c < kBandCount; ++c) {
+    const double reflected = std::max(b[c] - emitted[c], 0.0);
+    v.radiance[c] = (emitted[c] + reflected) * kInvPi;
+    v.irradiance[c] = rho[c] > kSmallestReflectance ? reflected / rho[c] : std::max(elementsIrradiance[c], 0.0);
+  }
+  return v;
+}
+
+/// H + ambient of the elements, at the nodes: the irradiance where ρ̄ is too small to recover it from B − E.
+std::vector<Bands> nodeIrradiance(const Solution &solution) {
   std::vector<Bands> elementIrradiance(solution.elementCount());
   for (uint32_t e = 0; e < solution.elementCount(); ++e)
     elementIrradiance[e] = solution.irradiance[e] + solution.ambient;
-  const std::vector<Bands> fallback = solution.nodeValues(elementIrradiance);
+  return solution.nodeValues(elementIrradiance);
+}
+
+std::vector<VertexLight> nodeLight(const Scene &scene, const Solution &solution) {
+  const RadiosityMesh &mesh = solution.mesh;
+  const std::vector<Bands> fallback = nodeIrradiance(solution);
   std::vector<VertexLight> light(mesh.nodes.size());
   for (size_t n = 0; n < mesh.nodes.size(); ++n) {
     const Material &material = scene.materials[mesh.patches[mesh.nodePatch[n]].material];
-    const Bands emitted = material.emission * kPi;
-    const Bands &b = solution.nodeRadiosity[n];
-    const Bands &rho = solution.nodeReflectance[n];
-    VertexLight &v = light[n];
-    v.reflectance = rho;
-    for (int c = 0; c < kBandCount; ++c) {
-      const double reflected = std::max(b[c] - emitted[c], 0.0);
-      v.radiance[c] = (emitted[c] + reflected) * kInvPi;
-      v.irradiance[c] = rho[c] > kSmallestReflectance ? reflected / rho[c] : std::max(fallback[n][c], 0.0);
-    }
+    light[n] = lightFrom(solution.nodeRadiosity[n], solution.nodeReflectance[n], fallback[n], material.emission * kPi);
   }
   return light;
 }
@@ -81,10 +90,44 @@ std::array<double, 2> textureCoordinatesAt(const Scene &scene, uint32_t face, co
   return {s.u, s.v};
 }
 
+/// The T-vertices on each edge of the mesh (RadiosityMesh::tVertices): the
+/// nodes of finer elements lying inside a coarser element's edge. A coarse
+/// element's triangles must pass through them, or the finer neighbours'
+/// triangles leave pinholes (cracks) along the edge.
+class EdgePoints {
+ public:
+  explicit EdgePoints(const RadiosityMesh &mesh) {
+    for (const RadiosityMesh::TVertex &t : mesh.tVertices) points_[key(t.edgeStart, t.edgeEnd)].push_back(t);
+  }
+
+  /// Appends the nodes strictly inside edge a → b, in order from a, the
+  /// T-vertices of its halves included (a T-vertex's own edge may be part of a longer one).
+  void append(uint32_t a, uint32_t b, std::vector<uint32_t> &out, int depth = 0) const {
+    auto found = points_.find(key(a, b));
+    if (found == points_.end() || depth > kMaxSolutionTreeDepth) return;
+    std::vector<std::pair<double, uint32_t>> inside;
+    for (const RadiosityMesh::TVertex &t : found->second)
+      inside.push_back({t.edgeStart == a ? t.t : 1.0 - t.t, t.node});
+    std::sort(inside.begin(), inside.end());
+    uint32_t from = a;
+    for (const auto &[along, node] : inside) {
+      append(from, node, out, depth + 1);
+      out.push_back(node);
+      from = node;
+    }
+    append(from, b, out, depth + 1);
+  }
+
+ private:
+  static uint64_t key(uint32_t a, uint32_t b) { return uint64_t(std::min(a, b)) << 32 | std::max(a, b); }
+  std::unordered_map<uint64_t, std::vector<RadiosityMesh::TVertex>> points_;
+};
+
 class PrimitiveBuilder {
  public:
-  PrimitiveBuilder(const Scene &scene, const DisplayLinearFunction &displayLinear)
-      : scene_(scene), displayLinear_(displayLinear), primitiveOfMaterial_(scene.materials.size(), -1) {}
+  explicit PrimitiveBuilder(const Scene &scene) : scene_(scene), primitiveOfMaterial_(scene.materials.size(), -1) {}
+
+  int32_t indexOf(uint32_t material) const { return primitiveOfMaterial_[material]; }
 
   BakedPrimitive &primitive(uint32_t material) {
     int32_t &index = primitiveOfMaterial_[material];
@@ -105,19 +148,13 @@ class PrimitiveBuilder {
       p.normals.push_back(float(normal[c]));
       p.radiance.push_back(float(light.radiance[c]));
       p.irradiance.push_back(float(light.irradiance[c]));
+      p.reflectance.push_back(float(light.reflectance[c]));
     }
+    p.faces.push_back(face);
     if (p.hasUv) {
       const auto uv = textureCoordinatesAt(scene_, face, position);
       p.uvs.push_back(float(uv[0]));
       p.uvs.push_back(float(uv[1]));
-    }
-    // COLOR_0 = T(L)/ρ̄: an unlit viewer multiplies it by the base colour ρ (docs/export.md).
-    const float radiance[3] = {float(light.radiance[0]), float(light.radiance[1]), float(light.radiance[2])};
-    double display[3] = {0, 0, 0};
-    if (displayLinear_) displayLinear_(radiance, display);
-    for (int c = 0; c < 3; ++c) {
-      const double rho = light.reflectance[c];
-      p.colour.push_back(rho > 0 ? float(std::clamp(display[c] / rho, 0.0, 1.0)) : 0.0f);
     }
     return index;
   }
@@ -131,7 +168,6 @@ class PrimitiveBuilder {
 
  private:
   const Scene &scene_;
-  const DisplayLinearFunction &displayLinear_;
   std::vector<int32_t> primitiveOfMaterial_;
   std::vector<BakedPrimitive> primitives_;
 };
@@ -141,34 +177,46 @@ class PrimitiveBuilder {
 BakedMesh bakeSolution(const Scene &scene, const Solution &solution, const DisplayLinearFunction &displayLinear) {
   const RadiosityMesh &mesh = solution.mesh;
   const std::vector<VertexLight> light = nodeLight(scene, solution);
-  PrimitiveBuilder builder(scene, displayLinear);
+  PrimitiveBuilder builder(scene);
   constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
-  // Nodes belong to one patch, hence to one material and one primitive.
+  // A node is a vertex of its patch's primitive, and of a neighbour's when it is a T-vertex on its edge.
   std::vector<uint32_t> vertexOfNode(mesh.nodes.size(), kNone);
+  std::vector<int32_t> primitiveOfNode(mesh.nodes.size(), -1);
+  const EdgePoints edgePoints(mesh);
+  std::vector<uint32_t> boundary;
   for (uint32_t e = 0; e < mesh.elements.size(); ++e) {
     const Element &element = mesh.elements[e];
     const Patch &patch = mesh.patches[element.patch];
     BakedPrimitive &p = builder.primitive(patch.material);
-    std::array<uint32_t, 4> v{};
-    for (int k = 0; k < element.vertexCount; ++k) {
-      const uint32_t node = element.nodes[size_t(k)];
-      if (vertexOfNode[node] == kNone)
+    const int32_t primitive = builder.indexOf(patch.material);
+    auto vertex = [&](uint32_t node) {
+      if (vertexOfNode[node] == kNone || primitiveOfNode[node] != primitive) {
         vertexOfNode[node] = builder.addVertex(p, mesh.nodes[node], patch.normal, patch.face, light[node]);
-      v[size_t(k)] = vertexOfNode[node];
+        primitiveOfNode[node] = primitive;
+      }
+      return vertexOfNode[node];
+    };
+    // The element's outline: its corners and the T-vertices of finer neighbours on its edges.
+    boundary.clear();
+    for (int k = 0; k < element.vertexCount; ++k) {
+      boundary.push_back(element.nodes[size_t(k)]);
+      edgePoints.append(element.nodes[size_t(k)], element.nodes[size_t((k + 1) % element.vertexCount)], boundary);
     }
-    if (element.vertexCount == 3) {
-      p.indices.insert(p.indices.end(), {v[0], v[1], v[2]});
+    if (boundary.size() == 3) {
+      for (uint32_t node : boundary) p.indices.push_back(vertex(node));
       continue;
     }
-    // A quad: four triangles around its centre, which holds the corners' mean (bilinear's value there).
+    // A fan around the centre, which holds the corners' mean (bilinear's and barycentric's value there).
     std::array<VertexLight, 4> corners;
     Vec3 centre;
-    for (size_t k = 0; k < 4; ++k) {
-      corners[k] = light[element.nodes[k]];
-      centre += mesh.nodes[element.nodes[k]] * 0.25;
+    for (int k = 0; k < element.vertexCount; ++k) {
+      corners[size_t(k)] = light[element.nodes[size_t(k)]];
+      centre += mesh.nodes[element.nodes[size_t(k)]] * (1.0 / element.vertexCount);
     }
-    const uint32_t c = builder.addVertex(p, centre, patch.normal, patch.face, meanLight(corners));
-    for (size_t k = 0; k < 4; ++k) p.indices.insert(p.indices.end(), {c, v[k], v[(k + 1) % 4]});
+    const uint32_t c = builder.addVertex(p, centre, patch.normal, patch.face,
+                                         meanLight(std::span(corners.data(), size_t(element.vertexCount))));
+    for (size_t k = 0; k < boundary.size(); ++k)
+      p.indices.insert(p.indices.end(), {c, vertex(boundary[k]), vertex(boundary[(k + 1) % boundary.size()])});
   }
   // Mirrors and glass have no patches: their triangles, with no light, so the geometry is whole.
   const VertexLight dark{};
@@ -182,7 +230,77 @@ BakedMesh bakeSolution(const Scene &scene, const Solution &solution, const Displ
   BakedMesh baked;
   baked.primitives = builder.take();
   baked.elements = mesh.elements.size();
+  if (displayLinear) applyDisplayColours(baked, displayLinear);
   return baked;
+}
+
+void applyDisplayColours(BakedMesh &baked, const DisplayLinearFunction &displayLinear) {
+  for (BakedPrimitive &p : baked.primitives) {
+    p.colour.assign(p.radiance.size(), 0.0f);
+    for (size_t v = 0; v < p.vertexCount(); ++v) {
+      double display[3] = {0, 0, 0};
+      displayLinear(&p.radiance[3 * v], display);
+      for (size_t c = 0; c < 3; ++c) {
+        const double rho = p.reflectance[3 * v + c];
+        p.colour[3 * v + c] = rho > 0 ? float(std::clamp(display[c] / rho, 0.0, 1.0)) : 0.0f;
+      }
+    }
+  }
+}
+
+BakedMesh resampleLight(const BakedMesh &baked, const Scene &scene, const Solution &solution) {
+  const RadiosityMesh &mesh = solution.mesh;
+  const std::vector<Bands> fallback = nodeIrradiance(solution);
+  BakedMesh out = baked;
+  for (BakedPrimitive &p : out.primitives) {
+    const Bands emitted = scene.materials[p.material].emission * kPi;
+    for (size_t v = 0; v < p.vertexCount(); ++v) {
+      const uint32_t face = p.faces[v];
+      VertexLight light;
+      if (face < mesh.patchOfFace.size() && mesh.patchOfFace[face] >= 0) {
+        const MeshLocation at =
+            mesh.locate(face, Vec3(p.positions[3 * v], p.positions[3 * v + 1], p.positions[3 * v + 2]));
+        light =
+            lightFrom(solution.interpolate(solution.nodeRadiosity, at),
+                      solution.interpolate(solution.nodeReflectance, at), solution.interpolate(fallback, at), emitted);
+      }
+      for (size_t c = 0; c < 3; ++c) {
+        p.radiance[3 * v + c] = float(light.radiance[int(c)]);
+        p.irradiance[3 * v + c] = float(light.irradiance[int(c)]);
+        p.reflectance[3 * v + c] = float(light.reflectance[int(c)]);
+      }
+    }
+  }
+  return out;
+}
+
+BakedMesh combineSpectralPasses(const std::vector<BakedMesh> &passes, const Scene &scene, WhiteBalance balance) {
+  if (passes.empty() || int(passes.size()) != scene.spectral.passCount())
+    throw std::logic_error("combineSpectralPasses: one baked mesh per pass expected");
+  const BandColourMatching matching(scene.spectral.wavelengths);
+  const std::vector<Vec3> weights = matching.linearSrgbWeights(balance);
+  BakedMesh rgb = passes[0];
+  for (size_t q = 0; q < rgb.primitives.size(); ++q) {
+    BakedPrimitive &out = rgb.primitives[q];
+    const Bands diffuse = scene.materials[out.material].diffuse;
+    for (size_t v = 0; v < out.vertexCount(); ++v) {
+      Vec3 radiance, irradiance, reflected;
+      for (int i = 0; i < matching.bandCount(); ++i) {
+        const BakedPrimitive &pass = passes[size_t(i / kBandCount)].primitives[q];
+        const size_t k = 3 * v + size_t(i % kBandCount);
+        radiance += weights[size_t(i)] * double(pass.radiance[k]);
+        irradiance += weights[size_t(i)] * double(pass.irradiance[k]);
+        reflected += weights[size_t(i)] * (double(pass.reflectance[k]) * pass.irradiance[k]);
+      }
+      for (int c = 0; c < 3; ++c) {
+        out.radiance[3 * v + size_t(c)] = float(radiance[c]);
+        out.irradiance[3 * v + size_t(c)] = float(std::max(irradiance[c], 0.0));
+        out.reflectance[3 * v + size_t(c)] =
+            float(irradiance[c] > 1e-12 ? std::clamp(reflected[c] / irradiance[c], 0.0, 1.0) : diffuse[c]);
+      }
+    }
+  }
+  return rgb;
 }
 
 }  // namespace radiant

@@ -14,6 +14,7 @@
 #include <functional>
 #include <vector>
 
+#include "colour/spectrum.h"
 #include "radiosity/solution.h"
 #include "scene/scene.h"
 
@@ -24,13 +25,15 @@ struct BakedPrimitive {
   uint32_t material = 0;
   bool hasUv = false;  ///< the material has a diffuse texture and the faces texture coordinates
   // Per vertex, tightly packed floats:
-  std::vector<float> positions;   ///< 3: metres
-  std::vector<float> normals;     ///< 3: the front side's unit normal
-  std::vector<float> uvs;         ///< 2: the material's texture coordinates (uvScale applied, v up); hasUv only
-  std::vector<float> radiance;    ///< 3: L = max(B, E)/π, W·sr⁻¹·m⁻², RGB
-  std::vector<float> irradiance;  ///< 3: H arriving at the front, W·m⁻²
-  std::vector<float> colour;      ///< 3: display-linear T(L)/ρ̄ in [0, 1] (docs/export.md)
-  std::vector<uint32_t> indices;  ///< 3 per triangle
+  std::vector<float> positions;    ///< 3: metres
+  std::vector<float> normals;      ///< 3: the front side's unit normal
+  std::vector<float> uvs;          ///< 2: the material's texture coordinates (uvScale applied, v up); hasUv only
+  std::vector<float> radiance;     ///< 3: L = max(B, E)/π, W·sr⁻¹·m⁻², RGB
+  std::vector<float> irradiance;   ///< 3: H arriving at the front, W·m⁻²
+  std::vector<float> reflectance;  ///< 3: ρ̄, the mean reflectance the solution used there (not written)
+  std::vector<float> colour;       ///< 3: display-linear T(L)/ρ̄ in [0, 1] (docs/export.md)
+  std::vector<uint32_t> faces;     ///< 1: the scene face the vertex lies on (not written)
+  std::vector<uint32_t> indices;   ///< 3 per triangle
 
   size_t vertexCount() const { return positions.size() / 3; }
   size_t triangleCount() const { return indices.size() / 3; }
@@ -45,10 +48,31 @@ struct BakedMesh {
 /// of a radiance, each channel in [0, 1].
 using DisplayLinearFunction = std::function<void(const float radiance[3], double display[3])>;
 
-/// Bakes an RGB scene's solution. Faces the mesh leaves out are written as
+/// Bakes a solution of the scene (an RGB scene's, or one spectral pass's at
+/// the scene's current bands). Faces the mesh leaves out are written as
 /// their input triangles with no light when their material is a mirror or
 /// glass (so the geometry is complete), and left out otherwise (the hidden
 /// pieces of faces cut where other surfaces meet them, mesh/face_split.h).
-BakedMesh bakeSolution(const Scene &scene, const Solution &solution, const DisplayLinearFunction &displayLinear);
+/// With `displayLinear`, the colours too (applyDisplayColours).
+BakedMesh bakeSolution(const Scene &scene, const Solution &solution, const DisplayLinearFunction &displayLinear = {});
+
+/// Sets every vertex's colour: COLOR_0 = T(L)/ρ̄ per channel, clamped to
+/// [0, 1]: an unlit viewer multiplies it by the base colour ρ, and shows T(L).
+void applyDisplayColours(BakedMesh &baked, const DisplayLinearFunction &displayLinear);
+
+/// The light of another solution of the same scene (a spectral pass's, whose
+/// adaptive mesh differs) at `baked`'s vertices: read at each vertex's place
+/// as the `interpolate` display reads it. Vertices on faces without a patch
+/// (mirrors, glass) stay dark. `scene` at that solution's bands.
+BakedMesh resampleLight(const BakedMesh &baked, const Scene &scene, const Solution &solution);
+
+/// A spectral scene's passes at the same vertices (the first pass baked, the
+/// others resampled onto it: resampleLight) as one RGB mesh:
+/// radiance and irradiance in linear sRGB from the spectrum (CIE 1931, then
+/// `balance`, as render/spectral_film.h forms an image's colour), ρ̄ the
+/// ratio of the reflected light's colour to the irradiance's (the
+/// material's colour where no light arrives). `scene` holds its colours
+/// (applySpectralColour). Colours are not set.
+BakedMesh combineSpectralPasses(const std::vector<BakedMesh> &passes, const Scene &scene, WhiteBalance balance);
 
 }  // namespace radiant

@@ -157,7 +157,10 @@ tinygltf::Material gltfMaterial(tinygltf::Model &model, const Scene &scene, cons
     if (strength > 1)
       out.extensions["KHR_materials_emissive_strength"] = Value(Value::Object{{"emissiveStrength", number(strength)}});
   }
-  out.extensions["KHR_materials_unlit"] = Value(Value::Object{});
+  // Unlit, so plain viewers show COLOR_0 (the baked light); not beside the emissive strength, which the
+  // Khronos validator reports as a possible conflict: a viewer shows such an emitter as a bright emissive surface.
+  if (!out.extensions.count("KHR_materials_emissive_strength"))
+    out.extensions["KHR_materials_unlit"] = Value(Value::Object{});
   out.extras =
       Value(Value::Object{{"radiant", Value(Value::Object{{"kind", Value(std::string(materialKindName(m.kind)))},
                                                           {"diffuse", triple(m.diffuse)},
