@@ -202,6 +202,12 @@ BakedMesh bakeSolution(const Scene &scene, const Solution &solution, const Displ
       boundary.push_back(element.nodes[size_t(k)]);
       edgePoints.append(element.nodes[size_t(k)], element.nodes[size_t((k + 1) % element.vertexCount)], boundary);
     }
+    // A node of another patch may sit on this element's corner (the pieces of a cut face): one of them.
+    boundary.erase(std::unique(boundary.begin(), boundary.end(),
+                               [&](uint32_t a, uint32_t b) { return length(mesh.nodes[a] - mesh.nodes[b]) < 1e-9; }),
+                   boundary.end());
+    while (boundary.size() > 3 && length(mesh.nodes[boundary.back()] - mesh.nodes[boundary.front()]) < 1e-9)
+      boundary.pop_back();
     if (boundary.size() == 3) {
       for (uint32_t node : boundary) p.indices.push_back(vertex(node));
       continue;
