@@ -106,7 +106,8 @@ CommandRunner addRenderCommand(CLI::App &app) {
   app.add_option("-m,--method", o->method, "Rendering method:" + methods)->default_val("path");
   app.add_option("-o,--output", o->outputs,
                  "Output image; repeat for several. Format by extension: .exr (linear float), .pfm (linear), "
-                 ".png (display mapping: --tonemap, default linear). Default: NAME.exr and NAME.png, NAME from the "
+                 ".hdr (Radiance RGBE, linear), .png (display mapping: --tonemap, default linear). Default: NAME.exr "
+                 "and NAME.png, NAME from the "
                  "scene file");
   app.add_option("--quantity", o->quantity,
                  "What the pixels hold: radiance (W·sr⁻¹·m⁻²) or irradiance (W·m⁻² arriving at the surface seen, for "
@@ -170,10 +171,11 @@ CommandRunner addRenderCommand(CLI::App &app) {
     }
     for (const std::string &path : outputs)
       if (!isSupportedImageExtension(path))
-        throw InputError(flag("--output"), "'" + path + "': unknown image extension (expected .exr, .pfm or .png)");
+        throw InputError(flag("--output"),
+                         "'" + path + "': unknown image extension (expected .exr, .pfm, .hdr or .png)");
     // A variance is a linear quantity in (W·sr⁻¹·m⁻²)²: a display-mapped PNG of it would say nothing.
     if (!o->variancePath.empty() && !isLinearImageExtension(o->variancePath))
-      throw InputError(flag("--variance"), "'" + o->variancePath + "': expected a .exr or .pfm file");
+      throw InputError(flag("--variance"), "'" + o->variancePath + "': expected a .exr, .pfm or .hdr file");
     {
       std::vector<OutputFile> files;
       for (const std::string &path : outputs) files.push_back({path, flag("--output")});

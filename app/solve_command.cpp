@@ -2,12 +2,18 @@
 // reports it, and optionally saves it for `radiant render --solution`.
 #include <fmt/format.h>
 
+#include <cctype>
+#include <filesystem>
+
 #include "colour_options.h"
 #include "commands.h"
+#include "display/grid_plan.h"
 #include "interrupt_handler.h"
+#include "io/image.h"
 #include "io/output_files.h"
 #include "io/solution_file.h"
 #include "parameter_flags.h"
+#include "radiosity/calculation_grid.h"
 #include "radiosity/report.h"
 #include "radiosity_options.h"
 #include "scene/load_scene.h"
@@ -17,8 +23,25 @@
 namespace radiant {
 
 namespace {
+/// The plan of each grid: PATH itself for a scene with one grid, else
+/// PATH's stem, "-", the grid's name (characters other than letters, digits,
+/// '-' and '_' as '_') and the extension.
+std::vector<std::string> gridImagePaths(const std::string &path, const std::vector<CalculationGrid> &grids) {
+  if (grids.size() == 1) return {path};
+  const std::filesystem::path p(path);
+  std::vector<std::string> paths;
+  for (const CalculationGrid &g : grids) {
+    std::string name = g.name;
+    for (char &ch : name)
+      if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '-' && ch != '_') ch = '_';
+    paths.push_back((p.parent_path() / (p.stem().string() + "-" + name + p.extension().string())).string());
+  }
+  return paths;
+}
+
 struct SolveCommandOptions {
-  std::string scenePath, outputPath, reportPath;
+  std::string scenePath, outputPath, reportPath, gridReportPath, gridImagePath;
+  int gridSamples = 16384;
   RadiosityCommandOptions radiosity;
   ColourCommandOptions colour;
   uint64_t seed = 1;
@@ -36,9 +59,21 @@ CommandRunner addSolveCommand(CLI::App &app) {
   app.add_option("--report", o->reportPath,
                  "Write a CSV with one row per object: area, mean radiosity and irradiance (W/m²), "
                  "luminance (cd/m²) and illuminance (lux)");
+  app.add_option("--grid-report", o->gridReportPath,
+                 "Write a CSV with the illuminance (lux) at every point of the scene's calculation grids and a "
+                 "summary per grid: E_min, E_avg, E_max, U0, Ud (docs/scene-format.md, \"grids\")");
+  app.add_option("--grid-image", o->gridImagePath,
+                 "Write a false-colour plan (.png) of each calculation grid, with isolux contours and the values; "
+                 "PATH-NAME.png per grid when the scene has several");
+  app.add_option("--grid-samples", o->gridSamples,
+                 "Most gather rays per grid point (fewer where the standard error is already below 0.5 %)")
+      ->default_val(16384)
+      ->check(CLI::Range(1, 1 << 24));
   addRadiosityOptions(app, o->radiosity);
   addColourOptions(app, o->colour);
-  app.add_option("--seed", o->seed, "Random seed of the form-factor shadow rays")->default_val(1)->check(seedRange());
+  app.add_option("--seed", o->seed, "Random seed of the form-factor shadow rays and the grids' gather rays")
+      ->default_val(1)
+      ->check(seedRange());
   app.add_option("--threads", o->threads, "Worker threads (0: all cores); does not change the solution")
       ->default_val(0)
       ->check(CLI::Range(0, 4096));
@@ -49,11 +84,24 @@ CommandRunner addSolveCommand(CLI::App &app) {
     std::vector<OutputFile> outputs;
     if (!o->outputPath.empty()) outputs.push_back({o->outputPath, InputLocation{"--output"}});
     if (!o->reportPath.empty()) outputs.push_back({o->reportPath, InputLocation{"--report"}});
+    if (!o->gridReportPath.empty()) outputs.push_back({o->gridReportPath, InputLocation{"--grid-report"}});
+    if (!o->gridImagePath.empty() && std::filesystem::path(o->gridImagePath).extension() != ".png")
+      throw InputError(InputLocation{"--grid-image"}, "'" + o->gridImagePath + "': expected a .png file");
     checkOutputFiles(outputs, {o->scenePath});
     // Ctrl-C stops the solve at its next iteration and writes nothing.
     InterruptHandler interrupts;
     Scene scene = loadScene(o->scenePath);
     const WhiteBalance balance = applyColourOptions(app, o->colour, scene);
+    const bool gridsWanted = !o->gridReportPath.empty() || !o->gridImagePath.empty();
+    if (gridsWanted && scene.grids.empty())
+      throw InputError(InputLocation{o->gridReportPath.empty() ? "--grid-image" : "--grid-report"},
+                       "the scene has no calculation grids (\"grids\", docs/scene-format.md)");
+    const std::vector<std::string> gridImages =
+        o->gridImagePath.empty() ? std::vector<std::string>{} : gridImagePaths(o->gridImagePath, scene.grids);
+    if (!gridImages.empty()) {
+      for (const std::string &path : gridImages) outputs.push_back({path, InputLocation{"--grid-image"}});
+      checkOutputFiles(outputs, {o->scenePath});
+    }
     if (!o->quiet)
       for (const std::string &warning : scene.warnings) fmt::print(stderr, "radiant: warning: {}\n", warning);
     RayTracer tracer(scene);
@@ -68,8 +116,17 @@ CommandRunner addSolveCommand(CLI::App &app) {
       }
       solutions.push_back(solveScene(scene, tracer, o->radiosity, o->seed, o->threads, o->quiet));
     }
-    if (scene.spectral.enabled()) applySpectralColour(scene, balance);
     if (interruptRequested()) throw Interrupted();  // between the solve's last report and here
+    std::vector<GridIlluminance> grids;
+    if (gridsWanted) {
+      GridOptions gridOptions;
+      gridOptions.maxSamples = o->gridSamples;
+      gridOptions.minSamples = std::min(gridOptions.minSamples, o->gridSamples);
+      gridOptions.seed = o->seed;
+      gridOptions.threads = o->threads;
+      grids = computeGridIlluminance(scene, tracer, solutions, gridOptions);
+    }
+    if (scene.spectral.enabled()) applySpectralColour(scene, balance);
     if (!o->outputPath.empty()) {
       writeSolutionPasses(solutions, scene, o->outputPath);
       if (!o->quiet) fmt::print(stderr, "radiant: wrote {}\n", o->outputPath);
@@ -77,6 +134,22 @@ CommandRunner addSolveCommand(CLI::App &app) {
     if (!o->reportPath.empty()) {
       writeSurfaceReport(solutions, scene, o->reportPath, balance);
       if (!o->quiet) fmt::print(stderr, "radiant: wrote {}\n", o->reportPath);
+    }
+    if (gridsWanted && !o->quiet)
+      for (const GridIlluminance &g : grids)
+        fmt::print(stderr,
+                   "radiant: grid {}: E_min {:.4g} lx, E_avg {:.4g} lx, E_max {:.4g} lx, U0 {:.3f}, Ud {:.3f}\n",
+                   g.grid.name, g.minimumLux, g.averageLux, g.maximumLux, g.uniformity(), g.diversity());
+    if (!o->gridReportPath.empty()) {
+      writeGridReport(grids, scene.metresPerUnit, o->gridReportPath);
+      if (!o->quiet) fmt::print(stderr, "radiant: wrote {}\n", o->gridReportPath);
+    }
+    for (size_t g = 0; g < gridImages.size(); ++g) {
+      std::vector<double> lux;
+      for (const GridPointIlluminance &p : grids[g].points) lux.push_back(p.illuminanceLux);
+      const GridPlan plan = gridPlan(lux, grids[g].grid.nu, grids[g].grid.nv);
+      writePngBytes(plan.rgb, plan.width, plan.height, gridImages[g]);
+      if (!o->quiet) fmt::print(stderr, "radiant: wrote {}\n", gridImages[g]);
     }
     return 0;
   };

@@ -64,7 +64,10 @@ FalseColourSettings falseColourSettings(const CLI::App &app, const TonemapOption
 
 CommandRunner addTonemapCommand(CLI::App &app) {
   auto o = std::make_shared<TonemapOptions>();
-  app.add_option("image", o->input, "Linear image: .exr (render's, radiance in W·sr⁻¹·m⁻²) or .pfm")->required();
+  app.add_option("image", o->input,
+                 "Linear image: .exr (render's, radiance in W·sr⁻¹·m⁻²), .pfm or .hdr (Radiant's own; a Radiance "
+                 "picture's values are W·sr⁻¹·m⁻² at 179 lm/W, docs/tone-mapping.md)")
+      ->required();
   app.add_option("-o,--output", o->output, "Output PNG")->required();
   addDisplayOptions(app, o->display);
   app.add_option("--scale", o->scale,

@@ -9,6 +9,7 @@
 #include <ImfStringAttribute.h>
 #include <fmt/format.h>
 #include <png.h>
+#include <stb/stb_image.h>
 #include <stb/stb_image_write.h>
 
 #include <algorithm>
@@ -52,20 +53,21 @@ double srgbEncode(double linear) {
 
 bool isSupportedImageExtension(const std::string &path) {
   std::string ext = extensionOf(path);
-  return ext == ".exr" || ext == ".pfm" || ext == ".png";
+  return ext == ".exr" || ext == ".pfm" || ext == ".hdr" || ext == ".png";
 }
 
 bool isLinearImageExtension(const std::string &path) {
   std::string ext = extensionOf(path);
-  return ext == ".exr" || ext == ".pfm";
+  return ext == ".exr" || ext == ".pfm" || ext == ".hdr";
 }
 
 void writeImage(const Image &image, const std::string &path, double exposureStops) {
   std::string ext = extensionOf(path);
   if (ext == ".exr") return writeExr(image, path);
   if (ext == ".pfm") return writePfm(image, path);
+  if (ext == ".hdr") return writeHdr(image, path);
   if (ext == ".png") return writePng(image, path, exposureStops);
-  throw std::runtime_error("cannot write '" + path + "': unknown image extension (expected .exr, .pfm or .png)");
+  throw std::runtime_error("cannot write '" + path + "': unknown image extension (expected .exr, .pfm, .hdr or .png)");
 }
 
 namespace {
@@ -130,6 +132,18 @@ void writePfm(const Image &image, const std::string &path) {
     for (int y = image.height - 1; y >= 0; --y)
       out.write(reinterpret_cast<const char *>(image.pixel(0, y)), std::streamsize(sizeof(float)) * 3 * image.width);
     if (!out) throw std::runtime_error("write failed");
+  });
+}
+
+void writeHdr(const Image &image, const std::string &path) {
+  // RGBE holds no sign and no NaN: those pixels are written as 0.
+  std::vector<float> rgb(image.rgb.size());
+  for (size_t k = 0; k < rgb.size(); ++k)
+    rgb[k] = std::isfinite(image.rgb[k]) && image.rgb[k] > 0 ? image.rgb[k] : 0.0f;
+  writeAtomically(path, [&](const std::string &temporary) {
+    // stb writes "#?RADIANCE", FORMAT=32-bit_rle_rgbe, EXPOSURE=1 and new-style RLE scanlines, top row first.
+    if (!stbi_write_hdr(temporary.c_str(), image.width, image.height, 3, rgb.data()))
+      throw std::runtime_error("Radiance HDR encoder failed");
   });
 }
 
@@ -292,12 +306,32 @@ static Image readExr(const std::string &path) {
   }
 }
 
+namespace {
+/// Radiance RGBE (.hdr) through stb_image: the values as stored, EXPOSURE not applied (Radiant writes 1).
+Image readHdr(const std::string &path) {
+  std::FILE *in = std::fopen(path.c_str(), "rb");
+  if (!in) throw InputError(InputLocation{path}, "cannot open");
+  const bool isHdr = stbi_is_hdr_from_file(in) != 0;
+  int width = 0, height = 0, channels = 0;
+  float *pixels = isHdr ? stbi_loadf_from_file(in, &width, &height, &channels, 3) : nullptr;
+  std::fclose(in);
+  if (!isHdr) throw InputError(InputLocation{path}, "not a Radiance HDR (RGBE) image: no '#?RADIANCE' header");
+  if (!pixels)
+    throw InputError(InputLocation{path}, std::string("cannot read Radiance HDR image: ") + stbi_failure_reason());
+  Image image(width, height);
+  std::copy(pixels, pixels + size_t(width) * size_t(height) * 3, image.rgb.begin());
+  stbi_image_free(pixels);
+  return image;
+}
+}  // namespace
+
 Image readImage(const std::string &path) {
   if (!std::filesystem::exists(path)) throw InputError(InputLocation{path}, "no such file");
   std::string ext = extensionOf(path);
   if (ext == ".exr") return readExr(path);
   if (ext == ".pfm") return readPfm(path);
-  throw InputError(InputLocation{path}, "unsupported image format (expected .exr or .pfm, linear radiance)");
+  if (ext == ".hdr") return readHdr(path);
+  throw InputError(InputLocation{path}, "unsupported image format (expected .exr, .pfm or .hdr, linear radiance)");
 }
 
 }  // namespace radiant

@@ -1,4 +1,4 @@
-// Images on disk: linear HDR (OpenEXR float, PFM) and display PNG.
+// Images on disk: linear HDR (OpenEXR float, PFM, Radiance RGBE) and display PNG.
 //
 // Every writer goes through a temporary file in the target's folder and a
 // rename, so a failed or interrupted write never leaves a partial file over a
@@ -45,11 +45,17 @@ struct Image {
   const float *pixel(int x, int y) const { return &rgb[(size_t(y) * width + x) * 3]; }
 };
 
-/// Writes by extension: .exr (32-bit float), .pfm, .png (sRGB after
+/// Writes by extension: .exr (32-bit float), .pfm, .hdr (Radiance RGBE), .png (sRGB after
 /// 2^exposureStops scaling). Throws std::runtime_error naming the file.
 void writeImage(const Image &image, const std::string &path, double exposureStops = 0);
 void writeExr(const Image &image, const std::string &path);
 void writePfm(const Image &image, const std::string &path);
+/// Radiance RGBE (Ward, Graphics Gems II): "#?RADIANCE", FORMAT=32-bit_rle_rgbe,
+/// EXPOSURE=1, run-length-encoded scanlines; about 1 % precision (8-bit mantissas
+/// sharing an exponent). The values are Radiant's as they are (W·sr⁻¹·m⁻²);
+/// Radiance's tools take luminance as 179 lm/W × Y, not 683 (docs/tone-mapping.md).
+/// Negative and non-finite values become 0; emitter coverage and spectra are dropped.
+void writeHdr(const Image &image, const std::string &path);
 /// 8-bit sRGB (IEC 61966-2-1 curve), radiance scaled by 2^exposureStops and clipped to [0,1].
 void writePng(const Image &image, const std::string &path, double exposureStops = 0);
 /// 8-bit PNG from already display-encoded RGB bytes.
@@ -58,7 +64,7 @@ void writePngBytes(const std::vector<unsigned char> &rgb, int width, int height,
 /// writer without colour-space chunks (viewers take untagged PNG as sRGB).
 void writePng16(const std::vector<uint16_t> &rgb, int width, int height, const std::string &path);
 
-/// Reads .exr or .pfm (linear), with the EXR's "emitter" channel and
+/// Reads .exr, .pfm or .hdr (linear), with the EXR's "emitter" channel and
 /// "radiantQuantity" attribute when present. Throws InputError naming the file.
 Image readImage(const std::string &path);
 
@@ -67,7 +73,7 @@ double srgbEncode(double linear);
 
 /// True if the extension is one writeImage knows.
 bool isSupportedImageExtension(const std::string &path);
-/// True for the formats that keep linear values as they are (.exr, .pfm), not display-mapped (.png).
+/// True for the formats that keep linear values as they are (.exr, .pfm, .hdr), not display-mapped (.png).
 bool isLinearImageExtension(const std::string &path);
 
 }  // namespace radiant

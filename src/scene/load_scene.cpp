@@ -316,9 +316,48 @@ struct SceneParser {
     detail::addPolygon(scene, vertices, uvs, {}, material, object, flip);
   }
 
+  /// "grids": calculation grids (docs/scene-format.md), in scene units.
+  void parseGrids(const JsonNode &grids) {
+    std::vector<JsonNode> entries = grids.asArray();
+    for (size_t index = 0; index < entries.size(); ++index) {
+      const JsonNode &node = entries[index];
+      node.expectObject();
+      node.checkKeys({"name", "origin", "u", "v", "nu", "nv", "normal"});
+      CalculationGrid grid;
+      grid.name = node.string("name", "grid-" + std::to_string(index));
+      if (grid.name.empty()) node.child("name").fail("a grid name cannot be empty");
+      for (const CalculationGrid &other : scene.grids)
+        if (other.name == grid.name) node.child("name").fail("a second grid named '" + grid.name + "'");
+      grid.origin = node.child("origin").asVec3() * metres;
+      grid.u = node.child("u").asVec3() * metres;
+      grid.v = node.child("v").asVec3() * metres;
+      grid.nu = static_cast<int>(node.integer("nu", 1, 1, kMaxGridPoints));
+      grid.nv = static_cast<int>(node.integer("nv", 1, 1, kMaxGridPoints));
+      if (grid.pointCount() > size_t(kMaxGridPoints))
+        node.child("nv").fail(
+            fmt::format("a grid of {} × {} points is more than the {} allowed", grid.nu, grid.nv, kMaxGridPoints));
+      const double extent = std::max(length(grid.u), length(grid.v));
+      if (!(length(cross(grid.u, grid.v)) > 1e-12 * extent * extent))
+        node.child("v").fail("u and v span no area (zero or parallel)");
+      for (const Vec3 &corner :
+           {grid.origin, grid.origin + grid.u, grid.origin + grid.v, grid.origin + grid.u + grid.v})
+        if (!withinCoordinateRange(corner))
+          node.child("origin").fail(fmt::format("the grid reaches beyond ±{:g} m", kMaxCoordinateMetres));
+      if (node.has("normal")) {
+        JsonNode normal = node.child("normal");
+        const Vec3 n = normal.asVec3();
+        if (!(length(n) > 0)) normal.fail("the normal has zero length");
+        grid.normal = normalize(n);
+      } else {
+        grid.normal = normalize(cross(grid.u, grid.v));
+      }
+      scene.grids.push_back(grid);
+    }
+  }
+
   void parse(const Json &document) {
     JsonNode root(document, file, "");
-    root.checkKeys({"version", "units", "camera", "image", "render", "spectral", "materials", "objects"});
+    root.checkKeys({"version", "units", "camera", "image", "render", "spectral", "materials", "objects", "grids"});
     if (root.has("version")) {
       JsonNode version = root.child("version");
       if (version.asInteger(INT64_MIN, INT64_MAX) != 1)
@@ -377,6 +416,8 @@ struct SceneParser {
     JsonNode objects = root.child("objects");
     std::vector<JsonNode> entries = objects.asArray();
     for (size_t i = 0; i < entries.size(); ++i) parseObject(entries[i], i);
+
+    if (root.has("grids")) parseGrids(root.child("grids"));
 
     if (!hasCamera) scene.camera = detail::frameBounds(scene);
     if (scene.spectral.enabled()) detail::checkSpectralScene(scene);

@@ -81,6 +81,23 @@ struct SpectralSettings {
   }
 };
 
+/// The most points one calculation grid may have (nu·nv).
+constexpr long long kMaxGridPoints = 1000000;
+
+/// A calculation grid (the JSON "grids", docs/scene-format.md): nu × nv
+/// measuring points over the parallelogram origin + s·u + t·v, at the cell
+/// centres s = (i + ½)/nu, t = (j + ½)/nv, each measuring the illuminance on
+/// a plane facing `normal`. Metres, like every position.
+struct CalculationGrid {
+  std::string name;
+  Vec3 origin, u, v;
+  Vec3 normal;  ///< unit; the front of the measuring plane
+  int nu = 1, nv = 1;
+  /// Point (i, j), 0 ≤ i < nu, 0 ≤ j < nv: the centre of its cell.
+  Vec3 point(int i, int j) const { return origin + u * ((i + 0.5) / nu) + v * ((j + 0.5) / nv); }
+  size_t pointCount() const { return size_t(nu) * size_t(nv); }
+};
+
 struct Scene {
   std::string sourceFile;  ///< the scene file, for messages and for solution files later
   /// Metres per scene unit (the JSON "units"); command-line camera positions are in scene units.
@@ -98,6 +115,7 @@ struct Scene {
   CameraSettings camera;
   RenderSettings render;
   SpectralSettings spectral;
+  std::vector<CalculationGrid> grids;  ///< JSON scenes only; empty otherwise
 
   /// Degenerate faces dropped while loading (counted for the warning).
   size_t droppedDegenerateFaces = 0;

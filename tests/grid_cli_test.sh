@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# radiant solve --grid-report / --grid-image and render -o x.hdr as a user runs
+# them (docs/scene-format.md "grids", docs/validation.md, docs/cli.md).
+# Usage: grid_cli_test.sh path/to/radiant SOURCE_DIR
+set -u
+radiant=$1
+source_dir=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+passed=0
+failed=0
+pass() { passed=$((passed + 1)); }
+fail() { echo "FAIL: $*"; failed=$((failed + 1)); }
+expect_error() {
+  local name=$1 pattern=$2
+  shift 2
+  if "$@" >out.txt 2>err.txt; then
+    fail "$name: expected a non-zero exit"
+  elif ! grep -qE -- "$pattern" err.txt; then
+    fail "$name: stderr does not match '$pattern':"; cat err.txt
+  else
+    pass
+  fi
+}
+validation="$source_dir/scenes/validation"
+cornell="$source_dir/scenes/cornell-box/scene.json"
+
+# Validation 2: the closed room, every point at Φ/(A(1−ρ)) = 536.4 lx.
+if "$radiant" solve "$validation/closed-room.json" --grid-report room.csv --grid-image room.png 2>room.txt; then
+  head -1 room.csv | grep -q "^grid,i,j,x,y,z,illuminance_lux,standard_error_lux" && pass || fail "grid CSV header"
+  [ "$(grep -c '^desk,' room.csv)" -eq 24 ] && [ "$(grep -c '^wall,' room.csv)" -eq 20 ] && pass \
+    || fail "grid CSV rows"
+  grep -q "^# grid desk: points 24 E_min_lux" room.csv && grep -q "^# grid wall: points 20" room.csv && pass \
+    || fail "grid CSV summary"
+  awk -F, '!/^#/ && NR > 1 { e = $7 - 536.4; if (e < 0) e = -e; if (e > 0.01 * 536.4) bad = 1 } END { exit bad }' \
+    room.csv && pass || fail "closed room not within 1 % of 536.4 lx"
+  [ -s room-desk.png ] && [ -s room-wall.png ] && pass || fail "one plan per grid"
+  grep -q "grid desk: E_min" room.txt && pass || fail "summary on stderr"
+else
+  fail "solve --grid-report"; cat room.txt
+fi
+# Validation 1, one grid: the plan is the path given.
+"$radiant" solve "$validation/rectangle-source.json" --grid-report rect.csv --grid-image rect.png -q && [ -s rect.png ] \
+  && [ -s rect.csv ] && pass || fail "rectangle source"
+expect_error "no grids" "--grid-report: the scene has no calculation grids" \
+  "$radiant" solve "$cornell" --grid-report x.csv -q
+expect_error "grid image not png" "--grid-image: 'x.jpg': expected a .png file" \
+  "$radiant" solve "$validation/closed-room.json" --grid-image x.jpg -q
+[ ! -e x.csv ] && pass || fail "wrote a CSV before refusing"
+
+# .hdr beside EXR: Radiance RGBE, and read back by tonemap.
+if "$radiant" render "$cornell" --spp 1 --width 16 --height 16 -o a.hdr -o a.exr -q; then
+  head -c 10 a.hdr | grep -q "#?RADIANCE" && pass || fail "a.hdr header"
+  "$radiant" tonemap a.hdr -o a.png -q && [ -s a.png ] && pass || fail "tonemap a.hdr"
+  # RGBE keeps 8 bits of mantissa per pixel's largest band: the means over all bands agree within 1 %
+  # (a band far below the pixel's largest, blue in the Cornell box, loses more).
+  "$radiant" compare a.hdr a.exr --json | grep -o '"all": {[^}]*' | grep -o '"mean_ratio": [0-9.e+-]*' \
+    | awk '{ r = $2 - 1; if (r < 0) r = -r; if (r > 0.01) bad = 1; n++ } END { exit bad || n == 0 }' && pass \
+    || fail "hdr and exr agree within 1 %"
+else
+  fail "render -o a.hdr"
+fi
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
