@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "display/grid_plan.h"
 #include "radiosity/solver.h"
 #include "scene/load_scene.h"
 #include "test_scenes.h"
@@ -233,6 +234,37 @@ TEST(CalculationGridReport, CsvHasTheColumnsAndTheSummary) {
   EXPECT_NE(summary.find(" U0 "), std::string::npos);
   EXPECT_NE(summary.find(" Ud "), std::string::npos);
   std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace radiant
+
+namespace radiant {
+namespace {
+
+// The plan: a ramp along u draws its contours as vertical lines at the
+// level's place, and prints the values when the cells are wide enough.
+TEST(GridPlan, ContoursOfARampAreWhereTheLevelIs) {
+  const int nu = 4, nv = 3;
+  std::vector<double> lux;
+  for (int j = 0; j < nv; ++j)
+    for (int i = 0; i < nu; ++i) lux.push_back(100.0 * i);  // 0 … 300 lx
+  const GridPlan plan = gridPlan(lux, nu, nv);
+  EXPECT_TRUE(plan.valuesPrinted);
+  EXPECT_GT(plan.width, nu * plan.cellPixels);  // the legend on the right
+  EXPECT_EQ(plan.height, nv * plan.cellPixels);
+  ASSERT_FALSE(plan.contourLevels.empty());
+  EXPECT_EQ(plan.contourLevels.front(), 50);
+  // Level 150 lies halfway between points 1 and 2: x = 2c, in every row between the points' centres.
+  const int c = plan.cellPixels, x = 2 * c, y = c;  // between rows j = 1 and j = 2 of points
+  bool ink = false;
+  for (int dx = -1; dx <= 1; ++dx) {
+    const unsigned char *p = &plan.rgb[(size_t(y) * plan.width + size_t(x + dx)) * 3];
+    ink = ink || (p[0] == 0 && p[1] == 0 && p[2] == 0);
+  }
+  EXPECT_TRUE(ink);
+  // Many small cells: no values printed.
+  EXPECT_FALSE(gridPlan(std::vector<double>(1000, 5.0), 1000, 1).valuesPrinted);
 }
 
 }  // namespace

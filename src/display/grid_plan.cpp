@@ -127,14 +127,16 @@ GridPlan gridPlan(const std::vector<double> &lux, int nu, int nv) {
   for (double v : lux) widest = std::max(widest, textWidth(label(v), 1));
   plan.valuesPrinted = widest + 4 <= c && textHeight(1) + 4 <= c;
   if (plan.valuesPrinted) {
-    const int scale = std::max(1, std::min((c - 4) / std::max(widest, 1), (c - 4) / textHeight(1)) / 2);
+    // As large as fits with a margin, at most 3 (labels stay smaller than the cells' colours).
+    const int scale = std::clamp(std::min((c - 8) / std::max(widest, 1), c / (3 * textHeight(1))), 1, 3);
     for (int j = 0; j < nv; ++j)
       for (int i = 0; i < nu; ++i) {
         const int x = i * c + (c - textWidth(label(value(i, j)), scale)) / 2;
         const int y = height - (j + 1) * c + (c - textHeight(scale)) / 2;
-        // Dark text on the light middle of Turbo, light text on its dark ends.
-        const unsigned char *under =
-            &text.rgb[(size_t(y + textHeight(scale) / 2) * plan.width + size_t(i * c + c / 2)) * 3];
+        // Dark text on the light middle of Turbo, light text on its dark ends: the cell's own colour on the
+        // scale (a pixel under the label may be a contour's ink).
+        unsigned char under[3];
+        turboColour((value(i, j) - plan.minimum) / (plan.maximum - plan.minimum), under);
         const double brightness = 0.2126 * under[0] + 0.7152 * under[1] + 0.0722 * under[2];
         const unsigned char dark[3] = {0, 0, 0}, light[3] = {255, 255, 255};
         drawText(text, x, y, label(value(i, j)), scale, brightness > 110 ? dark : light);
