@@ -264,7 +264,7 @@ expect "--mesh-size -1" '^radiant: error: --mesh-size: must be in > 0, got -1' \
   "$radiant" solve "$furnace" -q --mesh-size -1
 expect "--range a,b" "^radiant: error: --range: expected MIN,MAX like 0,500, got 'a,b'" \
   "$radiant" tonemap a.exr -o m.png --falsecolor --range a,b
-expect "--variance v.png" "^radiant: error: --variance: 'v\\.png': expected a \\.exr or \\.pfm file" \
+expect "--variance v.png" "^radiant: error: --variance: 'v\\.png': expected a \\.exr, \\.pfm or \\.hdr file" \
   "$radiant" render "$cornell" "${small[@]}" --variance v.png
 expect "--diff x.exr" "^radiant: error: --diff: 'x\\.exr': expected a \\.png file" "$radiant" compare a.exr a.exr --diff x.exr
 expect "--spp x (CLI11)" 'spp' "$radiant" render "$cornell" --spp x -q
