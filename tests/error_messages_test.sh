@@ -58,6 +58,10 @@ mutate width 's/"width": 512/"width": 0/'
 expect "image width 0" 'width\.json: at /image/width: expected an integer in \[1, 16384\], got 0' render width.json
 mutate spp 's/"spp": 64/"spp": 1.5/'
 expect "spp 1.5" 'spp\.json: at /render/spp: expected an integer' render spp.json
+sed -e 's/"u": \[3, 0, 0\], "v": \[0, 0, 2\]/"u": [3, 0, 0], "v": [6, 0, 0]/' \
+  "$source_dir/scenes/validation/closed-room.json" >grid.json
+expect "grid without area" 'grid\.json: at /grids/0/v: u and v span no area \(zero or parallel\)' \
+  "$radiant" solve grid.json --grid-report "$work/grid.csv" -q
 mutate units 's/"millimetres"/"furlongs"/'
 expect "unknown units" 'units\.json: at /units: unknown units' render units.json
 mutate fov 's/"fov": 39.3077/"fov": 200/'
