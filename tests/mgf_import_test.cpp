@@ -71,8 +71,7 @@ std::string errorOf(const std::string &text, const std::string &name = "bad.mgf"
   return "";
 }
 
-const char *kSquare =
-    "v a =\n p 0 0 0\nv b =\n p 1 0 0\nv c =\n p 1 1 0\nv d =\n p 0 1 0\n";
+const char *kSquare = "v a =\n p 0 0 0\nv b =\n p 1 0 0\nv c =\n p 1 1 0\nv d =\n p 0 1 0\n";
 
 TEST(MgfImport, FaceAndItsFront) {
   const Scene scene = loadMgfText(std::string("m white =\n rd 0.5\n") + kSquare + "f a b c d\n");
@@ -244,9 +243,8 @@ TEST(MgfImport, ColoursBecomeSrgbOfUnitLuminance) {
   EXPECT_GT(red[0], 4.0);
   EXPECT_LT(std::abs(red[1]) + std::abs(red[2]), 0.05);
   // cmix weights are luminances: equal parts of two colours lie between them.
-  const MgfColour mix = mgfColourMix({{1, mgfColourFromChromaticity(0.64, 0.33, here)},
-                                      {1, mgfColourFromChromaticity(0.3, 0.6, here)}},
-                                     here);
+  const MgfColour mix = mgfColourMix(
+      {{1, mgfColourFromChromaticity(0.64, 0.33, here)}, {1, mgfColourFromChromaticity(0.3, 0.6, here)}}, here);
   EXPECT_GT(mix.x, 0.3);
   EXPECT_LT(mix.x, 0.64);
   EXPECT_FALSE(mix.spectrum.has_value());
@@ -267,14 +265,13 @@ TEST(MgfImport, RefusalsNameFileAndLine) {
   EXPECT_NE(errorOf("c x =\n cxy 0.8 0.8\n").find("bad.mgf:2: cxy"), std::string::npos);
   EXPECT_NE(errorOf("v c =\n p 0 0 0\nring c 0 1\n").find("needs a normal"), std::string::npos);
   EXPECT_NE(errorOf(std::string(kSquare) + "xf -a 0\n").find("'-a' needs a count"), std::string::npos);
-  EXPECT_NE(errorOf(std::string(kSquare) + "xf -a 2000 -a 2000\n").find("more than 1048576 copies"),
-            std::string::npos);
+  EXPECT_NE(errorOf(std::string(kSquare) + "xf -a 2000 -a 2000\n").find("more than 1048576 copies"), std::string::npos);
   EXPECT_NE(errorOf("i missing.mgf\n").find("bad.mgf:1: cannot open MGF file"), std::string::npos);
   // A file that includes itself stops at the depth limit, at the include's line.
   EXPECT_NE(errorOf("# self\ni bad.mgf\n").find("bad.mgf:2: includes nested more than 16 deep"), std::string::npos)
       << errorOf("# self\ni bad.mgf\n");
   // A continued line is one entity, reported at its first line.
-  EXPECT_NE(errorOf("v a =\n p 0 \\\n 0 y\n").find("bad.mgf:2: 'y'"), std::string::npos);
+  EXPECT_NE(errorOf("v a =\n p 0 \\\n y 0\n").find("bad.mgf:2: 'y'"), std::string::npos);
 }
 
 TEST(MgfImport, UnknownEntitiesAreWarnedAndIgnored) {
@@ -296,6 +293,36 @@ TEST(MgfImport, JsonSceneEntry) {
   EXPECT_EQ(scene.objects[0].name, "part");
   EXPECT_NEAR(scene.positions[scene.faces[0].vertices[0]].z, 2, 1e-12);
   EXPECT_EQ(scene.materials[scene.faces[0].material].name, "w");
+}
+
+/// In a spectral JSON scene an MGF colour given as a spectrum (cspec, cct)
+/// becomes the material's spectrum; a neutral cxy colour a constant one; any
+/// other cxy colour is refused at its file:line.
+TEST(MgfImport, SpectralSceneGetsTheColoursSpectra) {
+  TempDir dir;
+  dir.write("part.mgf", std::string("m warm =\n c\n  cspec 400 700 0.2 0.4 0.8\n rd 0.5\nm grey =\n rd 0.4\n") +
+                            kSquare + "m warm\nf a b c d\nm grey\nf a b c d\n");
+  dir.write("bad.mgf", std::string("m green =\n c\n  cxy 0.3 0.6\n rd 0.5\n") + kSquare + "f a b c d\n");
+  const std::string good = dir.write(
+      "good.json",
+      R"({"spectral": {"range": [400, 700], "samples": 16}, "objects": [{"type": "mgf", "file": "part.mgf"}]})");
+  const Scene scene = loadScene(good);
+  ASSERT_EQ(scene.materials.size(), 2u);
+  ASSERT_TRUE(scene.materials[0].spectra.diffuse.has_value());
+  const SampledSpectrum &s = *scene.materials[0].spectra.diffuse;
+  EXPECT_NEAR(s.at(700) / s.at(400), 4.0, 1e-9);         // the shape of the cspec
+  EXPECT_NEAR(spectrumToXyz(s, 380, 780).y, 0.5, 1e-6);  // luminance rd
+  ASSERT_TRUE(scene.materials[1].spectra.diffuse.has_value());
+  EXPECT_NEAR(scene.materials[1].spectra.diffuse->at(500), 0.4, 1e-12);
+  const std::string bad = dir.write(
+      "bad.json",
+      R"({"spectral": {"range": [400, 700], "samples": 16}, "objects": [{"type": "mgf", "file": "bad.mgf"}]})");
+  try {
+    loadScene(bad);
+    ADD_FAILURE() << "a cxy colour in a spectral scene was accepted";
+  } catch (const InputError &e) {
+    EXPECT_NE(std::string(e.what()).find("bad.mgf:13: material 'green'"), std::string::npos) << e.what();
+  }
 }
 
 /// Greg Ward's luminaire from the MGF distribution (scenes/mgf/examp1.mgf, as
@@ -337,7 +364,8 @@ TEST(MgfImport, SceneAsMgfAndAsObjRenderTheSame) {
       "o room\nusemtl white\n"
       "f 1 5 6 2\nf 4 3 7 8\nf 1 2 3 4\nf 1 4 8 5\nf 2 6 7 3\n"
       "o lamp\nusemtl lamp\nf 9 10 11 12\n"
-      "o block\nusemtl block\nf 17 20 19 18\nf 13 14 15 16\nf 13 17 18 14\nf 14 18 19 15\nf 15 19 20 16\nf 16 20 17 13\n";
+      "o block\nusemtl block\nf 17 20 19 18\nf 13 14 15 16\nf 13 17 18 14\nf 14 18 19 15\nf 15 19 20 16\nf 16 20 17 "
+      "13\n";
   const std::string objPath = dir.write("box.obj", obj);
   const std::string mgf =
       "m white =\n rd 0.6\nm lamp =\n ed 3000\nm block =\n c\n  cxy 0.333333333 0.333333333\n rd 0.3\n"

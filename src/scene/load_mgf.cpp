@@ -207,7 +207,7 @@ class MgfReader {
     // A material changed after faces used it is a new Radiant material.
     for (int k = 2; findMaterial(scene_, name) >= 0; ++k)
       name = (currentMaterial_.empty() ? "mgf-unnamed" : currentMaterial_) + "#" + std::to_string(k);
-    Material radiant = mgfToMaterial(m, name, here(), scene_.warnings);
+    Material radiant = mgfToMaterial(m, name, here(), scene_.warnings, scene_.spectral.enabled());
     checkMaterial(radiant, here());
     const auto index = static_cast<uint32_t>(scene_.materials.size());
     scene_.materials.push_back(std::move(radiant));
@@ -383,10 +383,20 @@ class MgfReader {
     } else if (k == "cxy") {
       expectArguments(e, 2, 2, "x y");
       colours_[currentColour_] = mgfColourFromChromaticity(number(e.words[1]), number(e.words[2]), here());
+      if (colours_[currentColour_].y == 0)
+        scene_.warnings.push_back(here().toString() + ": cxy with y = 0 has no luminance: the colour is black");
     } else if (k == "cspec") {
       expectArguments(e, 3, kMaxEntityWords, "λmin λmax and at least one value");
       std::vector<double> values;
-      for (size_t i = 3; i < e.words.size(); ++i) values.push_back(number(e.words[i]));
+      size_t negative = 0;
+      for (size_t i = 3; i < e.words.size(); ++i) {
+        values.push_back(number(e.words[i]));
+        // Measured spectra dip a little below 0 in their noisy ends; MGF's parser keeps them.
+        if (values.back() < 0) values.back() = 0, ++negative;
+      }
+      if (negative)
+        scene_.warnings.push_back(here().toString() + ": cspec: " + std::to_string(negative) +
+                                  " negative value(s) taken as 0");
       colours_[currentColour_] = mgfColourFromSpectrum(number(e.words[1]), number(e.words[2]), values, here());
     } else if (k == "cct") {
       expectArguments(e, 1, 1, "a temperature in kelvin");

@@ -48,9 +48,11 @@ struct MgfMaterial {
 };
 
 /// The Radiant material for an MGF material (docs/scene-format.md#mgf-materials);
-/// simplifications are added to `warnings`, prefixed with `where`.
+/// simplifications are added to `warnings`, prefixed with `where`. In a
+/// `spectral` scene every value gets its colour's spectrum (a neutral cxy
+/// colour a constant one; any other cxy colour is an InputError at `where`).
 Material mgfToMaterial(const MgfMaterial &mgf, const std::string &name, const InputLocation &where,
-                       std::vector<std::string> &warnings);
+                       std::vector<std::string> &warnings, bool spectral = false);
 
 // ---- geometry (mgf_geometry.cpp) ----
 

@@ -46,9 +46,11 @@ MgfColour colourOfSpectrum(SampledSpectrum spectrum, const InputLocation &where)
 }  // namespace
 
 MgfColour mgfColourFromChromaticity(double x, double y, const InputLocation &where) {
-  if (!(x >= 0 && y > 0 && x + y <= 1))
+  // y = 0 is on the diagram's edge (MGF's parser accepts it) but has no
+  // luminance: such a colour is black (the reader warns).
+  if (!(x >= 0 && y >= 0 && x + y <= 1))
     throw InputError(
-        where, "cxy " + number(x) + " " + number(y) + " is not a chromaticity: expected x ≥ 0, y > 0 and x + y ≤ 1");
+        where, "cxy " + number(x) + " " + number(y) + " is not a chromaticity: expected x ≥ 0, y ≥ 0 and x + y ≤ 1");
   MgfColour colour;
   colour.x = x;
   colour.y = y;
@@ -101,11 +103,13 @@ MgfColour mgfColourMix(const std::vector<std::pair<double, MgfColour>> &parts, c
   for (const auto &[weight, colour] : parts) {
     if (!(weight >= 0) || !std::isfinite(weight))
       throw InputError(where, "cmix weight " + number(weight) + ": expected a finite weight ≥ 0");
+    if (colour.y <= 0) continue;  // black
     xyz = xyz + Vec3{colour.x / colour.y, 1.0, (1 - colour.x - colour.y) / colour.y} * weight;
     total += weight;
     allSpectral = allSpectral && colour.spectrum.has_value();
   }
-  if (!(total > 0)) throw InputError(where, "cmix needs a weight above 0");
+  if (!(total > 0) || !(xyz.y > 0))
+    throw InputError(where, "cmix needs a weight above 0 on a colour that is not black");
   if (allSpectral) {
     SampledSpectrum spectrum;
     for (int nm = kMgfFirstNm; nm <= kMgfLastNm; nm += 5) {
@@ -125,6 +129,8 @@ MgfColour mgfColourMix(const std::vector<std::pair<double, MgfColour>> &parts, c
 
 Bands mgfColourToLinearSrgb(const MgfColour &colour, bool &clipped) {
   static const Matrix3 kAdapt = bradfordAdaptation(Vec3{1, 1, 1}, kD65White);
+  clipped = false;
+  if (colour.y <= 0) return Bands(0.0);
   const Vec3 xyz{colour.x / colour.y, 1.0, (1 - colour.x - colour.y) / colour.y};
   const Vec3 rgb = xyzToLinearSrgb(kAdapt * xyz);
   clipped = rgb.x < -1e-9 || rgb.y < -1e-9 || rgb.z < -1e-9;
@@ -132,7 +138,7 @@ Bands mgfColourToLinearSrgb(const MgfColour &colour, bool &clipped) {
 }
 
 Material mgfToMaterial(const MgfMaterial &mgf, const std::string &name, const InputLocation &where,
-                       std::vector<std::string> &warnings) {
+                       std::vector<std::string> &warnings, bool spectral) {
   const std::string prefix = where.toString() + ": material '" + name + "': ";
   bool anyClipped = false;
   auto bands = [&](double amount, const MgfColour &colour) {
@@ -189,15 +195,47 @@ Material mgfToMaterial(const MgfMaterial &mgf, const std::string &name, const In
     scatter = std::max(scatter, sum);
   }
   double factor = 1;
-  if (scatter > 1) factor = 1 / scatter;
+  // Slightly below 1/scatter, so that rounding cannot leave a sum above 1.
+  if (scatter > 1) factor = (1 - 1e-12) / scatter;
   if (m.diffuse.max() * factor > kMaxDiffuseReflectance) factor = kMaxDiffuseReflectance / m.diffuse.max();
   if (factor < 1) {
     m.diffuse *= factor;
     m.specular *= factor;
+  }
+  // MGF files often give rd + rs = 1 exactly, which the neutral colour's
+  // rounding (its sRGB is 1 ± 10⁻⁵) takes just above 1: not worth a warning.
+  if (factor < 0.999) {
     warnings.push_back(prefix +
                        "reflects as much light as it receives or more in a colour band; its reflectances "
                        "are scaled by " +
                        number(factor));
+  }
+  if (spectral) {
+    // The colour's spectrum times the amount (docs/spectral.md); a neutral
+    // chromaticity is the constant spectrum, any other says too little.
+    auto spectrumOf = [&](double amount, const MgfColour &colour,
+                          const char *entity) -> std::optional<SampledSpectrum> {
+      if (amount <= 0) return std::nullopt;
+      SampledSpectrum s;
+      if (colour.spectrum) {
+        s = *colour.spectrum;
+        for (double &v : s.values) v *= amount;
+      } else if (std::abs(colour.x - 1.0 / 3) < 1e-4 && std::abs(colour.y - 1.0 / 3) < 1e-4) {
+        s.wavelengths = {550};
+        s.values = {amount};
+      } else {
+        throw InputError(where, "material '" + name + "': the colour of its '" + entity +
+                                    "' is a chromaticity (cxy), which does not say what the spectrum is in this "
+                                    "spectral scene; give it with cspec, cct or cmix of those");
+      }
+      return s;
+    };
+    const bool hasDiffuse = m.kind == MaterialKind::Lambertian || m.kind == MaterialKind::Glossy;
+    if (hasDiffuse) m.spectra.diffuse = spectrumOf(mgf.rd * factor, mgf.rdColour, "rd");
+    if (m.kind == MaterialKind::Dielectric) m.spectra.specular = spectrumOf(mgf.ts, mgf.tsColour, "ts");
+    if (m.kind == MaterialKind::Mirror || m.kind == MaterialKind::Glossy)
+      m.spectra.specular = spectrumOf(mgf.rs * factor, mgf.rsColour, "rs");
+    m.spectra.emission = spectrumOf(mgf.ed / (kPi * kLuminousEfficacy), mgf.edColour, "ed");
   }
   return m;
 }
