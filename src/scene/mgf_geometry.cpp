@@ -45,9 +45,10 @@ bool samePlace(const Point2 &a, const Point2 &b) {
   return a.u == b.u && a.v == b.v;
 }
 
-/// Strictly inside the counter-clockwise triangle abc.
+/// Inside the counter-clockwise triangle abc or on its edges: a corner of the
+/// polygon on an ear's new edge (the reflex corner of an L) makes it no ear.
 bool insideTriangle(const Point2 &p, const Point2 &a, const Point2 &b, const Point2 &c) {
-  return cross2(a, b, p) > 0 && cross2(b, c, p) > 0 && cross2(c, a, p) > 0;
+  return cross2(a, b, p) >= 0 && cross2(b, c, p) >= 0 && cross2(c, a, p) >= 0;
 }
 
 /// Adds one point to the scene (transformed), returning its position and normal indices.

@@ -132,9 +132,15 @@ Bands mgfColourToLinearSrgb(const MgfColour &colour, bool &clipped) {
   clipped = false;
   if (colour.y <= 0) return Bands(0.0);
   const Vec3 xyz{colour.x / colour.y, 1.0, (1 - colour.x - colour.y) / colour.y};
-  const Vec3 rgb = xyzToLinearSrgb(kAdapt * xyz);
+  Vec3 rgb = xyzToLinearSrgb(kAdapt * xyz);
   clipped = rgb.x < -1e-9 || rgb.y < -1e-9 || rgb.z < -1e-9;
-  return Bands(std::max(rgb.x, 0.0), std::max(rgb.y, 0.0), std::max(rgb.z, 0.0));
+  rgb = Vec3{std::max(rgb.x, 0.0), std::max(rgb.y, 0.0), std::max(rgb.z, 0.0)};
+  // Bradford adaptation keeps a colour's luminance only roughly (5 % off for
+  // a saturated green), and clipping to the gamut changes it too: set it back
+  // to 1, so that `rd 0.2` reflects 20 % of the light whatever its colour.
+  const double luminance = 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z;
+  if (luminance > 0) rgb = rgb * (1 / luminance);
+  return Bands(rgb.x, rgb.y, rgb.z);
 }
 
 Material mgfToMaterial(const MgfMaterial &mgf, const std::string &name, const InputLocation &where,
