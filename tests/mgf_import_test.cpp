@@ -170,6 +170,12 @@ TEST(MgfImport, TransformsAndArrays) {
   std::sort(corners.begin(), corners.end());
   const std::vector<std::pair<double, double>> expected = {{0, 0}, {0, 5}, {2, 0}, {2, 5}, {4, 0}, {4, 5}};
   EXPECT_EQ(corners, expected);
+  // -i n applies the arguments since the last -a or -i n times: three 30° turns about z are 90°.
+  const Scene iterated = loadMgfText(std::string(kSquare) + "xf -rz 30 -i 3 -t 0 0 1\nf a b c d\nxf\n");
+  ASSERT_EQ(iterated.positions.size(), 4u);
+  EXPECT_NEAR(iterated.positions[1].x, 0, 1e-12);  // b = (1, 0, 0)
+  EXPECT_NEAR(iterated.positions[1].y, 1, 1e-12);
+  EXPECT_NEAR(iterated.positions[1].z, 1, 1e-12);
   // Nested contexts: the inner transform first, then the outer.
   const Scene nested = loadMgfText(std::string(kSquare) + "xf -s 3\nxf -t 1 0 0\nf a b c d\nxf\nxf\n");
   EXPECT_NEAR(nested.positions[0].x, 3, 1e-12);
