@@ -256,6 +256,19 @@ echo '{"objects": [{"type": "gltf", "file": "nosuch.glb"}]}' >gltf-entry.json
 expect "glTF file missing" "^radiant: error: gltf-entry\\.json: at /objects/0/file: cannot open glTF file '.*nosuch\\.glb'" \
   render gltf-entry.json
 
+# ---- MGF: the file and the line of the entity.
+printf 'v a =\n p 0 0 0\nv b =\n p 1 0 0\nf a b c\n' >undef.mgf
+expect "MGF undefined vertex" "^radiant: error: undef\\.mgf:5: vertex 'c' is not defined" render undef.mgf
+printf 'm x =\n rd 1.5\n' >rd.mgf
+expect "MGF reflectance above 1" "^radiant: error: rd\\.mgf:2: 'rd' 1\\.5: expected 0 … 1" render rd.mgf
+printf '# includes itself\ni self.mgf\n' >self.mgf
+expect "MGF self include" '^radiant: error: self\.mgf:2: includes nested more than 16 deep' render self.mgf
+printf 'v a =\n p 0 0 0\nxf -t 1 0 0\n' >xf.mgf
+expect "MGF unended xf" '^radiant: error: xf\.mgf:3: the file ends inside an xf context' render xf.mgf
+echo '{"objects": [{"type": "mgf", "file": "nosuch.mgf"}]}' >mgf-entry.json
+expect "MGF file missing" "^radiant: error: mgf-entry\\.json: at /objects/0/file: cannot open MGF file '.*nosuch\\.mgf'" \
+  render mgf-entry.json
+
 # ---- Flags: the flag.
 expect "--spp 0" '^radiant: error: --spp: samples per pixel must be in' "$radiant" render "$cornell" --spp 0 -q
 expect "--eye 1,2" '^radiant: error: --eye: expected three comma-separated numbers' \

@@ -24,6 +24,7 @@
 
 #include "scene/json_reader.h"
 #include "scene/load_detail.h"
+#include "scene/mgf_detail.h"
 
 namespace radiant {
 
@@ -234,13 +235,14 @@ struct SceneParser {
 
   void parseObject(const JsonNode &node, size_t index) {
     node.expectObject();
-    static const std::vector<std::string> kTypes = {"quad", "triangle", "obj", "gltf", "sphere"};
+    static const std::vector<std::string> kTypes = {"quad", "triangle", "obj", "gltf", "mgf", "sphere"};
     std::string type = parseType(node, kTypes, "", "object");
     checkTypedKeys(node, {"name", "type", "material", "transform"},
                    {{"quad", {"vertices", "uv"}},
                     {"triangle", {"vertices", "uv"}},
                     {"obj", {"file"}},
                     {"gltf", {"file"}},
+                    {"mgf", {"file"}},
                     {"sphere", {"center", "radius", "segments"}}},
                    type, "object");
     std::string name = node.string("name", type + "-" + std::to_string(index));
@@ -277,6 +279,18 @@ struct SceneParser {
       detail::appendGltf(scene, gltfPath, toWorld, name, material, jsonMaterialCount, node.child("file").location());
       if (scene.objects.size() == objectsBefore)
         scene.warnings.push_back("object '" + name + "' (" + gltfPath + ") has no meshes in its scene");
+      return;
+    }
+
+    if (type == "mgf") {
+      // MGF files carry their own materials (docs/scene-format.md#mgf-scenes).
+      if (node.has("material"))
+        node.child("material").fail("an mgf object takes its materials from the MGF file; remove 'material'");
+      std::string mgfPath = (directory / node.child("file").asString()).string();
+      size_t objectsBefore = scene.objects.size();
+      detail::appendMgf(scene, mgfPath, toWorld, name, node.child("file").location());
+      if (scene.objects.size() == objectsBefore)
+        scene.warnings.push_back("object '" + name + "' (" + mgfPath + ") has no faces");
       return;
     }
 
@@ -437,10 +451,9 @@ std::string unreadFormat(const std::string &extension, const std::string &head) 
     const char *extension, *name;
   };
   static constexpr Known kKnown[] = {
-      {".ply", "PLY"},  {".mgf", "MGF"},       {".fbx", "FBX"},  {".dae", "COLLADA"}, {".3ds", "3D Studio"},
-      {".stl", "STL"},  {".blend", "Blender"}, {".usd", "USD"},  {".usda", "USD"},    {".usdc", "USD"},
-      {".usdz", "USD"}, {".x3d", "X3D"},       {".wrl", "VRML"}, {".pbrt", "pbrt"},   {".xml", "XML (Mitsuba?)"},
-      {".off", "OFF"},
+      {".ply", "PLY"},       {".fbx", "FBX"},  {".dae", "COLLADA"}, {".3ds", "3D Studio"},      {".stl", "STL"},
+      {".blend", "Blender"}, {".usd", "USD"},  {".usda", "USD"},    {".usdc", "USD"},           {".usdz", "USD"},
+      {".x3d", "X3D"},       {".wrl", "VRML"}, {".pbrt", "pbrt"},   {".xml", "XML (Mitsuba?)"}, {".off", "OFF"},
   };
   for (const Known &k : kKnown)
     if (extension == k.extension) return k.name;
@@ -510,6 +523,16 @@ Scene loadScene(const std::string &path) {
     return scene;
   }
   if (extension == ".gltf" || extension == ".glb" || startsWithGlbMagic(path)) return loadGltfScene(path);
+  if (extension == ".mgf") {
+    // MGF is in metres by convention; viewed like a bare OBJ.
+    Scene scene;
+    scene.sourceFile = path;
+    detail::appendMgf(scene, path, Transform{}, fs::path(path).stem().string(), InputLocation{path, 0, 0, ""});
+    detail::dropRepeatedFaces(scene);
+    scene.camera = detail::frameBounds(scene);
+    validateScene(scene);
+    return scene;
+  }
   std::error_code ec;
   std::ifstream in(path, std::ios::binary);
   if (!fs::is_regular_file(path, ec) || !in)
@@ -523,10 +546,12 @@ Scene loadScene(const std::string &path) {
                      "the solution with --solution");
   const std::string format = unreadFormat(extension, head);
   if (!format.empty())
-    throw InputError(InputLocation{path, 0, 0, ""},
-                     "this is a " + format +
-                         " file, which Radiant does not read: a scene is a JSON scene file "
-                         "(docs/scene-format.md), a Wavefront OBJ model (.obj) or a glTF 2.0 file (.gltf, .glb)");
+    throw InputError(
+        InputLocation{path, 0, 0, ""},
+        "this is a " + format +
+            " file, which Radiant does not read: a scene is a JSON scene file "
+            "(docs/scene-format.md), a Wavefront OBJ model (.obj), a glTF 2.0 file (.gltf, .glb) or an MGF "
+            "file (.mgf)");
   try {
     return parseSceneJson(text.str(), path);
   } catch (const InputError &e) {
@@ -534,7 +559,7 @@ Scene loadScene(const std::string &path) {
     // what Radiant expected rather than only where the JSON broke.
     if (extension == ".json" || e.message().rfind("invalid JSON", 0) != 0 || e.location().line > 1) throw;
     throw InputError(e.location(), e.message() + " (Radiant reads JSON scene files and .obj models; '" + path +
-                                       "' is read as JSON because its name does not end in .obj, .gltf or .glb)");
+                                       "' is read as JSON because its name does not end in .obj, .gltf, .glb or .mgf)");
   }
 }
 
