@@ -20,8 +20,13 @@ export function requireBrowserDependencies(repo) {
   if (!fs.existsSync(CHROMIUM)) missing.push(`Chromium (${CHROMIUM})`);
   for (const name of ['three', 'puppeteer-core', 'gltf-validator'])
     if (!fs.existsSync(path.join(repo, 'viewer', 'node_modules', name, 'package.json'))) missing.push(`viewer/node_modules/${name}`);
-  if (missing.length > 0)
-    throw new Error(`missing ${missing.join(', ')}: run scripts/install-deps.sh (it installs chromium and runs npm ci in viewer/)`);
+  if (missing.length === 0) return;
+  const message = `missing ${missing.join(', ')}: run scripts/install-deps.sh (it installs chromium and runs npm ci in viewer/)`;
+  // CI (.ci/run) requires these tests; elsewhere a machine that cannot reach the npm registry reports them
+  // skipped (exit 77, ctest's SKIP_RETURN_CODE), loudly, instead of failing the whole suite.
+  if (process.env.RADIANT_REQUIRE_BROWSER_TESTS === '1') throw new Error(message);
+  console.log(`SKIPPED: ${message}`);
+  process.exit(77);
 }
 
 /** A package of viewer/node_modules, imported from outside viewer/. */
