@@ -8,12 +8,9 @@
 
 #include "export/baked_mesh.h"
 #include "export/gltf_writer.h"
+#include "path_image_comparison.h"
 #include "radiosity/solver.h"
 #include "raytrace/ray_tracer.h"
-#include "render/driver.h"
-#include "render/registry.h"
-#include "render/renderer.h"
-#include "sanitizer.h"
 #include "scene/load_scene.h"
 
 namespace radiant {
@@ -108,39 +105,17 @@ TEST(GltfRoundTrip, TheExportsPathTracedImageIsTheOriginals) {
   EXPECT_EQ(back.droppedDegenerateFaces, 0u);
 
   const int size = 32, spp = 512;
-  auto render = [&](const Scene &s, uint64_t seed) {
-    RayTracer tracer(s);
-    Film film(size, size);
-    DriverOptions driver;
-    driver.samplesPerPixel = spp;
-    driver.seed = seed;
-    driver.stopConvergedPixels = false;
-    renderImage(PinholeCamera(scene.camera, size, size), *createRenderer("path", tracer, RenderContext{}), driver,
-                film);
-    return film;
-  };
-  const Film original = render(scene, 1), exported = render(back, 2);
+  const Film original = test::pathTraced(scene, scene.camera, size, spp, 1);
+  const Film exported = test::pathTraced(back, scene.camera, size, spp, 2);
   // The whole image (σ ≈ 0.6 %: 3 % more light fails at 5σ), then each block (a wrong part of the scene).
-  double a = 0, b = 0, variance = 0;
-  for (size_t p = 0; p < original.pixelCount(); ++p) {
-    a += original.mean(p).average();
-    b += exported.mean(p).average();
-    variance += original.varianceOfMean(p).average() + exported.varianceOfMean(p).average();
-  }
-  EXPECT_LT(std::abs(a - b), 4 * std::sqrt(variance)) << "image sums " << a << " vs " << b;
+  const test::RegionSums all = test::regionSums(original, exported, 0, 0, size, size);
+  EXPECT_LT(std::abs(all.a - all.b), 4 * std::sqrt(all.variance)) << "image sums " << all.a << " vs " << all.b;
   const int block = size / 4;
   for (int by = 0; by < size; by += block)
     for (int bx = 0; bx < size; bx += block) {
-      double a = 0, b = 0, variance = 0;
-      for (int y = by; y < by + block; ++y)
-        for (int x = bx; x < bx + block; ++x) {
-          const size_t p = size_t(y) * size + size_t(x);
-          a += original.mean(p).average();
-          b += exported.mean(p).average();
-          variance += original.varianceOfMean(p).average() + exported.varianceOfMean(p).average();
-        }
-      EXPECT_LT(std::abs(a - b), 4.5 * std::sqrt(variance) + 1e-12)
-          << "block " << bx / block << "," << by / block << ": " << a << " vs " << b;
+      const test::RegionSums r = test::regionSums(original, exported, bx, by, block, block);
+      EXPECT_LT(std::abs(r.a - r.b), 4.5 * std::sqrt(r.variance) + 1e-12)
+          << "block " << bx / block << "," << by / block << ": " << r.a << " vs " << r.b;
     }
 }
 

@@ -15,10 +15,7 @@
 #include <iomanip>
 #include <sstream>
 
-#include "raytrace/ray_tracer.h"
-#include "render/driver.h"
-#include "render/registry.h"
-#include "render/renderer.h"
+#include "path_image_comparison.h"
 #include "scene/load_scene.h"
 #include "scene/mgf_detail.h"
 #include "util/error.h"
@@ -406,38 +403,17 @@ TEST(MgfImport, SceneAsMgfAndAsObjRenderTheSame) {
     }
   }
   const int size = 32, spp = 256;
-  auto render = [&](const Scene &s, uint64_t seed) {
-    RayTracer tracer(s);
-    Film film(size, size);
-    DriverOptions driver;
-    driver.samplesPerPixel = spp;
-    driver.seed = seed;
-    driver.stopConvergedPixels = false;
-    renderImage(PinholeCamera(fromObj.camera, size, size), *createRenderer("path", tracer, RenderContext{}), driver,
-                film);
-    return film;
-  };
-  const Film a = render(fromObj, 1), b = render(fromMgf, 2);
-  double sumA = 0, sumB = 0, variance = 0;
-  for (size_t p = 0; p < a.pixelCount(); ++p) {
-    sumA += a.mean(p).average();
-    sumB += b.mean(p).average();
-    variance += a.varianceOfMean(p).average() + b.varianceOfMean(p).average();
-  }
-  EXPECT_GT(sumA, 0);
-  EXPECT_LT(std::abs(sumA - sumB), 4 * std::sqrt(variance)) << sumA << " vs " << sumB;
+  const Film a = test::pathTraced(fromObj, fromObj.camera, size, spp, 1);
+  const Film b = test::pathTraced(fromMgf, fromObj.camera, size, spp, 2);
+  const test::RegionSums all = test::regionSums(a, b, 0, 0, size, size);
+  EXPECT_GT(all.a, 0);
+  EXPECT_LT(std::abs(all.a - all.b), 4 * std::sqrt(all.variance)) << all.a << " vs " << all.b;
   const int block = size / 4;
   for (int by = 0; by < size; by += block)
     for (int bx = 0; bx < size; bx += block) {
-      double x = 0, y = 0, v = 0;
-      for (int py = by; py < by + block; ++py)
-        for (int px = bx; px < bx + block; ++px) {
-          const size_t p = size_t(py) * size + size_t(px);
-          x += a.mean(p).average();
-          y += b.mean(p).average();
-          v += a.varianceOfMean(p).average() + b.varianceOfMean(p).average();
-        }
-      EXPECT_LT(std::abs(x - y), 4.5 * std::sqrt(v) + 1e-12) << "block " << bx / block << "," << by / block;
+      const test::RegionSums r = test::regionSums(a, b, bx, by, block, block);
+      EXPECT_LT(std::abs(r.a - r.b), 4.5 * std::sqrt(r.variance) + 1e-12)
+          << "block " << bx / block << "," << by / block;
     }
 }
 
