@@ -18,6 +18,7 @@
 #include "radiosity/solution_query.h"
 #include "radiosity/solver.h"
 #include "raytrace/surface_detail.h"
+#include "refined_mesh.h"
 #include "scene/load_scene.h"
 #include "scene/spectral_scene.h"
 #include "test_scenes.h"
@@ -160,15 +161,8 @@ TEST(Export, SpectralPassesCombineAtTheFirstPassesVertices) {
 // its midpoint, where the refinement puts T-vertices.
 TEST(Export, RefinedMeshesHaveNoCracksAtTheirTVertices) {
   const Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
-  MeshOptions options;
-  options.maxEdgeLength = 0.2;
-  RadiosityMesh mesh = buildTreeMesh(scene, options);
-  // Split every third element, twice: neighbours two levels apart, T-vertices on T-vertices' edges.
-  for (int round = 0; round < 2; ++round) {
-    std::vector<double> error(mesh.elements.size(), 0.0);
-    for (size_t e = 0; e < error.size(); e += 3) error[e] = 1;
-    refineMesh(mesh, error, 0.5, 100000);
-  }
+  // Neighbours two levels apart: T-vertices on T-vertices' edges.
+  RadiosityMesh mesh = test::refinedTreeMesh(scene, 0.2);
   ASSERT_FALSE(mesh.tVertices.empty());
   Solution solution = initialSolution(scene, std::move(mesh));
   solution.radiosity = solution.emission;

@@ -11,6 +11,7 @@
 #include "path_image_comparison.h"
 #include "radiosity/solver.h"
 #include "raytrace/ray_tracer.h"
+#include "refined_mesh.h"
 #include "scene/load_scene.h"
 
 namespace radiant {
@@ -87,14 +88,7 @@ TEST(GltfRoundTrip, AnExportedSceneReadsBackAsTheSameScene) {
 // scene about once in 10⁴ runs), and over the whole image by less than 4.
 TEST(GltfRoundTrip, TheExportsPathTracedImageIsTheOriginals) {
   const Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
-  MeshOptions options;
-  options.maxEdgeLength = 0.15;
-  RadiosityMesh mesh = buildTreeMesh(scene, options);
-  for (int round = 0; round < 2; ++round) {
-    std::vector<double> error(mesh.elements.size(), 0.0);
-    for (size_t e = 0; e < error.size(); e += 3) error[e] = 1;
-    refineMesh(mesh, error, 0.5, 100000);
-  }
+  RadiosityMesh mesh = test::refinedTreeMesh(scene, 0.15);
   ASSERT_FALSE(mesh.tVertices.empty());
   Solution solution = initialSolution(scene, std::move(mesh));
   const std::string path = (std::filesystem::temp_directory_path() / "radiant-round-trip-path.glb").string();
