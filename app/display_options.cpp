@@ -8,6 +8,7 @@
 
 #include "render/emitter_coverage.h"
 #include "util/error.h"
+#include "util/file_extension.h"
 
 namespace radiant {
 
@@ -15,13 +16,8 @@ namespace {
 
 const char *const kOtherDisplayFlags[] = {"--tonemap", "--gamma", "--srgb", "--bits", "--gamut"};
 
-std::string lowerExtension(const std::string &path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char &c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
 bool isPng(const std::string &path) {
-  return lowerExtension(path) == ".png";
+  return lowercaseExtension(path) == ".png";
 }
 
 }  // namespace
@@ -85,7 +81,7 @@ void writeRenderOutputs(Image &image, const std::vector<std::string> &outputs, c
   bool png = false, exr = false;
   for (const std::string &path : outputs) {
     png = png || isPng(path);
-    exr = exr || lowerExtension(path) == ".exr";
+    exr = exr || lowercaseExtension(path) == ".exr";
   }
   if (image.quantity.empty()) image.quantity = "radiance";
   if (exr || (png && display.toneOperator == "max-reflected")) {

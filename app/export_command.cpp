@@ -24,6 +24,7 @@
 #include "scene/load_scene.h"
 #include "scene/spectral_scene.h"
 #include "util/error.h"
+#include "util/file_extension.h"
 #include "util/interrupt.h"
 #include "view_options.h"
 
@@ -42,15 +43,9 @@ struct ExportCommandOptions {
   bool quiet = false;
 };
 
-std::string lowerExtension(const std::string &path) {
-  std::string e = std::filesystem::path(path).extension().string();
-  for (char &c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return e;
-}
-
 /// The file's format: --format, else the output's extension; the two must agree.
 std::string exportFormat(const ExportCommandOptions &o) {
-  const std::string extension = lowerExtension(o.outputPath);
+  const std::string extension = lowercaseExtension(o.outputPath);
   const std::string fromExtension = extension.size() > 1 ? extension.substr(1) : "";
   if (o.format.empty()) {
     if (fromExtension == "glb" || fromExtension == "gltf" || fromExtension == "ply") return fromExtension;

@@ -17,6 +17,7 @@
 #include "commands.h"
 #include "interrupt_handler.h"
 #include "util/error.h"
+#include "util/file_extension.h"
 #include "util/interrupt.h"
 
 namespace radiant {
@@ -52,8 +53,7 @@ CommandRunner addServeCommand(CLI::App &app) {
 
   return [o]() {
     namespace fs = std::filesystem;
-    std::string extension = fs::path(o->modelPath).extension().string();
-    for (char &c : extension) c = char(std::tolower(static_cast<unsigned char>(c)));
+    const std::string extension = lowercaseExtension(o->modelPath);
     if (extension != ".glb" && extension != ".gltf")
       throw InputError(InputLocation{o->modelPath}, "expected a .glb or .gltf file (from `radiant export`)");
     std::error_code error;

@@ -13,6 +13,7 @@
 #include "io/image.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
+#include "util/file_extension.h"
 
 namespace radiant {
 
@@ -91,9 +92,7 @@ void appendBytes(void *context, void *data, int size) {
 /// other file (EXR) its linear texels sRGB-encoded into an 8-bit PNG.
 std::pair<std::vector<unsigned char>, std::string> textureImage(const Scene &scene, const Material &material) {
   const std::string &path = material.diffuseTexture;
-  std::string extension = std::filesystem::path(path).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
+  const std::string extension = lowercaseExtension(path);
   if (extension == ".png" || extension == ".jpg" || extension == ".jpeg") {
     std::ifstream in(path, std::ios::binary);
     std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

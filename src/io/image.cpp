@@ -26,6 +26,7 @@
 #include "util/atomic_file.h"
 #include "util/error.h"
 #include "util/exr_header.h"
+#include "util/file_extension.h"
 
 namespace radiant {
 
@@ -37,12 +38,6 @@ constexpr const char *kQuantityAttribute = "radiantQuantity";
 constexpr const char *kSamplesAttribute = "radiantSamplesPerPixel";
 constexpr const char *kInterruptedAttribute = "radiantInterrupted";
 
-std::string extensionOf(const std::string &path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char &c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
-
 }  // namespace
 
 double srgbEncode(double linear) {
@@ -52,17 +47,17 @@ double srgbEncode(double linear) {
 }
 
 bool isSupportedImageExtension(const std::string &path) {
-  std::string ext = extensionOf(path);
+  std::string ext = lowercaseExtension(path);
   return ext == ".exr" || ext == ".pfm" || ext == ".hdr" || ext == ".png";
 }
 
 bool isLinearImageExtension(const std::string &path) {
-  std::string ext = extensionOf(path);
+  std::string ext = lowercaseExtension(path);
   return ext == ".exr" || ext == ".pfm" || ext == ".hdr";
 }
 
 void writeImage(const Image &image, const std::string &path, double exposureStops) {
-  std::string ext = extensionOf(path);
+  std::string ext = lowercaseExtension(path);
   if (ext == ".exr") return writeExr(image, path);
   if (ext == ".pfm") return writePfm(image, path);
   if (ext == ".hdr") return writeHdr(image, path);
@@ -327,7 +322,7 @@ Image readHdr(const std::string &path) {
 
 Image readImage(const std::string &path) {
   if (!std::filesystem::exists(path)) throw InputError(InputLocation{path}, "no such file");
-  std::string ext = extensionOf(path);
+  std::string ext = lowercaseExtension(path);
   if (ext == ".exr") return readExr(path);
   if (ext == ".pfm") return readPfm(path);
   if (ext == ".hdr") return readHdr(path);

@@ -25,6 +25,7 @@
 #include "scene/json_reader.h"
 #include "scene/load_detail.h"
 #include "scene/mgf_detail.h"
+#include "util/file_extension.h"
 
 namespace radiant {
 
@@ -438,12 +439,6 @@ struct SceneParser {
   }
 };
 
-std::string lowerExtension(const std::string &path) {
-  std::string extension = fs::path(path).extension().string();
-  for (char &c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return extension;
-}
-
 /// The name of a 3D format Radiant does not read, recognised by the file's
 /// extension or its first bytes, or "" (then the file is read as JSON).
 std::string unreadFormat(const std::string &extension, const std::string &head) {
@@ -510,7 +505,7 @@ Scene parseSceneJson(const std::string &text, const std::string &path) {
 }
 
 Scene loadScene(const std::string &path) {
-  const std::string extension = lowerExtension(path);
+  const std::string extension = lowercaseExtension(path);
   if (extension == ".obj") {
     Scene scene;
     scene.sourceFile = path;

@@ -1,0 +1,18 @@
+// A file's extension as the program compares it: lower case, with its dot
+// (".glb", ".exr"), or empty. The one place the readers and writers that choose
+// by extension take it from.
+#pragma once
+
+#include <cctype>
+#include <filesystem>
+#include <string>
+
+namespace radiant {
+
+inline std::string lowercaseExtension(const std::string &path) {
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char &c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension;
+}
+
+}  // namespace radiant
