@@ -423,7 +423,7 @@ TEST(SceneLoaderWarnings, NoEmitterIsAWarningNotAnError) {
       sceneText(R"("grey": {"reflectance": 0.5})",
                 R"({"type": "quad", "vertices": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]], "material": "grey"})"),
       "s.json");
-  EXPECT_TRUE(hasWarning(s, "no emitter: the image will be black"));
+  EXPECT_TRUE(hasWarning(s, "no emitter and no light: the image will be black"));
 }
 
 TEST(SceneLoaderWarnings, AllowedEdgeValues) {

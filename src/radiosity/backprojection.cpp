@@ -1,9 +1,12 @@
 #include "radiosity/backprojection.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 
 #include "radiosity/form_factor.h"
+#include "radiosity/solution.h"
 #include "raytrace/ray_tracer.h"
 #include "util/sampling.h"
 
@@ -291,6 +294,7 @@ bool DirectIrradiance::irradianceWithin(const Vec3 &x, const Vec3 &n, size_t max
     if (f < 0) return false;
     if (f > 0) out += scene_.materials[e.material].emission * (kPi * f);
   }
+  if (!scene_.lights.empty()) out += pointLightIrradiance(x, n);
   return true;
 }
 
@@ -305,6 +309,102 @@ Bands DirectIrradiance::irradiance(const Vec3 &x, const Vec3 &n) const {
     if (f < 0) f = sampledFormFactor(x, n, k);
     if (f > 0) h += radiance * (kPi * f);
   }
+  if (!scene_.lights.empty()) h += pointLightIrradiance(x, n);
+  return h;
+}
+
+Bands DirectIrradiance::pointLightIrradiance(const Vec3 &x, const Vec3 &n) const {
+  Bands h(0.0);
+  for (const PointLight &light : scene_.lights) {
+    const Vec3 toLight = light.position - x;
+    const double distanceSquared = dot(toLight, toLight);
+    if (!(distanceSquared > 0)) continue;
+    const Vec3 w = toLight / std::sqrt(distanceSquared);
+    const double cosTheta = dot(n, w);
+    if (cosTheta <= 0) continue;
+    // The inverse-square law: E = I(ω) cos θ / d², ω the direction from the light to x.
+    const Bands intensity = light.intensity(-w);
+    if (intensity.max() <= 0 || segmentBlocked(x, light.position)) continue;
+    h += intensity * (cosTheta / distanceSquared);
+  }
+  return h;
+}
+
+bool DirectIrradiance::segmentBlocked(const Vec3 &x, const Vec3 &p) const {
+  thread_local std::vector<uint32_t> candidates;
+  Box3 box;
+  box.extend(x);
+  box.extend(p);
+  const double tolerance = 1e-9 * scale_;
+  faces_.facesOverlapping(box, tolerance, candidates);
+  const Vec3 d = p - x;
+  for (uint32_t f : candidates) {
+    const Face &face = scene_.faces[f];
+    const Vec3 &a = scene_.positions[face.vertices[0]];
+    const Vec3 normal = scene_.faceNormal(face);
+    // A face whose plane holds either end (x's own face, the ceiling a
+    // downlight is set in) blocks nothing.
+    const double da = dot(normal, x - a), db = dot(normal, p - a);
+    if (std::abs(da) <= tolerance || std::abs(db) <= tolerance || (da > 0) == (db > 0)) continue;
+    const double t = da / (da - db);  // where the segment crosses the plane
+    if (t <= 1e-9 || t >= 1 - 1e-9) continue;
+    const Vec3 q = x + d * t;
+    // Inside the (convex, planar) polygon: on the inner side of every edge.
+    bool inside = true;
+    for (int k = 0; k < face.vertexCount && inside; ++k) {
+      const Vec3 &u = scene_.positions[face.vertices[k]];
+      const Vec3 &v = scene_.positions[face.vertices[(k + 1) % face.vertexCount]];
+      inside = dot(cross(v - u, q - u), normal) >= 0;
+    }
+    if (inside) return true;
+  }
+  return false;
+}
+
+Bands meanPointLightIrradiance(const DirectIrradiance &direct, const Scene &scene, std::span<const Vec3> polygon,
+                               const Vec3 &normal) {
+  if (polygon.size() != 3 && polygon.size() != 4) return Bands(0.0);
+  // Midpoint rule on an n × n lattice, n from the polygon's size against its
+  // distance to the nearest light (E varies over a scale of that distance):
+  // 3 for a small far element, up to 16 for a floor under a lamp.
+  double size = 0, nearest = INFINITY;
+  for (size_t k = 0; k < polygon.size(); ++k)
+    size = std::max(size, length(polygon[(k + 1) % polygon.size()] - polygon[k]));
+  const Vec3 centre = polygonCentroid(polygon);
+  for (const PointLight &light : scene.lights) nearest = std::min(nearest, length(light.position - centre));
+  const int n = std::clamp(int(std::ceil(4.0 * size / std::max(nearest, 1e-9 * size))), 3, 16);
+  Bands sum(0.0);
+  int count = 0;
+  if (polygon.size() == 4) {
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const double u = (i + 0.5) / n, v = (j + 0.5) / n;
+        const Vec3 x = polygon[0] * ((1 - u) * (1 - v)) + polygon[1] * (u * (1 - v)) + polygon[2] * (u * v) +
+                       polygon[3] * ((1 - u) * v);
+        sum += direct.pointLightIrradiance(x, normal), ++count;
+      }
+  } else {
+    // The centroids of the n² equal sub-triangles of a regular subdivision.
+    const Vec3 du = (polygon[1] - polygon[0]) / double(n), dv = (polygon[2] - polygon[0]) / double(n);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; i + j < n; ++j) {
+        const Vec3 base = polygon[0] + du * double(i) + dv * double(j);
+        sum += direct.pointLightIrradiance(base + (du + dv) / 3.0, normal), ++count;  // upright
+        if (i + j + 1 < n) sum += direct.pointLightIrradiance(base + (du + dv) * (2.0 / 3.0), normal), ++count;
+      }
+  }
+  return count > 0 ? sum / double(count) : Bands(0.0);
+}
+
+std::vector<Bands> pointLightIrradianceOfElements(const Scene &scene, const Solution &solution) {
+  if (scene.lights.empty()) return {};
+  const DirectIrradiance direct(scene);
+  const size_t n = solution.elementCount();
+  std::vector<Bands> h(n, Bands(0.0));
+  tbb::parallel_for(size_t(0), n, [&](size_t e) {
+    const std::vector<Vec3> polygon = solution.mesh.polygon(static_cast<uint32_t>(e));
+    h[e] = meanPointLightIrradiance(direct, scene, polygon, solution.mesh.normalOf(static_cast<uint32_t>(e)));
+  });
   return h;
 }
 

@@ -56,6 +56,22 @@ struct EmitterPolygon {
 };
 
 class RayTracer;
+class DirectIrradiance;
+struct Solution;
+
+/// The point lights' irradiance (DirectIrradiance::pointLightIrradiance)
+/// averaged over a triangle or planar quad of normal `normal` (the scene's
+/// lights): a midpoint rule of 3 × 3 to 16 × 16 points, finer the larger the
+/// polygon against its distance to the nearest light, so a shadow edge
+/// through the polygon lights part of it.
+Bands meanPointLightIrradiance(const DirectIrradiance &direct, const Scene &scene, std::span<const Vec3> polygon,
+                               const Vec3 &normal);
+/// The same for every element of a solution's mesh (in parallel); empty when
+/// the scene has no point lights. The solvers that gather or shoot between
+/// elements (gauss-seidel, progressive, hierarchical, stochastic) start from
+/// it: ρ·H is each element's first reflected light, as if shot from the
+/// lights before anything else (C&W §5.3: point sources shoot first).
+std::vector<Bands> pointLightIrradianceOfElements(const Scene &scene, const Solution &solution);
 
 class DirectIrradiance {
  public:
@@ -71,12 +87,21 @@ class DirectIrradiance {
   /// leave, which 10⁴ small triangles multiply beyond use.
   DirectIrradiance(const Scene &scene, const RayTracer &tracer, size_t maxExactOccluders);
 
-  bool empty() const { return emitters_.empty(); }
+  /// No emitting face and no point light (Scene::lights).
+  bool empty() const { return emitters_.empty() && scene_.lights.empty(); }
   const std::vector<EmitterPolygon> &emitters() const { return emitters_; }
 
   /// Irradiance at x (unit normal n) arriving straight from the emitters'
-  /// fronts, W·m⁻² per band: Σ π L_e F(x → visible part).
+  /// fronts, W·m⁻² per band: Σ π L_e F(x → visible part), plus the point
+  /// lights' Σ I(ω) cos θ / d² over those x sees (pointLightIrradiance).
   Bands irradiance(const Vec3 &x, const Vec3 &n) const;
+  /// The point lights' share alone: Σ I(ω) cos θ / d² over the lights
+  /// (Scene::lights, read at each query like the materials) that x sees,
+  /// exactly (a segment test against the faces, no sampling).
+  Bands pointLightIrradiance(const Vec3 &x, const Vec3 &n) const;
+  /// True when a face lies strictly between x and p (faces through either
+  /// end, as x's own, block nothing).
+  bool segmentBlocked(const Vec3 &x, const Vec3 &p) const;
   /// The same when no emitter's shaft holds more than `maxOccluders` faces
   /// (then true, and `out` is set); false otherwise, for the caller to sample.
   bool irradianceWithin(const Vec3 &x, const Vec3 &n, size_t maxOccluders, Bands &out) const;

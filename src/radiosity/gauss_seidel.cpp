@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "radiosity/backprojection.h"
 #include "radiosity/form_factor.h"
 #include "radiosity/solver.h"
 #include "util/error.h"
@@ -69,11 +70,16 @@ void solveGaussSeidel(const RayTracer &tracer, Solution &s, const SolverOptions 
   });
   for (size_t rays : visibilityRays) s.stats.formFactorRays += rays;
 
-  // The direct part is one gather from the emitters: ρ_i Σ_j F_ij E_j.
+  // The direct part is one gather from the emitters, ρ_i Σ_j F_ij E_j, plus
+  // what the point lights give, ρ_i H_i: a source term beside the emission.
+  const std::vector<Bands> lightIrradiance = pointLightIrradianceOfElements(tracer.scene(), s);
+  std::vector<Bands> source = s.emission;
   for (size_t i = 0; i < n; ++i) {
     Bands gathered(0.0);
     for (const Coupling &c : rows[i]) gathered += s.emission[c.element] * double(c.formFactor);
+    if (!lightIrradiance.empty()) gathered += lightIrradiance[i];
     s.direct[i] = s.reflectance[i] * gathered;
+    if (!lightIrradiance.empty()) source[i] += s.reflectance[i] * lightIrradiance[i];
   }
 
   const int maxSweeps = options.maxIterations > 0 ? options.maxIterations : 10000;
@@ -82,7 +88,7 @@ void solveGaussSeidel(const RayTracer &tracer, Solution &s, const SolverOptions 
     for (size_t i = 0; i < n; ++i) {
       Bands gathered(0.0);
       for (const Coupling &c : rows[i]) gathered += s.radiosity[c.element] * double(c.formFactor);
-      Bands updated = s.emission[i] + s.reflectance[i] * gathered;
+      Bands updated = source[i] + s.reflectance[i] * gathered;
       for (int b = 0; b < kBandCount; ++b) {
         largestChange = std::max(largestChange, std::abs(updated[b] - s.radiosity[i][b]));
         // Against the largest *reflected* radiosity: next to an emitter's B the
@@ -104,6 +110,7 @@ void solveGaussSeidel(const RayTracer &tracer, Solution &s, const SolverOptions 
   for (size_t i = 0; i < n; ++i) {
     Bands irradiance(0.0);
     for (const Coupling &c : rows[i]) irradiance += s.radiosity[c.element] * double(c.formFactor);
+    if (!lightIrradiance.empty()) irradiance += lightIrradiance[i];
     s.irradiance[i] = irradiance;
     s.stats.absorbedPower += (Bands(1.0) - s.reflectance[i]) * irradiance * s.mesh.elements[i].area;
     s.indirect[i] = s.radiosity[i] - s.emission[i] - s.direct[i];

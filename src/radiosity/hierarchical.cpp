@@ -32,7 +32,9 @@
 
 #include <chrono>
 #include <memory>
+#include <optional>
 
+#include "radiosity/backprojection.h"
 #include "radiosity/form_factor.h"
 #include "radiosity/importance.h"
 #include "radiosity/solver.h"
@@ -56,6 +58,7 @@ struct Node {
   Bands radiosity;                     ///< B: at a leaf E + ρH, above the area average of the children
   Bands gathered, gatheredDirect;      ///< Σ F·B_source and Σ F·E_source over this node's links
   Bands irradiance, irradianceDirect;  ///< leaves: everything pushed down to them
+  Bands lightIrradiance;               ///< from the point lights, averaged over the node (backprojection.h)
   std::vector<uint32_t> links;         ///< incoming links (indices into Hierarchy::links_)
   bool isLeaf() const { return children[0] < 0; }
 };
@@ -71,6 +74,7 @@ class Hierarchy {
  public:
   Hierarchy(const RayTracer &tracer, const Solution &initial, const SolverOptions &options)
       : tracer_(tracer), options_(options) {
+    if (!tracer.scene().lights.empty()) lights_.emplace(tracer.scene());
     double maxEmission = 0, largestElement = 0;
     for (const Element &e : initial.mesh.elements) largestElement = std::max(largestElement, e.area);
     for (uint32_t p = 0; p < initial.mesh.patches.size(); ++p) {
@@ -92,6 +96,7 @@ class Hierarchy {
       textured_.push_back(material.diffuseTextureIndex >= 0 && material.diffuse.max() > 0 &&
                           (material.kind == MaterialKind::Lambertian || material.kind == MaterialKind::Glossy));
       if (textured_.back()) n.reflectance = nodeReflectance(n);
+      n.lightIrradiance = lightIrradianceOf(n);
       n.radiosity = n.emission;
       maxEmission = std::max(maxEmission, n.emission.max());
       nodes_.push_back(n);
@@ -281,6 +286,7 @@ class Hierarchy {
       child.emission = parent.emission;
       child.reflectance = textured_[parent.patch] ? nodeReflectance(child) : parent.reflectance;
       child.radiosity = parent.radiosity;
+      child.lightIrradiance = lightIrradianceOf(child);
       nodes_[n].children[k] = static_cast<int32_t>(nodes_.size());
       nodes_.push_back(child);
     }
@@ -375,6 +381,9 @@ class Hierarchy {
     Bands h = down + node.gathered, hd = downDirect + node.gatheredDirect;
     Bands b;
     if (node.isLeaf()) {
+      // The point lights' light, shot before anything else, is direct light too.
+      h += node.lightIrradiance;
+      hd += node.lightIrradiance;
       node.irradiance = h;
       node.irradianceDirect = hd;
       b = node.emission + node.reflectance * h;
@@ -390,6 +399,13 @@ class Hierarchy {
     }
     nodes_[n].radiosity = b;
     return b;
+  }
+
+  /// What the point lights give the node, averaged over it; 0 without lights.
+  Bands lightIrradianceOf(const Node &n) const {
+    if (!lights_) return Bands(0.0);
+    return meanPointLightIrradiance(*lights_, tracer_.scene(), std::span<const Vec3>(n.corners.data(), n.vertexCount),
+                                    n.normal);
   }
 
   /// ρ̄ of a textured patch's node: the texture averaged over the node (C&W eq. 9.11).
@@ -408,6 +424,7 @@ class Hierarchy {
   uint32_t patchCount_ = 0;
   size_t leaves_ = 0;                                 ///< current leaf count, bounded by options.maxElements
   std::unique_ptr<ImportanceRefinement> importance_;  ///< --importance only
+  std::optional<DirectIrradiance> lights_;            ///< scenes with point lights only
 };
 
 void Hierarchy::writeTo(Solution &s) const {

@@ -23,6 +23,7 @@
 #include <cmath>
 #include <optional>
 
+#include "radiosity/backprojection.h"
 #include "radiosity/form_factor.h"
 #include "radiosity/hemicube.h"
 #include "radiosity/solver.h"
@@ -64,6 +65,17 @@ void solveProgressive(const RayTracer &tracer, Solution &s, const SolverOptions 
   const auto start = std::chrono::steady_clock::now();
   std::vector<Bands> unshotEmission = s.emission;  // not yet shot emission: becomes `direct` where it lands
   std::vector<Bands> unshotReflected(n, Bands(0.0));
+  // Point lights shoot first, exactly (backprojection.h): ρH is direct light
+  // received, to be shot on as reflected light.
+  if (const std::vector<Bands> h = pointLightIrradianceOfElements(tracer.scene(), s); !h.empty())
+    for (size_t j = 0; j < n; ++j) {
+      const Bands gain = s.reflectance[j] * h[j];
+      s.irradiance[j] += h[j];
+      s.direct[j] += gain;
+      s.radiosity[j] += gain;
+      unshotReflected[j] += gain;
+      s.unshot[j] += gain;
+    }
   std::vector<Bands> &irradiance = s.irradiance;  // H: what arrived, for reports and the energy balance
   std::vector<std::vector<Vec3>> polygons(n);
   for (uint32_t j = 0; j < n; ++j) polygons[j] = s.mesh.polygon(j);

@@ -34,6 +34,7 @@ Solution initialSolution(const Scene &scene, RadiosityMesh mesh) {
   s.irradiance.assign(n, Bands(0.0));
   s.mesh = std::move(mesh);
   for (size_t e = 0; e < n; ++e) s.stats.emittedPower += s.emission[e] * s.mesh.elements[e].area;
+  for (const PointLight &light : scene.lights) s.stats.emittedPower += light.power();
   s.updateNodesAndErrors();
   return s;
 }

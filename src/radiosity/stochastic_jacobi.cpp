@@ -24,6 +24,7 @@
 
 #include <chrono>
 
+#include "radiosity/backprojection.h"
 #include "radiosity/solver.h"
 #include "util/sampling.h"
 
@@ -49,6 +50,27 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
 
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   const int maxIterations = options.maxIterations > 0 ? options.maxIterations : 1000;
+
+  // Point lights shoot first, exactly (backprojection.h): ρH is direct light
+  // already received, and is shot on as reflected light once the emission
+  // has been (iteration 1 stays the emitters' direct light).
+  std::vector<Bands> lightGain;
+  if (const std::vector<Bands> h = pointLightIrradianceOfElements(tracer.scene(), s); !h.empty()) {
+    lightGain.resize(n);
+    for (size_t e = 0; e < n; ++e) {
+      lightGain[e] = s.reflectance[e] * h[e];
+      s.radiosity[e] += lightGain[e];
+      s.direct[e] += lightGain[e];
+      s.irradiance[e] += h[e];
+    }
+  }
+  bool emissionFirst = false;
+  for (size_t e = 0; e < n && !emissionFirst; ++e) emissionFirst = s.unshot[e].max() > 0;
+  auto shootLightGain = [&] {
+    for (size_t e = 0; e < lightGain.size(); ++e) s.unshot[e] += lightGain[e];
+    lightGain.clear();
+  };
+  if (!emissionFirst) shootLightGain();
 
   for (int iteration = 1; iteration <= maxIterations; ++iteration) {
     // Sources: the CDF of unshot power (band average).
@@ -122,7 +144,7 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
 
     // The first iteration shoots all the unshot radiosity there is, the
     // emission, so what it deposits is the direct part; later ones, reflections.
-    const bool direct = iteration == 1;
+    const bool direct = iteration == 1 && emissionFirst;
     for (size_t e = 0; e < n; ++e) s.unshot[e] = Bands(0.0);
     for (size_t e = 0; e < n; ++e) {
       if (arrived[e].max() <= 0) continue;
@@ -133,6 +155,7 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
       (direct ? s.direct[e] : s.indirect[e]) += gain;
       s.unshot[e] = gain;
     }
+    if (!lightGain.empty()) shootLightGain();
     s.stats.formFactorRays += rays;
     s.stats.iterations = iteration;
     if (progress)

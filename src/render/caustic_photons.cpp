@@ -43,10 +43,22 @@ CausticPhotonMap::CausticPhotonMap(const RayTracer &tracer, size_t emitted, uint
     for (size_t i = c * kChunk; i < std::min(emitted, (c + 1) * kChunk); ++i) {
       LightSample light;
       if (!lights.sample(rng.next(), rng.next(), rng.next(), light)) continue;
-      // Cosine-distributed direction: power = L·cos/(p_A · cos/π) / N = π L / (p_A N).
-      const Vec3 direction = Frame::fromNormal(light.normal).toWorld(sampleCosineHemisphere(rng.next(), rng.next()));
-      Bands power = light.radiance * (kPi / (light.pdfArea * double(emitted)));
-      Ray ray = tracer.spawnRay(light.position, light.normal, direction);
+      Vec3 direction;
+      Bands power;
+      Ray ray;
+      if (light.pointLight) {
+        // A point light: a direction by its distribution, power = I(ω) / (p(ω) p(light) N).
+        double pdf = 0;
+        direction = light.pointLight->sampleDirection(rng.next(), rng.next(), pdf);
+        if (!(pdf > 0)) continue;
+        power = light.pointLight->intensity(direction) * (1.0 / (pdf * light.probability * double(emitted)));
+        ray = Ray{light.position, direction};
+      } else {
+        // Cosine-distributed direction: power = L·cos/(p_A · cos/π) / N = π L / (p_A N).
+        direction = Frame::fromNormal(light.normal).toWorld(sampleCosineHemisphere(rng.next(), rng.next()));
+        power = light.radiance * (kPi / (light.pdfArea * double(emitted)));
+        ray = tracer.spawnRay(light.position, light.normal, direction);
+      }
       for (int bounce = 0; bounce <= kMaxSpecularBounces; ++bounce) {
         Hit hit;
         if (!tracer.intersect(ray, hit)) break;

@@ -17,8 +17,14 @@ LightSampler::LightSampler(const Scene &scene) : scene_(scene), pdfAreaByTriangl
     power.push_back(kPi * area * m.emission.average());
     totalPower_ += m.emission * (kPi * area);
   }
+  for (const PointLight &light : scene.lights) {
+    const Bands flux = light.power();
+    power.push_back(flux.average());
+    totalPower_ += flux;
+  }
   double total = 0;
   for (double p : power) total += p;
+  if (!(total > 0)) return;  // nothing emits (a pass of a spectral scene outside every light's spectrum)
   cumulative_.resize(power.size());
   probability_.resize(power.size());
   double running = 0;
@@ -26,15 +32,23 @@ LightSampler::LightSampler(const Scene &scene) : scene_(scene), pdfAreaByTriangl
     probability_[k] = power[k] / total;
     running += probability_[k];
     cumulative_[k] = running;
-    pdfAreaByTriangle_[emitters_[k]] = probability_[k] / scene.triangleArea(scene.triangles[emitters_[k]]);
+    if (k < emitters_.size())
+      pdfAreaByTriangle_[emitters_[k]] = probability_[k] / scene.triangleArea(scene.triangles[emitters_[k]]);
   }
   if (!cumulative_.empty()) cumulative_.back() = 1.0;
 }
 
 bool LightSampler::sample(double uSelect, double u1, double u2, LightSample &out) const {
-  if (emitters_.empty()) return false;
+  if (cumulative_.empty()) return false;
   size_t k = std::upper_bound(cumulative_.begin(), cumulative_.end(), uSelect) - cumulative_.begin();
-  k = std::min(k, emitters_.size() - 1);
+  k = std::min(k, cumulative_.size() - 1);
+  if (k >= emitters_.size()) {
+    out.pointLight = &scene_.lights[k - emitters_.size()];
+    out.position = out.pointLight->position;
+    out.probability = probability_[k];
+    return out.probability > 0;
+  }
+  out.pointLight = nullptr;
   uint32_t index = emitters_[k];
   const Triangle &t = scene_.triangles[index];
   double b1, b2;
@@ -48,11 +62,34 @@ bool LightSampler::sample(double uSelect, double u1, double u2, LightSample &out
   return true;
 }
 
+namespace {
+
+/// A point light's share: f · I(ω) · |cos θ| / (d² p(light)), from a delta
+/// in position, so no other strategy finds it and its weight is 1.
+Bands estimatePointLight(const PointLight &light, double probability, const RayTracer &tracer, const Hit &hit,
+                         const Bsdf &bsdf) {
+  const Vec3 toLight = light.position - hit.position;
+  const double distance2 = dot(toLight, toLight);
+  if (!(distance2 > 0)) return Bands(0.0);
+  const Vec3 wi = toLight / std::sqrt(distance2);
+  const Bands intensity = light.intensity(-wi);
+  if (intensity.max() <= 0) return Bands(0.0);
+  const Bands f = bsdf.evaluate(wi);
+  if (f.max() <= 0) return Bands(0.0);
+  // The light has no surface: the shadow ray ends at the point, offset along −wi.
+  if (!tracer.visible(hit.position, hit.geometricNormal, light.position, -wi)) return Bands(0.0);
+  const double cosSurface = std::abs(dot(wi, hit.shadingNormal));
+  return f * intensity * (cosSurface / (distance2 * probability));
+}
+
+}  // namespace
+
 Bands estimateDirectLight(const LightSampler &lights, const RayTracer &tracer, const Hit &hit, const Bsdf &bsdf,
                           Sampler &rng, LightWeighting weighting) {
   LightSample light;
   double uSelect = rng.next(), u1 = rng.next(), u2 = rng.next();
   if (!lights.sample(uSelect, u1, u2, light)) return Bands(0.0);
+  if (light.pointLight) return estimatePointLight(*light.pointLight, light.probability, tracer, hit, bsdf);
   Vec3 toLight = light.position - hit.position;
   double distance2 = dot(toLight, toLight);
   if (distance2 <= 0) return Bands(0.0);
@@ -68,6 +105,22 @@ Bands estimateDirectLight(const LightSampler &lights, const RayTracer &tracer, c
   double lightPdf = light.pdfArea * distance2 / cosLight;  // per solid angle
   double weight = powerHeuristic(lightPdf, bsdf.pdf(wi));
   return f * light.radiance * (cosSurface * weight / lightPdf);
+}
+
+Bands pointLightIrradiance(const RayTracer &tracer, const Hit &hit) {
+  Bands h(0.0);
+  for (const PointLight &light : tracer.scene().lights) {
+    const Vec3 toLight = light.position - hit.position;
+    const double distance2 = dot(toLight, toLight);
+    if (!(distance2 > 0)) continue;
+    const Vec3 wi = toLight / std::sqrt(distance2);
+    const double cosSurface = dot(wi, hit.shadingNormal);
+    if (cosSurface <= 0 || dot(wi, hit.geometricNormal) <= 0) continue;
+    const Bands intensity = light.intensity(-wi);
+    if (intensity.max() <= 0 || !tracer.visible(hit.position, hit.geometricNormal, light.position, -wi)) continue;
+    h += intensity * (cosSurface / distance2);
+  }
+  return h;
 }
 
 double LightSampler::pdfArea(uint32_t triangle) const {

@@ -4,6 +4,9 @@
 // Φ = π·A·L̄ (one-sided Lambertian emitter of radiance L, averaged over bands),
 // then a point uniformly on the chosen triangle. The density of a point is
 // therefore p(triangle)/A per unit area, whichever band is being estimated.
+// Point lights (scene/light.h) join the same choice with their flux Φ̄; a
+// point light is a delta in position: no continuation can hit it, so its
+// estimate is I(ω)·cos θ / (d² p(light)), weighted 1 (Veach 1997, §9.2.4).
 //
 // estimateDirectLight is the one next-event estimate of every method that
 // samples the emitters at a surface point (path, and the two-pass methods
@@ -25,32 +28,44 @@ struct LightSample {
   Bands radiance;      ///< emitted radiance towards the front, W·sr⁻¹·m⁻²
   double pdfArea = 0;  ///< density per unit area, m⁻²
   uint32_t triangle = 0;
+  /// Set when a point light was chosen (position is its position; normal,
+  /// radiance, pdfArea and triangle are then unused): `probability` is the
+  /// chance of choosing it.
+  const PointLight *pointLight = nullptr;
+  double probability = 0;
 };
 
 class LightSampler {
  public:
   explicit LightSampler(const Scene &scene);
 
-  bool empty() const { return emitters_.empty(); }
+  bool empty() const { return cumulative_.empty(); }
   /// Total emitted power, W (per band).
   const Bands &totalPower() const { return totalPower_; }
   bool sample(double uSelect, double u1, double u2, LightSample &out) const;
   /// Area density of sample() producing a point on `triangle` (0 for non-emitters).
   double pdfArea(uint32_t triangle) const;
 
-  /// Probability of choosing each emitter (for tests).
+  /// Probability of choosing each emitter (for tests); the point lights
+  /// follow the emitting triangles, at emitterCount() … emitterCount() + pointLightCount() − 1.
   double selectionProbability(size_t emitterIndex) const { return probability_[emitterIndex]; }
   size_t emitterCount() const { return emitters_.size(); }
   uint32_t emitterTriangle(size_t emitterIndex) const { return emitters_[emitterIndex]; }
+  size_t pointLightCount() const { return scene_.lights.size(); }
 
  private:
   const Scene &scene_;
   std::vector<uint32_t> emitters_;         ///< triangle indices
-  std::vector<double> cumulative_;         ///< CDF over emitters_
+  std::vector<double> cumulative_;         ///< CDF over emitters_, then the scene's point lights
   std::vector<double> probability_;        ///< per emitter
   std::vector<double> pdfAreaByTriangle_;  ///< per scene triangle
   Bands totalPower_;
 };
+
+/// Irradiance at a surface point from every point light (Scene::lights) it
+/// sees, exactly: Σ I(ω) cos θ / d² with cos θ against the shading normal and
+/// one shadow ray per light (the per-pixel gather of reichert).
+Bands pointLightIrradiance(const RayTracer &tracer, const Hit &hit);
 
 /// How a next-event estimate is weighted.
 enum class LightWeighting {

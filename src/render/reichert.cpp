@@ -7,7 +7,8 @@
 // with F the exact unoccluded point-to-polygon factor (Lambert's contour
 // integral, C&W ch. 4) and V from one shadow ray per element. Emitters
 // are elements like any other, so direct and indirect light come from the
-// same sum and nothing is counted twice. The visibility ray goes to
+// same sum and nothing is counted twice; point lights, which are not
+// elements, add I cos θ / d² each past one shadow ray. The visibility ray goes to
 //   --ff point  the element's centre: every pixel tests the same points, so a
 //               shadow boundary shows the mesh's coherent stair-steps;
 //   --ff mc     a uniformly random point of the element: the same boundary
@@ -24,6 +25,7 @@
 #include <fmt/format.h>
 
 #include "radiosity/form_factor.h"
+#include "render/light_sampler.h"
 #include "render/registry.h"
 #include "render/two_pass.h"
 #include "util/error.h"
@@ -75,6 +77,8 @@ class Reichert final : public TwoPassRenderer {
       double f = visibleFormFactor(x, {polygons_[j].data(), size_t(element.vertexCount)}, nj, u1, u2);
       if (f > 0) irradiance += solution_.displayRadiosity(j) * f;
     }
+    // Point lights are no elements: their light is gathered the same way, exactly.
+    if (!tracer_.scene().lights.empty()) irradiance += pointLightIrradiance(tracer_, x.hit);
     return x.reflectance * irradiance * kInvPi;  // ρ(x): a texture is applied directly
   }
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <map>
 #include <optional>
 #include <string>
@@ -84,6 +85,12 @@ struct GltfView {
 /// other error names the glTF file and the JSON path in it.
 GltfView appendGltf(Scene &scene, const std::string &path, const Transform &toWorld, const std::string &objectName,
                     int defaultMaterial, size_t overridableMaterials, const InputLocation &fileFrom);
+
+// Lights (load_lights.cpp; docs/luminaires.md).
+/// The JSON "lights": point and spot lights, positions in scene units (× metres).
+void parseLights(Scene &scene, const JsonNode &lights, double metres);
+/// The JSON "luminaires": photometric files (IES, EULUMDAT) resolved against `directory`.
+void parseLuminaires(Scene &scene, const JsonNode &luminaires, double metres, const std::filesystem::path &directory);
 
 // Spectral scenes (load_spectral.cpp).
 /// A material value {"spectrum": [[nm, value], …], "scale": s}.

@@ -372,7 +372,8 @@ struct SceneParser {
 
   void parse(const Json &document) {
     JsonNode root(document, file, "");
-    root.checkKeys({"version", "units", "camera", "image", "render", "spectral", "materials", "objects", "grids"});
+    root.checkKeys({"version", "units", "camera", "image", "render", "spectral", "materials", "objects", "grids",
+                    "lights", "luminaires"});
     if (root.has("version")) {
       JsonNode version = root.child("version");
       if (version.asInteger(INT64_MIN, INT64_MAX) != 1)
@@ -433,6 +434,8 @@ struct SceneParser {
     for (size_t i = 0; i < entries.size(); ++i) parseObject(entries[i], i);
 
     if (root.has("grids")) parseGrids(root.child("grids"));
+    if (root.has("lights")) detail::parseLights(scene, root.child("lights"), metres);
+    if (root.has("luminaires")) detail::parseLuminaires(scene, root.child("luminaires"), metres, directory);
 
     if (!hasCamera) scene.camera = detail::frameBounds(scene);
     if (scene.spectral.enabled()) detail::checkSpectralScene(scene);

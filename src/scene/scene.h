@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "scene/camera.h"
+#include "scene/light.h"
 #include "scene/material.h"
 #include "util/math.h"
 
@@ -116,6 +117,8 @@ struct Scene {
   RenderSettings render;
   SpectralSettings spectral;
   std::vector<CalculationGrid> grids;  ///< JSON scenes only; empty otherwise
+  /// Point, spot and photometric lights (JSON scenes only), besides the emitting materials.
+  std::vector<PointLight> lights;
 
   /// Degenerate faces dropped while loading (counted for the warning).
   size_t droppedDegenerateFaces = 0;

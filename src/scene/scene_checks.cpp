@@ -177,9 +177,9 @@ void validateScene(Scene &scene) {
   if (const std::vector<FaceOverlap> overlaps = findOverlappingFaces(scene, kMaxReportedOverlaps); !overlaps.empty())
     warnOnce(describeOverlappingFaces(scene, overlaps) + (overlaps.size() >= kMaxReportedOverlaps ? " or more" : "") +
              ": each receives all the light that reaches the plane, so radiosity counts it twice; keep one copy");
-  bool anyEmitter = false;
+  bool anyEmitter = !scene.lights.empty();
   for (const Face &f : scene.faces) anyEmitter = anyEmitter || scene.materials[f.material].isEmitter();
-  if (!anyEmitter) warnOnce("no emitter: the image will be black");
+  if (!anyEmitter) warnOnce("no emitter and no light: the image will be black");
 }
 
 }  // namespace radiant

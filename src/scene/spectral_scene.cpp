@@ -26,6 +26,23 @@ Bands clamped(Bands b, double maximum) {
   return b;
 }
 
+/// A light's spectrum as the renderers see it: its values at the scene's
+/// sample wavelengths, linear between them (docs/spectral.md "Colour").
+SampledSpectrum atSampleWavelengths(const SampledSpectrum &spectrum, const Scene &scene) {
+  SampledSpectrum sampled{scene.spectral.wavelengths, {}};
+  for (double nm : sampled.wavelengths) sampled.values.push_back(spectrum.at(nm));
+  return sampled;
+}
+
+/// W·sr⁻¹ per candela of a spectral light: its spectrum scaled so that
+/// 683 lm/W × its luminance weight over the scene's samples is 1 (light.h).
+/// 0 when the spectrum has no luminance.
+double wattsPerCandelaScale(const SampledSpectrum &spectrum, const Scene &scene) {
+  auto [first, last] = colourRange(scene);
+  const double y = spectrumToXyz(atSampleWavelengths(spectrum, scene), first, last).y;
+  return y > 0 ? 1.0 / (kLuminousEfficacy * y) : 0.0;
+}
+
 }  // namespace
 
 void applySpectralPass(Scene &scene, int pass) {
@@ -39,6 +56,8 @@ void applySpectralPass(Scene &scene, int pass) {
     if (m.spectra.specular) m.specular = atPass(*m.spectra.specular);
     if (m.spectra.emission) m.emission = atPass(*m.spectra.emission);
   }
+  for (PointLight &light : scene.lights)
+    if (light.spectrum) light.wattsPerCandela = atPass(*light.spectrum) * wattsPerCandelaScale(*light.spectrum, scene);
 }
 
 void applySpectralColour(Scene &scene, WhiteBalance balance) {
@@ -58,11 +77,19 @@ void applySpectralColour(Scene &scene, WhiteBalance balance) {
     if (m.kind == MaterialKind::Glossy)  // keep ρd + ρs ≤ 1 after clamping each
       for (int i = 0; i < kBandCount; ++i) m.diffuse[i] = std::min(m.diffuse[i], 1.0 - m.specular[i]);
   }
+  // A light's colour keeps its photometry: candela × colour / (683 Y(colour)).
+  for (PointLight &light : scene.lights) {
+    if (!light.spectrum) continue;
+    const Bands colour = clamped(colourOf(atSampleWavelengths(*light.spectrum, scene), scene, adaptation), HUGE_VAL);
+    const double y = colour.luminance();
+    light.wattsPerCandela = y > 0 ? colour / (kLuminousEfficacy * y) : Bands(0.0);
+  }
 }
 
 void convertToRgbScene(Scene &scene, WhiteBalance balance) {
   applySpectralColour(scene, balance);
   for (Material &m : scene.materials) m.spectra = {};
+  for (PointLight &light : scene.lights) light.spectrum.reset();
   scene.spectral = {};
 }
 
@@ -76,6 +103,11 @@ std::string passWavelengthLabel(const Scene &scene, int pass) {
 }
 
 bool passHasEmission(const Scene &scene, int pass) {
+  for (const PointLight &light : scene.lights) {
+    if (!light.spectrum) return true;
+    for (int i = 0; i < kBandCount; ++i)
+      if (light.spectrum->at(scene.spectral.wavelength(pass, i)) > 0) return true;
+  }
   for (const Material &m : scene.materials) {
     if (!m.spectra.emission) {
       if (m.isEmitter()) return true;

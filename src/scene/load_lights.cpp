@@ -1,0 +1,159 @@
+// "lights" and "luminaires" of JSON scenes (docs/luminaires.md).
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "scene/light.h"
+#include "scene/load_detail.h"
+
+namespace radiant::detail {
+
+namespace {
+
+/// The largest intensity or flux accepted: beyond any real source (a
+/// lighthouse is ~10⁷ cd), small enough that the watts stay finite.
+constexpr double kMaxCandela = 1e12;
+
+std::string uniqueLightName(const Scene &scene, const JsonNode &node, const std::string &fallback) {
+  const std::string name = node.string("name", fallback);
+  if (name.empty()) node.child("name").fail("a light's name cannot be empty");
+  for (const PointLight &other : scene.lights)
+    if (other.name == name) node.child("name").fail("a second light named '" + name + "'");
+  return name;
+}
+
+Vec3 lightPosition(const JsonNode &node, double metres) {
+  const Vec3 p = node.child("position").asVec3() * metres;
+  if (!withinCoordinateRange(p)) node.child("position").fail(fmt::format("beyond ±{:g} m", kMaxCoordinateMetres));
+  return p;
+}
+
+/// "aim" (default straight down the scene's up) and "rotation" (degrees about it).
+void lightFrame(PointLight &light, const JsonNode &node, const Scene &scene) {
+  Vec3 aim = -normalize(scene.camera.up);
+  if (node.has("aim")) {
+    aim = node.child("aim").asVec3();
+    if (!(length(aim) > 0)) node.child("aim").fail("the aim has zero length");
+  }
+  const double rotation = node.number("rotation", 0.0);
+  if (std::abs(rotation) > 3600) node.child("rotation").fail("expected a rotation in degrees within ±3600");
+  setLightFrame(light, aim, rotation);
+}
+
+/// "colour": three numbers (RGB scenes), one number (grey) or a spectrum
+/// (spectral scenes); only its chromaticity matters (light.h), so its
+/// luminance must be > 0.
+void lightColour(PointLight &light, const JsonNode &node, bool spectralScene) {
+  std::optional<SampledSpectrum> spectrum;
+  const Bands colour = parseBandValue(node, "colour", Bands(1.0), spectralScene, spectrum);
+  if (spectrum) {
+    if (!spectralScene)
+      node.child("colour").fail("a spectrum needs a spectral scene: add a \"spectral\" block (docs/spectral.md)");
+    for (size_t i = 0; i < spectrum->values.size(); ++i)
+      if (!(spectrum->values[i] >= 0) || !std::isfinite(spectrum->values[i]))
+        node.child("colour").fail(fmt::format("the spectrum's value at {} nm is {}; expected a finite value ≥ 0",
+                                              spectrum->wavelengths[i], spectrum->values[i]));
+    light.spectrum = spectrum;
+    return;  // wattsPerCandela is set per pass (applySpectralPass) or from its colour (applySpectralColour)
+  }
+  for (int b = 0; b < kBandCount; ++b)
+    if (colour[b] < 0) node.child("colour").fail("expected colour values ≥ 0");
+  const double luminance = colour.luminance();
+  if (!(luminance > 0)) node.child("colour").fail("the colour has no luminance: a light of it would give no candela");
+  // In a spectral scene a grey light is a constant spectrum, normalised like any other.
+  if (spectralScene) light.spectrum = SampledSpectrum{{550.0}, {1.0}};
+  light.wattsPerCandela = colour / (kLuminousEfficacy * luminance);
+}
+
+double positiveAmount(const JsonNode &node, const std::string &key, const char *unit) {
+  const double v = node.child(key).asNumber();
+  if (!(v >= 0) || v > kMaxCandela) node.child(key).fail(fmt::format("expected {} from 0 to {:g}", unit, kMaxCandela));
+  return v;
+}
+
+}  // namespace
+
+void parseLights(Scene &scene, const JsonNode &lights, double metres) {
+  std::vector<JsonNode> entries = lights.asArray();
+  for (size_t index = 0; index < entries.size(); ++index) {
+    const JsonNode &node = entries[index];
+    node.expectObject();
+    const std::string type = node.child("type").asString();
+    PointLight light;
+    light.definedAt = node.location();
+    if (type == "point") {
+      node.checkKeys({"type", "name", "position", "intensity", "lumens", "colour"});
+      light.kind = PointLightKind::Point;
+    } else if (type == "spot") {
+      node.checkKeys({"type", "name", "position", "aim", "rotation", "intensity", "lumens", "colour", "cone_angle",
+                      "falloff_angle"});
+      light.kind = PointLightKind::Spot;
+    } else {
+      node.child("type").fail("unknown light type '" + type + "'; known: point, spot" +
+                              didYouMean(type, {"point", "spot"}) + " (photometric files go in \"luminaires\")");
+    }
+    light.name = uniqueLightName(scene, node, fmt::format("{}-{}", type, index));
+    light.position = lightPosition(node, metres);
+    lightFrame(light, node, scene);
+    if (light.kind == PointLightKind::Spot) {
+      // cone_angle: the full angle of the outer cone (no light beyond);
+      // falloff_angle: how much of it, at its edge, fades (0: a hard edge).
+      const double cone = node.number("cone_angle", 60.0);
+      if (!(cone > 0 && cone <= 180)) node.child("cone_angle").fail("expected a full cone angle in (0, 180] degrees");
+      const double falloff = node.number("falloff_angle", 0.0);
+      if (!(falloff >= 0 && falloff <= cone / 2))
+        node.child("falloff_angle").fail(fmt::format("expected a falloff from 0 to half the cone angle, {}°", cone / 2));
+      const double outer = cone / 2, inner = outer - falloff;
+      light.cosOuter = std::cos(outer * kPi / 180.0);
+      light.cosInner = std::cos(inner * kPi / 180.0);
+      if (light.cosInner <= light.cosOuter) light.cosInner = std::nextafter(light.cosOuter, 2.0);
+    }
+    if (node.has("intensity") == node.has("lumens"))
+      node.fail("give the light's \"intensity\" (cd) or its \"lumens\" (lm), one of them");
+    if (node.has("intensity")) {
+      light.candela = positiveAmount(node, "intensity", "an intensity in cd");
+    } else {
+      light.candela = 1.0;
+      const double perCandela = light.lumens();
+      light.candela = positiveAmount(node, "lumens", "a flux in lm") / perCandela;
+    }
+    lightColour(light, node, scene.spectral.enabled());
+    scene.lights.push_back(std::move(light));
+  }
+}
+
+void parseLuminaires(Scene &scene, const JsonNode &luminaires, double metres, const std::filesystem::path &directory) {
+  std::vector<JsonNode> entries = luminaires.asArray();
+  for (size_t index = 0; index < entries.size(); ++index) {
+    const JsonNode &node = entries[index];
+    node.expectObject();
+    node.checkKeys({"name", "ies", "ldt", "position", "aim", "rotation", "multiplier", "colour"});
+    PointLight light;
+    light.kind = PointLightKind::Photometric;
+    light.definedAt = node.location();
+    if (node.has("ies") == node.has("ldt"))
+      node.fail("give the luminaire's photometric file as \"ies\" (IES LM-63) or \"ldt\" (EULUMDAT), one of them");
+    const JsonNode file = node.child(node.has("ies") ? "ies" : "ldt");
+    const std::string path = (directory / file.asString()).string();
+    try {
+      light.photometry = node.has("ies") ? readIesFile(path) : readEulumdatFile(path);
+    } catch (const InputError &e) {
+      // The file's own error names its line; say which luminaire asked for it.
+      throw InputError(e.location(), e.message() + fmt::format(" (the photometric file of {})", file.path()));
+    }
+    light.name = uniqueLightName(scene, node, fmt::format("luminaire-{}", index));
+    light.position = lightPosition(node, metres);
+    lightFrame(light, node, scene);
+    light.multiplier = node.number("multiplier", 1.0);
+    if (!(light.multiplier >= 0) || light.multiplier * light.photometry->maxCandela() > kMaxCandela)
+      node.child("multiplier").fail(fmt::format("expected a multiplier ≥ 0 that keeps the intensity under {:g} cd",
+                                                kMaxCandela));
+    // IES TILT: the lamp's output at the luminaire's tilt from straight down.
+    const double tilt = std::acos(std::clamp(dot(light.axis, -normalize(scene.camera.up)), -1.0, 1.0)) * 180.0 / kPi;
+    light.multiplier *= light.photometry->tiltFactor(tilt);
+    lightColour(light, node, scene.spectral.enabled());
+    scene.lights.push_back(std::move(light));
+  }
+}
+
+}  // namespace radiant::detail

@@ -1,0 +1,228 @@
+// Point, spot and photometric lights (scene/light.h): the scene format, the
+// inverse-square law in the solution and the renderers, and the
+// interreflection formula for a closed room lit by a point source.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "radiosity/backprojection.h"
+#include "radiosity/solver.h"
+#include "raytrace/ray_tracer.h"
+#include "render/bsdf.h"
+#include "render/light_sampler.h"
+#include "scene/load_scene.h"
+#include "test_scenes.h"
+#include "util/error.h"
+
+namespace radiant {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Writes `text` as a scene file in a fresh temporary folder and loads it.
+Scene loadSceneText(const std::string &text) {
+  static std::atomic<int> counter{0};
+  const fs::path folder =
+      fs::temp_directory_path() / ("radiant-light-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  fs::create_directories(folder);
+  const fs::path file = folder / "scene.json";
+  std::ofstream(file) << text;
+  try {
+    Scene scene = loadScene(file.string());
+    fs::remove_all(folder);
+    return scene;
+  } catch (...) {
+    fs::remove_all(folder);
+    throw;
+  }
+}
+
+std::string sceneWithLights(const std::string &lights) {
+  return R"({"version": 1, "materials": {"grey": {"reflectance": 0.5}},
+    "objects": [{"type": "quad", "material": "grey", "vertices": [[-4, 0, -4], [-4, 0, 4], [4, 0, 4], [4, 0, -4]]}],
+    "lights": )" +
+         lights + "}";
+}
+
+/// The message of the InputError `load` throws ("" if none).
+template <typename F>
+std::string errorOf(F load) {
+  try {
+    load();
+  } catch (const InputError &e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(PointLight, ThePhotometryOfTheSceneFileIsKeptWhateverTheColour) {
+  const Scene scene = loadSceneText(sceneWithLights(R"([
+      {"type": "point", "position": [0, 2, 0], "intensity": 1000},
+      {"type": "point", "name": "red", "position": [1, 2, 0], "lumens": 800, "colour": [1, 0.2, 0.1]},
+      {"type": "spot", "position": [0, 3, 0], "aim": [0, -1, 0], "intensity": 500, "cone_angle": 60, "falloff_angle": 10}])"));
+  ASSERT_EQ(scene.lights.size(), 3u);
+  const PointLight &white = scene.lights[0], &red = scene.lights[1], &spot = scene.lights[2];
+  // Candela → W/sr through 683 lm/W × the colour's luminance: a white light is 1/683 W/sr per cd in every band.
+  for (int b = 0; b < kBandCount; ++b) EXPECT_DOUBLE_EQ(white.wattsPerCandela[b], 1.0 / 683.0);
+  EXPECT_NEAR(white.lumens(), 4 * kPi * 1000, 1e-9);
+  EXPECT_NEAR(kLuminousEfficacy * red.wattsPerCandela.luminance(), 1.0, 1e-12);
+  EXPECT_GT(red.wattsPerCandela[0], 5 * red.wattsPerCandela[2]);
+  EXPECT_NEAR(red.lumens(), 800, 1e-9);
+  EXPECT_NEAR(red.candela, 800 / (4 * kPi), 1e-9);
+  EXPECT_EQ(red.name, "red");
+  // The spot: full within 20°, none beyond 30°, smoothstep between.
+  EXPECT_DOUBLE_EQ(spot.candelaTowards(Vec3{0, -1, 0}), 500);
+  const auto towards = [](double degrees) {
+    const double t = degrees * kPi / 180;
+    return Vec3{std::sin(t), -std::cos(t), 0};
+  };
+  EXPECT_DOUBLE_EQ(spot.candelaTowards(towards(19.9)), 500);
+  EXPECT_DOUBLE_EQ(spot.candelaTowards(towards(30.1)), 0);
+  EXPECT_GT(spot.candelaTowards(towards(25)), 0);
+  EXPECT_LT(spot.candelaTowards(towards(25)), 500);
+  // Its flux, closed form, against a midpoint sum over cos θ.
+  double sum = 0;
+  const int steps = 200000;
+  for (int i = 0; i < steps; ++i) {
+    const double mu = -1 + 2 * (i + 0.5) / steps;
+    sum += spot.candelaTowards(Vec3{std::sqrt(1 - mu * mu), -mu, 0}) * 2.0 / steps;
+  }
+  EXPECT_NEAR(spot.lumens(), 2 * kPi * sum, 1e-6 * spot.lumens());
+}
+
+TEST(PointLight, BadLightsAreRefusedAtTheirJsonPath) {
+  EXPECT_NE(errorOf([] { loadSceneText(sceneWithLights(R"([{"type": "point", "position": [0, 2, 0]}])")); })
+                .find("/lights/0"),
+            std::string::npos);
+  EXPECT_NE(errorOf([] {
+              loadSceneText(sceneWithLights(R"([{"type": "point", "position": [0, 2, 0], "intensity": 1, "lumens": 2}])"));
+            }).find("one of them"),
+            std::string::npos);
+  EXPECT_NE(errorOf([] { loadSceneText(sceneWithLights(R"([{"type": "pont", "position": [0, 2, 0], "intensity": 1}])")); })
+                .find("did you mean 'point'"),
+            std::string::npos);
+  EXPECT_NE(errorOf([] {
+              loadSceneText(sceneWithLights(R"([{"type": "spot", "position": [0, 2, 0], "aim": [0, 0, 0], "intensity": 1}])"));
+            }).find("/lights/0/aim"),
+            std::string::npos);
+  EXPECT_NE(errorOf([] {
+              loadSceneText(sceneWithLights(R"([{"type": "point", "position": [0, 2, 0], "intensity": -5}])"));
+            }).find("/lights/0/intensity"),
+            std::string::npos);
+  EXPECT_NE(errorOf([] {
+              loadSceneText(
+                  sceneWithLights(R"([{"type": "point", "position": [0, 2, 0], "intensity": 1, "colour": [0, 0, 0]}])"));
+            }).find("no luminance"),
+            std::string::npos);
+  EXPECT_NE(errorOf([] {
+              loadSceneText(sceneWithLights(R"([{"type": "point", "position": [0, 2, 0], "intensity": 1},
+                                                {"type": "point", "name": "point-0", "position": [0, 2, 0], "intensity": 1}])"));
+            }).find("a second light named"),
+            std::string::npos);
+}
+
+TEST(PointLight, TheFrameFollowsTheAimAndTheRotation) {
+  PointLight light;
+  setLightFrame(light, Vec3{0, -2, 0}, 0);
+  EXPECT_NEAR(length(light.axis - Vec3{0, -1, 0}), 0, 1e-12);
+  EXPECT_NEAR(length(light.c0 - Vec3{1, 0, 0}), 0, 1e-12);
+  // C90 counter-clockwise from C0 seen from above (looking along a downward aim): −z in a y-up scene.
+  EXPECT_NEAR(length(light.c90 - Vec3{0, 0, -1}), 0, 1e-12);
+  setLightFrame(light, Vec3{0, -1, 0}, 90);
+  EXPECT_NEAR(length(light.c0 - Vec3{0, 0, -1}), 0, 1e-12);
+  setLightFrame(light, Vec3{1, 0, 0}, 0);  // along x: the reference becomes +z
+  EXPECT_NEAR(std::abs(dot(light.c0, light.axis)), 0, 1e-12);
+  EXPECT_NEAR(length(light.c0), 1, 1e-12);
+}
+
+TEST(PointLight, DirectIrradianceIsTheInverseSquareLawAndObjectsCastShadows) {
+  // A 1000 cd point 2 m above the floor; a small blocker halfway over x = 2.
+  Scene scene = loadSceneText(R"({"version": 1, "materials": {"grey": {"reflectance": 0.5}},
+    "objects": [{"type": "quad", "material": "grey", "vertices": [[-4, 0, -4], [-4, 0, 4], [4, 0, 4], [4, 0, -4]]},
+                {"type": "quad", "material": "grey", "vertices": [[0.9, 1, -0.1], [0.9, 1, 0.1], [1.1, 1, 0.1], [1.1, 1, -0.1]]}],
+    "lights": [{"type": "point", "position": [0, 2, 0], "intensity": 1000}]})");
+  const DirectIrradiance direct(scene);
+  const Vec3 up{0, 1, 0};
+  for (double r : {0.0, 1.0, 3.0}) {
+    const Vec3 x{0, 0, r};
+    const double expected = 1000.0 * 2 / std::pow(4 + r * r, 1.5) / 683.0;  // I cos θ / d², W/m²
+    EXPECT_NEAR(direct.irradiance(x, up)[1], expected, 1e-12 * expected) << r;
+  }
+  EXPECT_EQ(direct.irradiance(Vec3{2, 0, 0}, up)[1], 0.0);  // in the blocker's shadow
+  EXPECT_GT(direct.irradiance(Vec3{2, 0, 0.5}, up)[1], 0.0);
+  EXPECT_EQ(direct.irradiance(Vec3{0, 0, 0}, Vec3{0, -1, 0})[1], 0.0);  // facing away
+  // The same law per pixel (reichert's gather) and by next-event estimation.
+  RayTracer tracer(scene);
+  Hit hit;
+  ASSERT_TRUE(tracer.intersect(Ray{Vec3{0, 5, 1}, normalize(Vec3{0, -5, 0})}, hit));
+  const double expected = 1000.0 * 2 / std::pow(5.0, 1.5) / 683.0;
+  EXPECT_NEAR(pointLightIrradiance(tracer, hit)[1], expected, 1e-9 * expected);
+  LightSampler lights(scene);
+  ASSERT_FALSE(lights.empty());
+  EXPECT_EQ(lights.pointLightCount(), 1u);
+  Bsdf bsdf(scene.materials[hit.material], hit.shadingNormal, hit.geometricNormal, Vec3{0, 1, 0});
+  Sampler rng(1, 0, 0);
+  const Bands L = estimateDirectLight(lights, tracer, hit, bsdf, rng, LightWeighting::PowerHeuristic);
+  EXPECT_NEAR(L[1], 0.5 / kPi * expected, 1e-9 * expected);  // ρ/π E: exact, a delta light has no noise
+}
+
+/// A closed 4 × 3 × 2.5 m room of one reflectance ρ lit by an isotropic point
+/// source of flux Φ: all the light is absorbed in the end, so the area-mean
+/// irradiance of every surface is Φ / (A (1 − ρ)) exactly (the interreflection
+/// formula), what every solver must reproduce.
+Scene pointLitRoom(double rho) {
+  const int walls[6] = {0, 0, 0, 0, 0, 0};
+  Scene scene = test::closedBox(1.0, walls);
+  for (Vec3 &p : scene.positions) p = Vec3{p.x * 4, p.y * 2.5, p.z * 3};
+  Material m;
+  m.name = "wall";
+  m.diffuse = Bands(rho);
+  scene.materials.push_back(m);
+  PointLight light;
+  light.name = "bulb";
+  light.position = Vec3{1.3, 1.9, 1.1};
+  light.candela = 1000;
+  scene.lights.push_back(light);
+  return scene;
+}
+
+TEST(PointLight, EverySolverMeetsTheInterreflectionFormulaInAPointLitRoom) {
+  const double rho = 0.6;
+  const Scene scene = pointLitRoom(rho);
+  const double area = 2 * (4 * 2.5 + 4 * 3 + 3 * 2.5);
+  const double flux = scene.lights[0].power()[0];
+  const double expected = flux / (area * (1 - rho));
+  RayTracer tracer(scene);
+  for (const char *solver : {"gauss-seidel", "progressive", "hierarchical", "hierarchical-exact", "stochastic"}) {
+    MeshOptions mesh;
+    mesh.maxEdgeLength = 0.5;
+    SolverOptions options;
+    options.solver = solver;
+    options.tolerance = 1e-5;
+    Solution s = meshAndSolve(scene, tracer, mesh, options);
+    double sum = 0, total = 0, direct = 0;
+    for (size_t e = 0; e < s.elementCount(); ++e) {
+      sum += s.irradiance[e][0] * s.mesh.elements[e].area;
+      direct += s.direct[e][0] * s.mesh.elements[e].area;
+      total += s.mesh.elements[e].area;
+    }
+    ASSERT_NEAR(total, area, 1e-9 * area);
+    // The stochastic solver's mean is exact up to its noise (< 0.5 % here).
+    // gauss-seidel and progressive collocate at element centres, where a row
+    // of point-to-element factors sums to 1 only within about 0.5 % on this
+    // 0.5 m mesh (0.45 % measured; their furnace test allows 3 % on a
+    // coarser one); the Galerkin solvers conserve energy to their tolerance.
+    const std::string name = solver;
+    const double tolerance = name == "stochastic" || name == "gauss-seidel" || name == "progressive" ? 0.01 : 0.003;
+    EXPECT_NEAR(sum / total / expected, 1.0, tolerance) << solver;
+    // Every watt of the source lands once as direct light: ρ Φ reflected.
+    EXPECT_NEAR(direct / (rho * flux), 1.0, 0.003) << solver;
+    EXPECT_NEAR(s.stats.emittedPower[0], flux, 1e-9 * flux) << solver;
+  }
+}
+
+}  // namespace
+}  // namespace radiant
