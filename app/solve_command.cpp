@@ -104,6 +104,8 @@ CommandRunner addSolveCommand(CLI::App &app) {
     }
     if (!o->quiet)
       for (const std::string &warning : scene.warnings) fmt::print(stderr, "radiant: warning: {}\n", warning);
+    if (!o->quiet)
+      for (const PointLight &light : scene.lights) fmt::print(stderr, "radiant: light {}\n", describeLight(light));
     RayTracer tracer(scene);
     // One solution for an RGB scene, one per pass of three wavelengths for a spectral one.
     const int passes = scene.spectral.enabled() ? scene.spectral.passCount() : 1;
@@ -141,7 +143,7 @@ CommandRunner addSolveCommand(CLI::App &app) {
                    "radiant: grid {}: E_min {:.4g} lx, E_avg {:.4g} lx, E_max {:.4g} lx, U0 {:.3f}, Ud {:.3f}\n",
                    g.grid.name, g.minimumLux, g.averageLux, g.maximumLux, g.uniformity(), g.diversity());
     if (!o->gridReportPath.empty()) {
-      writeGridReport(grids, scene.metresPerUnit, o->gridReportPath);
+      writeGridReport(grids, scene.metresPerUnit, o->gridReportPath, scene.lights);
       if (!o->quiet) fmt::print(stderr, "radiant: wrote {}\n", o->gridReportPath);
     }
     for (size_t g = 0; g < gridImages.size(); ++g) {

@@ -9,11 +9,13 @@
 #include <fstream>
 
 #include "radiosity/backprojection.h"
+#include "radiosity/calculation_grid.h"
 #include "radiosity/solver.h"
 #include "raytrace/ray_tracer.h"
 #include "render/bsdf.h"
 #include "render/light_sampler.h"
 #include "scene/load_scene.h"
+#include "scene/spectral_scene.h"
 #include "test_scenes.h"
 #include "util/error.h"
 
@@ -25,8 +27,8 @@ namespace fs = std::filesystem;
 /// Writes `text` as a scene file in a fresh temporary folder and loads it.
 Scene loadSceneText(const std::string &text) {
   static std::atomic<int> counter{0};
-  const fs::path folder =
-      fs::temp_directory_path() / ("radiant-light-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  const fs::path folder = fs::temp_directory_path() /
+                          ("radiant-light-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
   fs::create_directories(folder);
   const fs::path file = folder / "scene.json";
   std::ofstream(file) << text;
@@ -94,18 +96,22 @@ TEST(PointLight, ThePhotometryOfTheSceneFileIsKeptWhateverTheColour) {
 }
 
 TEST(PointLight, BadLightsAreRefusedAtTheirJsonPath) {
-  EXPECT_NE(errorOf([] { loadSceneText(sceneWithLights(R"([{"type": "point", "position": [0, 2, 0]}])")); })
-                .find("/lights/0"),
+  EXPECT_NE(errorOf([] {
+              loadSceneText(sceneWithLights(R"([{"type": "point", "position": [0, 2, 0]}])"));
+            }).find("/lights/0"),
+            std::string::npos);
+  EXPECT_NE(
+      errorOf([] {
+        loadSceneText(sceneWithLights(R"([{"type": "point", "position": [0, 2, 0], "intensity": 1, "lumens": 2}])"));
+      }).find("one of them"),
+      std::string::npos);
+  EXPECT_NE(errorOf([] {
+              loadSceneText(sceneWithLights(R"([{"type": "pont", "position": [0, 2, 0], "intensity": 1}])"));
+            }).find("did you mean 'point'"),
             std::string::npos);
   EXPECT_NE(errorOf([] {
-              loadSceneText(sceneWithLights(R"([{"type": "point", "position": [0, 2, 0], "intensity": 1, "lumens": 2}])"));
-            }).find("one of them"),
-            std::string::npos);
-  EXPECT_NE(errorOf([] { loadSceneText(sceneWithLights(R"([{"type": "pont", "position": [0, 2, 0], "intensity": 1}])")); })
-                .find("did you mean 'point'"),
-            std::string::npos);
-  EXPECT_NE(errorOf([] {
-              loadSceneText(sceneWithLights(R"([{"type": "spot", "position": [0, 2, 0], "aim": [0, 0, 0], "intensity": 1}])"));
+              loadSceneText(
+                  sceneWithLights(R"([{"type": "spot", "position": [0, 2, 0], "aim": [0, 0, 0], "intensity": 1}])"));
             }).find("/lights/0/aim"),
             std::string::npos);
   EXPECT_NE(errorOf([] {
@@ -113,8 +119,8 @@ TEST(PointLight, BadLightsAreRefusedAtTheirJsonPath) {
             }).find("/lights/0/intensity"),
             std::string::npos);
   EXPECT_NE(errorOf([] {
-              loadSceneText(
-                  sceneWithLights(R"([{"type": "point", "position": [0, 2, 0], "intensity": 1, "colour": [0, 0, 0]}])"));
+              loadSceneText(sceneWithLights(
+                  R"([{"type": "point", "position": [0, 2, 0], "intensity": 1, "colour": [0, 0, 0]}])"));
             }).find("no luminance"),
             std::string::npos);
   EXPECT_NE(errorOf([] {
@@ -167,6 +173,31 @@ TEST(PointLight, DirectIrradianceIsTheInverseSquareLawAndObjectsCastShadows) {
   Sampler rng(1, 0, 0);
   const Bands L = estimateDirectLight(lights, tracer, hit, bsdf, rng, LightWeighting::PowerHeuristic);
   EXPECT_NEAR(L[1], 0.5 / kPi * expected, 1e-9 * expected);  // ρ/π E: exact, a delta light has no noise
+}
+
+TEST(PointLight, ASpectralLightGivesTheIlluminanceItsCandelaSayWhateverItsSpectrum) {
+  // 1000 cd, 2 m above the grid point: 250 lx, in each of the scene's passes
+  // summed by the colour matching, for a reddish spectrum as for a grey one.
+  for (const char *colour : {R"({"spectrum": [[400, 0.2], [550, 1], [700, 1.5]]})", "1"}) {
+    Scene scene = parseSceneJson(std::string(R"({"version": 1, "spectral": {"range": [400, 700], "samples": 16},
+      "materials": {"black": {"reflectance": 0}},
+      "objects": [{"type": "quad", "material": "black", "vertices": [[-4, 0, -4], [-4, 0, 4], [4, 0, 4], [4, 0, -4]]}],
+      "lights": [{"type": "point", "position": [0, 2, 0], "intensity": 1000, "colour": )") +
+                                     colour + R"(}],
+      "grids": [{"name": "floor", "origin": [-0.5, 0, -0.5], "u": [1, 0, 0], "v": [0, 0, 1], "normal": [0, 1, 0]}]})",
+                                 "spectral.json");
+    RayTracer tracer(scene);
+    std::vector<Solution> passes;
+    for (int pass = 0; pass < scene.spectral.passCount(); ++pass) {
+      applySpectralPass(scene, pass);
+      MeshOptions mesh;
+      SolverOptions options;
+      passes.push_back(meshAndSolve(scene, tracer, mesh, options));
+    }
+    const std::vector<GridIlluminance> grids = computeGridIlluminance(scene, tracer, passes, GridOptions{});
+    ASSERT_EQ(grids.size(), 1u);
+    EXPECT_NEAR(grids[0].points[0].illuminanceLux, 250.0, 1e-9 * 250) << colour;
+  }
 }
 
 /// A closed 4 × 3 × 2.5 m room of one reflectance ρ lit by an isotropic point

@@ -144,6 +144,25 @@ uint64_t sceneFingerprint(const Scene &scene) {
     }
     for (int b = 0; b < kBandCount; ++b) f.value(m.diffuse[b]), f.value(m.emission[b]), f.value(m.specular[b]);
   }
+  // Point lights (none: the fingerprint of a scene from before they existed).
+  if (!scene.lights.empty()) f.value(uint64_t(scene.lights.size()));
+  for (const PointLight &light : scene.lights) {
+    f.value(int(light.kind));
+    for (const Vec3 *v : {&light.position, &light.axis, &light.c0}) f.value(v->x), f.value(v->y), f.value(v->z);
+    f.value(light.candela), f.value(light.cosInner), f.value(light.cosOuter), f.value(light.multiplier);
+    if (spectral)
+      spectrum(light.spectrum, light.wattsPerCandela);
+    else
+      for (int b = 0; b < kBandCount; ++b) f.value(light.wattsPerCandela[b]);
+    // A photometric web by its flux and its intensity on a fixed set of directions.
+    if (light.photometry) {
+      f.value(light.photometry->lumens());
+      for (int i = 0; i < 64; ++i) {
+        const double z = 1 - (i + 0.5) / 32, r = std::sqrt(std::max(0.0, 1 - z * z)), phi = 2.399963229728653 * i;
+        f.value(light.photometry->candela(Vec3{r * std::cos(phi), r * std::sin(phi), z}));
+      }
+    }
+  }
   // Texture coordinates of textured faces (they decide each element's ρ̄).
   for (const Face &face : scene.faces)
     if (scene.materials[face.material].diffuseTextureIndex >= 0)

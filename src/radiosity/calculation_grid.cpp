@@ -159,7 +159,8 @@ std::vector<GridIlluminance> computeGridIlluminance(Scene &scene, const RayTrace
   return results;
 }
 
-void writeGridReport(const std::vector<GridIlluminance> &grids, double metresPerUnit, const std::string &path) {
+void writeGridReport(const std::vector<GridIlluminance> &grids, double metresPerUnit, const std::string &path,
+                     std::span<const PointLight> lights) {
   std::string csv = "grid,i,j,x,y,z,illuminance_lux,standard_error_lux,direct_lux,indirect_lux,samples\n";
   for (const GridIlluminance &g : grids) {
     const std::string name = csvField(g.grid.name);
@@ -175,6 +176,7 @@ void writeGridReport(const std::vector<GridIlluminance> &grids, double metresPer
     csv += fmt::format("# grid {}: points {} E_min_lux {:.9g} E_avg_lux {:.9g} E_max_lux {:.9g} U0 {:.9g} Ud {:.9g}\n",
                        csvField(g.grid.name), g.points.size(), g.minimumLux, g.averageLux, g.maximumLux, g.uniformity(),
                        g.diversity());
+  for (const PointLight &light : lights) csv += "# light " + describeLight(light) + "\n";
   writeAtomically(path, [&](const std::string &temporary) {
     std::ofstream out(temporary, std::ios::binary);
     out << csv;

@@ -74,6 +74,9 @@ std::vector<GridIlluminance> computeGridIlluminance(Scene &scene, const RayTrace
 /// grid,i,j,x,y,z,illuminance_lux,standard_error_lux,direct_lux,indirect_lux,samples
 /// (positions in the scene's units, `metresPerUnit` metres each), then one
 /// summary per grid as comment lines starting with '#'. Written atomically.
-void writeGridReport(const std::vector<GridIlluminance> &grids, double metresPerUnit, const std::string &path);
+/// `lights`, when given, are listed in comment lines after the summaries,
+/// with their flux (lm) and peak intensity (cd).
+void writeGridReport(const std::vector<GridIlluminance> &grids, double metresPerUnit, const std::string &path,
+                     std::span<const PointLight> lights = {});
 
 }  // namespace radiant

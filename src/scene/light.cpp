@@ -1,7 +1,10 @@
 #include "scene/light.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 namespace radiant {
 
@@ -77,6 +80,21 @@ double PointLight::directionPdf(const Vec3 &direction) const {
       return photometry ? photometry->pdf(toLocal(direction)) : 0.0;
   }
   return 0.0;
+}
+
+double maxCandela(const PointLight &light) {
+  if (light.kind != PointLightKind::Photometric) return light.candela;
+  return light.photometry ? light.multiplier * light.photometry->maxCandela() : 0.0;
+}
+
+std::string describeLight(const PointLight &light) {
+  std::string text = fmt::format("'{}': {:.5g} lm, at most {:.5g} cd", light.name, light.lumens(), maxCandela(light));
+  if (light.photometry) {
+    text += " (" + std::filesystem::path(light.photometry->file()).filename().string();
+    if (!light.photometry->description().empty()) text += ": " + light.photometry->description();
+    text += ")";
+  }
+  return text;
 }
 
 void setLightFrame(PointLight &light, const Vec3 &aim, double rotationDegrees) {

@@ -75,6 +75,12 @@ struct PointLight {
   double directionPdf(const Vec3 &direction) const;
 };
 
+/// "'desk-1': 2400 lm, at most 1270 cd (downlight.ies: LED downlight 20 W)":
+/// what the light gives, for the solver's summary and the grid report.
+std::string describeLight(const PointLight &light);
+/// The largest intensity of a light in any direction, cd.
+double maxCandela(const PointLight &light);
+
 /// The frame of a light aimed along `aim` (any length > 0) and turned by
 /// `rotationDegrees` about it: C = 0 is the projection of `reference` (the
 /// scene's +x, or +z where the aim is along x) onto the plane across the aim,

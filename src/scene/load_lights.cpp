@@ -102,7 +102,8 @@ void parseLights(Scene &scene, const JsonNode &lights, double metres) {
       if (!(cone > 0 && cone <= 180)) node.child("cone_angle").fail("expected a full cone angle in (0, 180] degrees");
       const double falloff = node.number("falloff_angle", 0.0);
       if (!(falloff >= 0 && falloff <= cone / 2))
-        node.child("falloff_angle").fail(fmt::format("expected a falloff from 0 to half the cone angle, {}°", cone / 2));
+        node.child("falloff_angle")
+            .fail(fmt::format("expected a falloff from 0 to half the cone angle, {}°", cone / 2));
       const double outer = cone / 2, inner = outer - falloff;
       light.cosOuter = std::cos(outer * kPi / 180.0);
       light.cosInner = std::cos(inner * kPi / 180.0);
@@ -146,8 +147,8 @@ void parseLuminaires(Scene &scene, const JsonNode &luminaires, double metres, co
     lightFrame(light, node, scene);
     light.multiplier = node.number("multiplier", 1.0);
     if (!(light.multiplier >= 0) || light.multiplier * light.photometry->maxCandela() > kMaxCandela)
-      node.child("multiplier").fail(fmt::format("expected a multiplier ≥ 0 that keeps the intensity under {:g} cd",
-                                                kMaxCandela));
+      node.child("multiplier")
+          .fail(fmt::format("expected a multiplier ≥ 0 that keeps the intensity under {:g} cd", kMaxCandela));
     // IES TILT: the lamp's output at the luminaire's tilt from straight down.
     const double tilt = std::acos(std::clamp(dot(light.axis, -normalize(scene.camera.up)), -1.0, 1.0)) * 180.0 / kPi;
     light.multiplier *= light.photometry->tiltFactor(tilt);
