@@ -43,6 +43,16 @@ fi
 # Validation 1, one grid: the plan is the path given.
 "$radiant" solve "$validation/rectangle-source.json" --grid-report rect.csv --grid-image rect.png -q && [ -s rect.png ] \
   && [ -s rect.csv ] && pass || fail "rectangle source"
+# Validation 3: 1000 cd 2 m above the floor, E = I h / (h² + r²)^{3/2} at every point (nine digits).
+if "$radiant" solve "$validation/point-source.json" --grid-report point.csv 2>point.txt; then
+  awk -F, '!/^#/ && NR > 1 { r2 = $4 * $4 + $6 * $6; e = 2000 / (4 + r2) ^ 1.5; d = $7 - e; if (d < 0) d = -d;
+    if (d > 1e-6 * e) bad = 1; n++ } END { exit bad || n != 81 }' point.csv && pass \
+    || fail "point source not I h / (h² + r²)^1.5"
+  grep -q "^# light 'bulb': 12566 lm, at most 1000 cd" point.csv && pass || fail "light in the grid report"
+  grep -q "radiant: light 'bulb': 12566 lm" point.txt && pass || fail "light on stderr"
+else
+  fail "solve point-source"; cat point.txt
+fi
 expect_error "no grids" "--grid-report: the scene has no calculation grids" \
   "$radiant" solve "$cornell" --grid-report x.csv -q
 expect_error "grid image not png" "--grid-image: 'x.jpg': expected a .png file" \

@@ -70,7 +70,8 @@ Bands meanPointLightIrradiance(const DirectIrradiance &direct, const Scene &scen
 /// the scene has no point lights. The solvers that gather or shoot between
 /// elements (gauss-seidel, progressive, hierarchical, stochastic) start from
 /// it: ρ·H is each element's first reflected light, as if shot from the
-/// lights before anything else (C&W §5.3: point sources shoot first).
+/// lights before anything else (as progressive refinement shoots from the
+/// brightest sources first: Cohen, Chen, Wallace & Greenberg 1988).
 std::vector<Bands> pointLightIrradianceOfElements(const Scene &scene, const Solution &solution);
 
 class DirectIrradiance {
