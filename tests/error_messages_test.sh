@@ -62,6 +62,12 @@ sed -e 's/"u": \[3, 0, 0\], "v": \[0, 0, 2\]/"u": [3, 0, 0], "v": [6, 0, 0]/' \
   "$source_dir/scenes/validation/closed-room.json" >grid.json
 expect "grid without area" 'grid\.json: at /grids/0/v: u and v span no area \(zero or parallel\)' \
   "$radiant" solve grid.json --grid-report "$work/grid.csv" -q
+sed -e 's/"intensity": 1000/"intensity": 1000, "lumens": 5/' "$source_dir/scenes/validation/point-source.json" >light.json
+expect "light with two amounts" 'light\.json: at /lights/0: give the light.s "intensity" \(cd\) or its "lumens" \(lm\), one of them' \
+  "$radiant" solve light.json -q
+sed -e 's/"type": "point"/"type": "spotlight"/' "$source_dir/scenes/validation/point-source.json" >lighttype.json
+expect "unknown light type" "lighttype\.json: at /lights/0/type: unknown light type 'spotlight'; known: point, spot" \
+  "$radiant" solve lighttype.json -q
 mutate units 's/"millimetres"/"furlongs"/'
 expect "unknown units" 'units\.json: at /units: unknown units' render units.json
 mutate fov 's/"fov": 39.3077/"fov": 200/'
