@@ -414,7 +414,7 @@ TEST(PhotometryErrors, IesFilesAreRefusedWithFileLineAndWhatWasExpected) {
   const std::string ok = "TILT=NONE\n1 -1 1 3 1 1 2 0 0 0\n1 1 10\n0 90 180\n0\n1000 1000 1000\n";
   expectRefused("good.ies", h + ok + "5\n", 10, "expected the end of the file");
   expectRefused("no_tilt.ies", h + "1 -1 1 3 1 1 2 0 0 0\n1 1 10\n0 90 180\n0\n1000 1000 1000\n", 8, "TILT=");
-  expectRefused("bad_tilt.ies", h + "TILT NONE\n", 4, "TILT=");
+  expectRefused("bad_tilt.ies", h + "TILT NONE\n1 -1 1 3 1 1 2 0 0 0\n", 5, "before its TILT= line");
   expectRefused("unknown_version.ies", "IESNA:LM-63-2030\nTILT=NONE\n", 1, "IESNA:LM-63-2002");
   expectRefused("fewer.ies", h + "TILT=NONE\n1 -1 1 3 1 1 2 0 0 0\n1 1 10\n0 90 180\n0\n1000 1000\n", 9,
                 "candela value 3 of 3");

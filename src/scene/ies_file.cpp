@@ -105,12 +105,9 @@ std::shared_ptr<const PhotometricDistribution> readIesFile(const std::string &pa
                        "TILT=<file> after the keyword lines");
     haveLine = false;
     std::string_view t = trim(line);
-    std::string head = upper(t.substr(0, 4));
-    if (head == "TILT") {
-      std::string_view rest = trim(t.substr(4));
-      if (rest.empty() || rest.front() != '=')
-        throw InputError(in.here(), "expected TILT=NONE, TILT=INCLUDE or TILT=<file>, found " + quoted(t));
-      tilt = std::string(trim(rest.substr(1)));
+    std::string_view afterTilt = trim(t.substr(std::min<size_t>(4, t.size())));
+    if (upper(t.substr(0, 4)) == "TILT" && !afterTilt.empty() && afterTilt.front() == '=') {
+      tilt = std::string(trim(afterTilt.substr(1)));
       tiltLine = in.line();
       break;
     }
