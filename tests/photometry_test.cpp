@@ -175,6 +175,27 @@ TEST(PhotometryIes, LumensAreTheFluxOfTheInterpolatedCandela) {
   EXPECT_NEAR(flood->lumens(), q, 1e-9 * q);
 }
 
+TEST(PhotometryIes, UplightAndDarkFiles) {
+  ScratchFolder scratch;
+  // Vertical angles 90…180: nothing below the horizontal.
+  auto up = readIesFile(scratch.write("uplight.ies", std::string("IESNA:LM-63-2002\nTILT=NONE\n") +
+                                                         "1 -1 1 3 1 1 2 0 0 0\n1 1 10\n90 135 180\n0\n0 50 100\n"));
+  EXPECT_EQ(up->candela({0, 0, 1}), 0);
+  EXPECT_NEAR(up->candela({0, 0, -1}), 100, 1e-9);
+  EXPECT_NEAR(up->candela(typeC(77, 135)), 50, 1e-9);
+  double pdf;
+  Vec3 w = up->sample(0.3, 0.6, pdf);
+  EXPECT_LT(w.z, 0);
+  EXPECT_GT(pdf, 0);
+  // All zero: no flux, and sample() says so with pdf 0 instead of dividing by it.
+  auto dark = readIesFile(scratch.write(
+      "dark.ies", std::string("IESNA:LM-63-2002\nTILT=NONE\n") + "1 -1 1 3 1 1 2 0 0 0\n1 1 10\n0 90 180\n0\n0 0 0\n"));
+  EXPECT_EQ(dark->lumens(), 0);
+  dark->sample(0.5, 0.5, pdf);
+  EXPECT_EQ(pdf, 0);
+  EXPECT_EQ(dark->pdf({0, 0, 1}), 0);
+}
+
 // ---- Symmetry ------------------------------------------------------------------
 
 TEST(PhotometryIes, QuadrantFileExpandsLikeTheFullOne) {

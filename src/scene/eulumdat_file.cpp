@@ -18,8 +18,9 @@
 //
 // Intensity (cd) = value × Σ lamp sets' total flux / 1000 × conversion
 // factor. A negative number of lamps marks absolute photometry (the 2009
-// agreement of DIAL, Lighting Analysts and Ashdown): the set's flux is then
-// the luminaire's own and the same product gives its candela. The numeric
+// agreement of DIAL, Lighting Analysts and Ashdown); the sign is not part of
+// the product, which gives the candela either way, and the flux field is the
+// set's total, so the lamp count does not multiply it. The numeric
 // sections after line 26 are read as numbers separated by whitespace, so a
 // writer that puts several on one line is read too. Every error names the
 // line and its field.
