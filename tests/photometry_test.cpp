@@ -453,6 +453,9 @@ TEST(PhotometryErrors, IesFilesAreRefusedWithFileLineAndWhatWasExpected) {
   expectRefused("units.ies", h + "TILT=NONE\n1 -1 1 3 1 1 3 0 0 0\n", 5, "expected 1 (feet) or 2 (metres)");
   expectRefused("quadrant_45.ies", h + "TILT=NONE\n1 -1 1 2 2 1 2 0 0 0\n1 1 10\n0 90\n0\n45\n1 1 1 1\n", 8,
                 "expected 0 alone");
+  expectRefused("hair_apart.ies",
+                h + "TILT=NONE\n1 -1 1 2 3 1 2 0 0 0\n1 1 10\n0 90\n0 90.0000001 90.0000005\n1 1 1 1 1 1\n", 8,
+                "closer together");
   expectRefused("one_vertical.ies", h + "TILT=NONE\n1 -1 1 1 1 1 2 0 0 0\n1 1 10\n0\n0\n1\n", 7,
                 "at least two vertical angles");
   expectRefused("type_b_range.ies", h + "TILT=NONE\n1 -1 1 2 2 2 2 0 0 0\n1 1 10\n0 90\n10 90\n1 1 1 1\n", 8,

@@ -92,9 +92,14 @@ std::string degreesText(double value) {
 /// 0…180 a half symmetric about the C0–C180 plane; 90…270 a half symmetric
 /// about the C90–C270 plane (LM-63-1995); 0…(180, 360] the whole turn, the
 /// gap up to 360 interpolated towards C0. The result spans exactly one turn.
-ExpandedAxis expandTypeCHorizontal(const std::vector<double> &a, const InputLocation &where) {
+ExpandedAxis expandTypeCHorizontal(std::vector<double> a, const InputLocation &where) {
   ExpandedAxis axis;
   const size_t n = a.size();
+  // The ends the rules name are taken as exactly those angles, so that mirrored copies stay in order.
+  for (double exact : {0.0, 90.0, 180.0, 270.0, 360.0}) {
+    if (near(a.front(), exact)) a.front() = exact;
+    if (near(a.back(), exact)) a.back() = exact;
+  }
   const double first = a.front(), last = a.back();
   if (n == 1) {
     axis.add(first, 0);
@@ -122,8 +127,12 @@ ExpandedAxis expandTypeCHorizontal(const std::vector<double> &a, const InputLoca
 }
 
 /// Types A and B: an axis from −90 (or 0: symmetric about 0, mirrored) to at most 90.
-ExpandedAxis expandTypeABAxis(const std::vector<double> &a, const InputLocation &where, const std::string &name) {
+ExpandedAxis expandTypeABAxis(std::vector<double> a, const InputLocation &where, const std::string &name) {
   const size_t n = a.size();
+  for (double exact : {-90.0, 0.0, 90.0}) {
+    if (near(a.front(), exact)) a.front() = exact;
+    if (near(a.back(), exact)) a.back() = exact;
+  }
   if (n < 2) throw InputError(where, "expected at least two " + name + " angles (types A and B)");
   if (a.front() < -90 - kAngleTolerance || a.back() > 90 + kAngleTolerance || a.front() > kAngleTolerance)
     throw InputError(where, name + " angles from " + degreesText(a.front()) + " to " + degreesText(a.back()) +
@@ -170,6 +179,16 @@ std::shared_ptr<const PhotometricDistribution> PhotometricBuilder::build() const
     polar = azimuthFromHorizontal ? v : h;
     for (double &theta : polar.degrees) theta = std::clamp(theta + 90, 0.0, 180.0);
   }
+
+  // Angles a hair apart (within kAngleTolerance of a snapped end) would make
+  // empty or reversed cells.
+  for (const ExpandedAxis *axis : {&azimuth, &polar})
+    for (size_t k = 1; k < axis->degrees.size(); ++k)
+      if (!(axis->degrees[k] > axis->degrees[k - 1]))
+        throw InputError(axis == &azimuth ? (azimuthFromHorizontal ? horizontalAt : verticalAt)
+                                          : (azimuthFromHorizontal ? verticalAt : horizontalAt),
+                         "angles closer together than " + degreesText(kAngleTolerance) +
+                             " degrees at the ends of the list: expected increasing angles");
 
   auto d = std::make_shared<PhotometricDistribution>();
   d->type_ = type;
