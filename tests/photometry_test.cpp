@@ -445,6 +445,8 @@ TEST(PhotometryErrors, IesFilesAreRefusedWithFileLineAndWhatWasExpected) {
                 "candela value 2 of 3 is negative");
   expectRefused("nan.ies", h + "TILT=NONE\n1 -1 1 3 1 1 2 0 0 0\n1 1 10\n0 90 180\n0\n1000 nan 1000\n", 9,
                 "found 'nan'");
+  expectRefused("overflow.ies", h + "TILT=NONE\n1 -1 1e300 3 1 1 2 0 0 0\n1 1 10\n0 90 180\n0\n1000 1e300 1000\n", 9,
+                "more than 1e18");
   expectRefused("hex.ies", h + "TILT=NONE\n1 -1 0x1p1 3 1 1 2 0 0 0\n", 5, "candela multiplier");
   expectRefused("truncated.ies", h + "TILT=NONE\n1 -1 1 3 1 1 2 0 0", 5, "the luminous opening's height");
   expectRefused("huge.ies", h + "TILT=NONE\n1 -1 1 1000000000 1 1 2 0 0 0\n", 5, "expected 1 to 10000");

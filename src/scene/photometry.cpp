@@ -430,18 +430,25 @@ std::vector<double> readAngles(TextCursor &in, int64_t count, const std::string 
   return angles;
 }
 
+/// Bounds every intensity (cd) so that sums over a whole table stay finite;
+/// the brightest searchlights reach 1e9 cd.
+constexpr double kMaxIntensity = 1e18;
+
 void readIntensities(TextCursor &in, int64_t count, double scale, const std::string &name, std::vector<double> &out) {
   for (int64_t k = 0; k < count; ++k) {
     double value;
     std::string_view token;
     TextCursor::Read read = in.decimal(value, token);
-    if (read != TextCursor::Read::Ok || value < 0) {
+    if (read != TextCursor::Read::Ok || value < 0 || !(value * scale <= kMaxIntensity)) {
       std::string which = name + " " + std::to_string(k + 1) + " of " + std::to_string(count);
       if (read == TextCursor::Read::End)
         throw InputError(in.here(), "the file ends where " + which + " was expected (is the file truncated?)");
       if (read == TextCursor::Read::Bad)
         throw InputError(in.here(), "expected " + which + " (a number), found " + quoted(token));
-      throw InputError(in.here(), which + " is negative: expected an intensity of 0 or more");
+      if (value < 0) throw InputError(in.here(), which + " is negative: expected an intensity of 0 or more");
+      throw InputError(in.here(), which +
+                                      " times the file's multipliers is more than 1e18: expected a luminous "
+                                      "intensity a luminaire can have");
     }
     out.push_back(value * scale);
   }
