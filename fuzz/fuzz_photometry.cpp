@@ -6,6 +6,7 @@
 // distribution: candela, pdf and sample over a few directions, tiltFactor.
 // Self-contained (not in fuzz_inputs.cpp's table): tools/fuzz.sh and the
 // regression test do not run it yet.
+#include <cmath>
 #include <fstream>
 
 #include "fuzz_inputs.h"
@@ -14,14 +15,26 @@
 
 namespace {
 
+/// An accepted file must give a finite, non-negative distribution: anything
+/// else traps, and libFuzzer reports it.
+void require(bool condition) {
+  if (!condition) __builtin_trap();
+}
+
 void exercise(const radiant::PhotometricDistribution &d) {
   const radiant::Vec3 directions[] = {{0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {0, -1, 0}, {0.3, -0.4, 0.866}};
-  volatile double sink = d.lumens() + d.maxCandela() + d.tiltFactor(30);
-  for (const radiant::Vec3 &w : directions) sink = sink + d.candela(w) + d.pdf(w);
+  require(std::isfinite(d.lumens()) && d.lumens() >= 0 && std::isfinite(d.maxCandela()));
+  require(std::isfinite(d.tiltFactor(30)));
+  for (const radiant::Vec3 &w : directions) {
+    double candela = d.candela(w), pdf = d.pdf(w);
+    require(std::isfinite(candela) && candela >= 0 && std::isfinite(pdf) && pdf >= 0);
+    require(candela == 0 || pdf > 0);
+  }
   for (double u : {0.0, 0.25, 0.5, 0.999999}) {
     double pdf;
     radiant::Vec3 w = d.sample(u, 1 - u, pdf);
-    sink = sink + w.x + pdf + d.candela(w);
+    require(std::isfinite(pdf) && pdf >= 0);
+    require(pdf == 0 || std::abs(radiant::length(w) - 1) < 1e-9);
   }
 }
 
