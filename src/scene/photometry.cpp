@@ -151,6 +151,8 @@ void polarWeights(double theta0, double theta1, double &w0, double &w1) {
   double width = theta1 - theta0;
   double total = std::cos(theta0) - std::cos(theta1);
   w1 = 2 * std::cos(0.5 * (theta0 + theta1)) * std::sin(0.5 * width) / width - std::cos(theta1);
+  // Both are ≥ 0; the subtraction can round a sliver cell's to −1e-17.
+  w1 = std::clamp(w1, 0.0, total);
   w0 = total - w1;
 }
 
@@ -432,7 +434,7 @@ std::vector<double> readAngles(TextCursor &in, int64_t count, const std::string 
 
 /// Bounds every intensity (cd) so that sums over a whole table stay finite;
 /// the brightest searchlights reach 1e9 cd.
-constexpr double kMaxIntensity = 1e18;
+constexpr double kMaxIntensity = 1e18, kMinIntensity = 1e-30;
 
 void readIntensities(TextCursor &in, int64_t count, double scale, const std::string &name, std::vector<double> &out) {
   for (int64_t k = 0; k < count; ++k) {
@@ -450,7 +452,9 @@ void readIntensities(TextCursor &in, int64_t count, double scale, const std::str
                                       " times the file's multipliers is more than 1e18: expected a luminous "
                                       "intensity a luminaire can have");
     }
-    out.push_back(value * scale);
+    // Below 1e-30 cd an intensity is no light, and a density proportional to
+    // it could underflow to 0 beside 1e18 cd elsewhere (pdf must be > 0 where candela is).
+    out.push_back(value * scale >= kMinIntensity ? value * scale : 0.0);
   }
 }
 
