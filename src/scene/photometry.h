@@ -64,11 +64,21 @@ class PhotometricDistribution {
   PhotometricType type_ = PhotometricType::C;
   std::string description_, file_;
   double lumens_ = 0, maxCandela_ = 0;
-  // The expanded web and whatever sampling tables the implementation keeps.
-  std::vector<double> horizontalDegrees_, verticalDegrees_;
-  std::vector<double> candela_;  ///< [h · verticalDegrees_.size() + v]
+  // The expanded web, in spherical angles about the type's own polar axis
+  // (photometry.cpp, docs/luminaires.md): azimuth φ and polar angle θ, both
+  // increasing; type C's web spans a whole turn of φ and wraps.
+  std::vector<double> azimuthRadians_, polarRadians_;
+  bool azimuthWraps_ = false;
+  std::vector<double> candela_;  ///< [a · polarRadians_.size() + p]
+  /// Per cell [a · (polarRadians_.size() − 1) + p]: the cumulative share of
+  /// sample()'s draws, and its density (per steradian) in that cell.
   std::vector<double> sampleCdf_, samplePdf_;
   std::vector<double> tiltDegrees_, tiltFactors_;  ///< empty: TILT=NONE
+
+  /// The cell of the web holding `local` and the fractions along its two
+  /// angles; false where the web has no data (candela 0).
+  bool locate(const Vec3 &local, size_t &azimuthCell, size_t &polarCell, double &azimuthFraction,
+              double &polarFraction) const;
 };
 
 /// Reads an IES LM-63 file (1995, 2002 or 2019; TILT=NONE, INCLUDE or a
