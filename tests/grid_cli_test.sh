@@ -53,6 +53,17 @@ if "$radiant" solve "$validation/point-source.json" --grid-report point.csv 2>po
 else
   fail "solve point-source"; cat point.txt
 fi
+# The README's office: six IES downlights, both desks at about 517 lx with U0 ≥ 0.6 (EN 12464-1's 500 lx).
+if "$radiant" solve "$source_dir/scenes/office/scene.json" --grid-report office.csv --grid-image office.png -q; then
+  for desk in desk-1 desk-2; do
+    grep "^# grid $desk:" office.csv | awk '{ e = $9; u = $13; if (e < 512 || e > 522 || u < 0.6) exit 1 }' && pass \
+      || fail "office $desk: $(grep "^# grid $desk:" office.csv)"
+  done
+  [ "$(grep -c "^# light 'downlight-[1-6]': 2000 lm" office.csv)" -eq 6 ] && pass || fail "office: six 2000 lm lights"
+  [ -s office-work-plane.png ] && pass || fail "office work-plane plan"
+else
+  fail "solve office"
+fi
 expect_error "no grids" "--grid-report: the scene has no calculation grids" \
   "$radiant" solve "$cornell" --grid-report x.csv -q
 expect_error "grid image not png" "--grid-image: 'x.jpg': expected a .png file" \
