@@ -200,6 +200,47 @@ TEST(PointLight, ASpectralLightGivesTheIlluminanceItsCandelaSayWhateverItsSpectr
   }
 }
 
+TEST(PointLight, ALuminaireOnADiscIsTheDiscSourcesClosedForm) {
+  // A Lambertian distribution I(γ) = I0 cos γ (I0 = 800 cd) spread over a
+  // disc of radius R is a Lambertian disc of radiance I0/(π R²): on its axis
+  // at distance h, E = π L R²/(h² + R²) = I0/(h² + R²) — half the point
+  // source's I0/h² at h = R. The lattice (32 × 32) integrates it within its
+  // midpoint error, the table's linear interpolation of cos γ within Δ²/8
+  // (0.1 %); next-event estimation from random points of the disc converges
+  // to the same mean.
+  const std::string ies = RADIANT_SOURCE_DIR "/tests/photometry/lambertian_downlight.ies";
+  auto scene = [&](const std::string &opening) {
+    return loadSceneText(R"({"version": 1, "materials": {"grey": {"reflectance": 0.5}},
+      "objects": [{"type": "quad", "material": "grey", "vertices": [[-4, 0, -4], [-4, 0, 4], [4, 0, 4], [4, 0, -4]]}],
+      "luminaires": [{"ies": ")" +
+                         ies + R"(", "position": [0, 0.5, 0], "aim": [0, -1, 0])" + opening + "}]}");
+  };
+  const Scene disc = scene(R"(, "diameter": 1, "area_samples": 32)"), point = scene("");
+  ASSERT_TRUE(disc.lights[0].isArea());
+  const double i0 = 800, h = 0.5, r = 0.5;
+  const double expected = i0 / (h * h + r * r) / 683.0;  // W/m² per band
+  const Vec3 x{0, 0, 0}, up{0, 1, 0};
+  EXPECT_NEAR(DirectIrradiance(disc).irradiance(x, up)[1] / expected, 1.0, 0.005);
+  EXPECT_NEAR(DirectIrradiance(point).irradiance(x, up)[1] / (i0 / (h * h) / 683.0), 1.0, 1e-9);
+
+  RayTracer tracer(disc);
+  Hit hit;
+  ASSERT_TRUE(tracer.intersect(Ray{Vec3{0, 0.2, 0}, Vec3{0, -1, 0}}, hit));
+  EXPECT_NEAR(pointLightIrradiance(tracer, hit)[1] / expected, 1.0, 0.005);
+  LightSampler lights(disc);
+  Bsdf bsdf(disc.materials[hit.material], hit.shadingNormal, hit.geometricNormal, Vec3{0, 1, 0});
+  const int n = 40000;
+  double sum = 0, sumSquares = 0;
+  for (int i = 0; i < n; ++i) {
+    Sampler rng(7, 0, uint64_t(i));
+    const double v = estimateDirectLight(lights, tracer, hit, bsdf, rng, LightWeighting::Alone)[1] * kPi / 0.5;
+    sum += v, sumSquares += v * v;
+  }
+  const double mean = sum / n, standardError = std::sqrt((sumSquares / n - mean * mean) / n);
+  EXPECT_GT(standardError, 0);  // random points of the disc: not the point source's single value
+  EXPECT_NEAR(mean, expected, 4 * standardError + 0.002 * expected);
+}
+
 /// A closed 4 × 3 × 2.5 m room of one reflectance ρ lit by an isotropic point
 /// source of flux Φ: all the light is absorbed in the end, so the area-mean
 /// irradiance of every surface is Φ / (A (1 − ρ)) exactly (the interreflection

@@ -150,6 +150,7 @@ uint64_t sceneFingerprint(const Scene &scene) {
     f.value(int(light.kind));
     for (const Vec3 *v : {&light.position, &light.axis, &light.c0}) f.value(v->x), f.value(v->y), f.value(v->z);
     f.value(light.candela), f.value(light.cosInner), f.value(light.cosOuter), f.value(light.multiplier);
+    f.value(light.halfLength), f.value(light.halfWidth), f.value(uint8_t(light.round)), f.value(light.lattice);
     if (spectral)
       spectrum(light.spectrum, light.wattsPerCandela);
     else

@@ -316,16 +316,21 @@ Bands DirectIrradiance::irradiance(const Vec3 &x, const Vec3 &n) const {
 Bands DirectIrradiance::pointLightIrradiance(const Vec3 &x, const Vec3 &n) const {
   Bands h(0.0);
   for (const PointLight &light : scene_.lights) {
-    const Vec3 toLight = light.position - x;
-    const double distanceSquared = dot(toLight, toLight);
-    if (!(distanceSquared > 0)) continue;
-    const Vec3 w = toLight / std::sqrt(distanceSquared);
-    const double cosTheta = dot(n, w);
-    if (cosTheta <= 0) continue;
-    // The inverse-square law: E = I(ω) cos θ / d², ω the direction from the light to x.
-    const Bands intensity = light.intensity(-w);
-    if (intensity.max() <= 0 || segmentBlocked(x, light.position)) continue;
-    h += intensity * (cosTheta / distanceSquared);
+    // A luminaire on an area: the mean over its lattice of points.
+    const int count = light.latticePointCount();
+    for (int k = 0; k < count; ++k) {
+      const Vec3 p = light.latticePoint(k);
+      const Vec3 toLight = p - x;
+      const double distanceSquared = dot(toLight, toLight);
+      if (!(distanceSquared > 0)) continue;
+      const Vec3 w = toLight / std::sqrt(distanceSquared);
+      const double cosTheta = dot(n, w);
+      if (cosTheta <= 0) continue;
+      // The inverse-square law: E = I(ω) cos θ / d², ω the direction from the light to x.
+      const Bands intensity = light.intensity(-w);
+      if (intensity.max() <= 0 || segmentBlocked(x, p)) continue;
+      h += intensity * (cosTheta / (distanceSquared * count));
+    }
   }
   return h;
 }
@@ -371,7 +376,8 @@ Bands meanPointLightIrradiance(const DirectIrradiance &direct, const Scene &scen
   for (size_t k = 0; k < polygon.size(); ++k)
     size = std::max(size, length(polygon[(k + 1) % polygon.size()] - polygon[k]));
   const Vec3 centre = polygonCentroid(polygon);
-  for (const PointLight &light : scene.lights) nearest = std::min(nearest, length(light.position - centre));
+  for (const PointLight &light : scene.lights)
+    nearest = std::min(nearest, std::max(length(light.position - centre) - light.halfLength, 0.0));
   const int n = std::clamp(int(std::ceil(4.0 * size / std::max(nearest, 1e-9 * size))), 3, 16);
   Bands sum(0.0);
   int count = 0;

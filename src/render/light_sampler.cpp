@@ -44,7 +44,7 @@ bool LightSampler::sample(double uSelect, double u1, double u2, LightSample &out
   k = std::min(k, cumulative_.size() - 1);
   if (k >= emitters_.size()) {
     out.pointLight = &scene_.lights[k - emitters_.size()];
-    out.position = out.pointLight->position;
+    out.position = out.pointLight->randomPoint(u1, u2);  // a luminaire on an area: a point of it
     out.probability = probability_[k];
     return out.probability > 0;
   }
@@ -66,9 +66,9 @@ namespace {
 
 /// A point light's share: f · I(ω) · |cos θ| / (d² p(light)), from a delta
 /// in position, so no other strategy finds it and its weight is 1.
-Bands estimatePointLight(const PointLight &light, double probability, const RayTracer &tracer, const Hit &hit,
-                         const Bsdf &bsdf) {
-  const Vec3 toLight = light.position - hit.position;
+Bands estimatePointLight(const PointLight &light, const Vec3 &position, double probability, const RayTracer &tracer,
+                         const Hit &hit, const Bsdf &bsdf) {
+  const Vec3 toLight = position - hit.position;
   const double distance2 = dot(toLight, toLight);
   if (!(distance2 > 0)) return Bands(0.0);
   const Vec3 wi = toLight / std::sqrt(distance2);
@@ -77,7 +77,7 @@ Bands estimatePointLight(const PointLight &light, double probability, const RayT
   const Bands f = bsdf.evaluate(wi);
   if (f.max() <= 0) return Bands(0.0);
   // The light has no surface: the shadow ray ends at the point, offset along −wi.
-  if (!tracer.visible(hit.position, hit.geometricNormal, light.position, -wi)) return Bands(0.0);
+  if (!tracer.visible(hit.position, hit.geometricNormal, position, -wi)) return Bands(0.0);
   const double cosSurface = std::abs(dot(wi, hit.shadingNormal));
   return f * intensity * (cosSurface / (distance2 * probability));
 }
@@ -89,7 +89,8 @@ Bands estimateDirectLight(const LightSampler &lights, const RayTracer &tracer, c
   LightSample light;
   double uSelect = rng.next(), u1 = rng.next(), u2 = rng.next();
   if (!lights.sample(uSelect, u1, u2, light)) return Bands(0.0);
-  if (light.pointLight) return estimatePointLight(*light.pointLight, light.probability, tracer, hit, bsdf);
+  if (light.pointLight)
+    return estimatePointLight(*light.pointLight, light.position, light.probability, tracer, hit, bsdf);
   Vec3 toLight = light.position - hit.position;
   double distance2 = dot(toLight, toLight);
   if (distance2 <= 0) return Bands(0.0);
@@ -110,15 +111,19 @@ Bands estimateDirectLight(const LightSampler &lights, const RayTracer &tracer, c
 Bands pointLightIrradiance(const RayTracer &tracer, const Hit &hit) {
   Bands h(0.0);
   for (const PointLight &light : tracer.scene().lights) {
-    const Vec3 toLight = light.position - hit.position;
-    const double distance2 = dot(toLight, toLight);
-    if (!(distance2 > 0)) continue;
-    const Vec3 wi = toLight / std::sqrt(distance2);
-    const double cosSurface = dot(wi, hit.shadingNormal);
-    if (cosSurface <= 0 || dot(wi, hit.geometricNormal) <= 0) continue;
-    const Bands intensity = light.intensity(-wi);
-    if (intensity.max() <= 0 || !tracer.visible(hit.position, hit.geometricNormal, light.position, -wi)) continue;
-    h += intensity * (cosSurface / distance2);
+    const int count = light.latticePointCount();  // a luminaire on an area: the mean over its lattice
+    for (int k = 0; k < count; ++k) {
+      const Vec3 p = light.latticePoint(k);
+      const Vec3 toLight = p - hit.position;
+      const double distance2 = dot(toLight, toLight);
+      if (!(distance2 > 0)) continue;
+      const Vec3 wi = toLight / std::sqrt(distance2);
+      const double cosSurface = dot(wi, hit.shadingNormal);
+      if (cosSurface <= 0 || dot(wi, hit.geometricNormal) <= 0) continue;
+      const Bands intensity = light.intensity(-wi);
+      if (intensity.max() <= 0 || !tracer.visible(hit.position, hit.geometricNormal, p, -wi)) continue;
+      h += intensity * (cosSurface / (distance2 * count));
+    }
   }
   return h;
 }

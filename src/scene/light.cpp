@@ -82,6 +82,36 @@ double PointLight::directionPdf(const Vec3 &direction) const {
   return 0.0;
 }
 
+namespace {
+
+/// (s, t) in [−1, 1]² to the opening: the rectangle, or the disc by the
+/// concentric map (Shirley & Chiu 1997), which keeps strata compact.
+Vec3 openingPoint(const PointLight &light, double s, double t) {
+  if (!light.round) return light.position + light.c0 * (s * light.halfLength) + light.c90 * (t * light.halfWidth);
+  if (s == 0 && t == 0) return light.position;
+  double r, phi;
+  if (std::abs(s) > std::abs(t)) {
+    r = s, phi = kPi / 4 * (t / s);
+  } else {
+    r = t, phi = kPi / 2 - kPi / 4 * (s / t);
+  }
+  r *= light.halfLength;
+  return light.position + light.c0 * (r * std::cos(phi)) + light.c90 * (r * std::sin(phi));
+}
+
+}  // namespace
+
+Vec3 PointLight::latticePoint(int k) const {
+  if (!isArea()) return position;
+  const int i = k % lattice, j = k / lattice;
+  return openingPoint(*this, -1 + (2 * i + 1.0) / lattice, -1 + (2 * j + 1.0) / lattice);
+}
+
+Vec3 PointLight::randomPoint(double u1, double u2) const {
+  if (!isArea()) return position;
+  return openingPoint(*this, 2 * u1 - 1, 2 * u2 - 1);
+}
+
 double maxCandela(const PointLight &light) {
   if (light.kind != PointLightKind::Photometric) return light.candela;
   return light.photometry ? light.multiplier * light.photometry->maxCandela() : 0.0;
@@ -89,6 +119,9 @@ double maxCandela(const PointLight &light) {
 
 std::string describeLight(const PointLight &light) {
   std::string text = fmt::format("'{}': {:.5g} lm, at most {:.5g} cd", light.name, light.lumens(), maxCandela(light));
+  if (light.isArea())
+    text += light.round ? fmt::format(", a disc of {:.4g} m", 2 * light.halfLength)
+                        : fmt::format(", {:.4g} m × {:.4g} m", 2 * light.halfLength, 2 * light.halfWidth);
   if (light.photometry) {
     text += " (" + std::filesystem::path(light.photometry->file()).filename().string();
     if (!light.photometry->description().empty()) text += ": " + light.photometry->description();

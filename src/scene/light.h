@@ -57,6 +57,27 @@ struct PointLight {
   /// loader so that its luminance weight over the scene's wavelengths is 1/683.
   std::optional<SampledSpectrum> spectrum;
 
+  /// A luminaire on an area (the JSON "size" or "diameter"): its light leaves
+  /// a flat luminous opening across the aim, centred on `position`, instead
+  /// of one point — a rectangle of half-sides `halfLength` along c0 and
+  /// `halfWidth` along c90, or a disc of radius `halfLength` when `round`.
+  /// Every point of it emits I(ω)/A per unit area in the same distribution
+  /// (the far-field photometry spread evenly over the opening), so nearby
+  /// surfaces see its extent: soft shadow edges, no inverse-square peak
+  /// beneath it. 0: a point.
+  double halfLength = 0, halfWidth = 0;
+  bool round = false;
+  /// The deterministic rule the exact direct light integrates the opening
+  /// with: `lattice` × `lattice` points (cell centres; polar cells on a disc).
+  int lattice = 1;
+
+  bool isArea() const { return halfLength > 0; }
+  /// Points of the deterministic rule, each standing for 1/count of the light.
+  int latticePointCount() const { return isArea() ? lattice * lattice : 1; }
+  Vec3 latticePoint(int k) const;
+  /// A point of the opening drawn uniformly by area from (u1, u2); `position` for a point light.
+  Vec3 randomPoint(double u1, double u2) const;
+
   /// The light's frame's coordinates of a world direction (unit).
   Vec3 toLocal(const Vec3 &world) const { return {dot(world, c0), dot(world, c90), dot(world, axis)}; }
   Vec3 toWorld(const Vec3 &local) const { return c0 * local.x + c90 * local.y + axis * local.z; }

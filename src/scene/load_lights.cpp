@@ -71,6 +71,27 @@ double positiveAmount(const JsonNode &node, const std::string &key, const char *
   return v;
 }
 
+/// "size": [length, width] (along C0 and C90) or "diameter": the luminous
+/// opening of a luminaire on an area; "area_samples": the lattice's side.
+void parseOpening(PointLight &light, const JsonNode &node, double metres) {
+  if (node.has("size") && node.has("diameter")) node.fail("give the opening's \"size\" or its \"diameter\", not both");
+  if (node.has("size")) {
+    std::vector<JsonNode> size = node.child("size").asArray(2, 2);
+    const double length = size[0].asNumber() * metres, width = size[1].asNumber() * metres;
+    if (!(length > 0 && width > 0 && length <= 1e3 && width <= 1e3))
+      node.child("size").fail("expected [length, width], each > 0 and at most 1000 m");
+    light.halfLength = length / 2, light.halfWidth = width / 2;
+  } else if (node.has("diameter")) {
+    const double diameter = node.child("diameter").asNumber() * metres;
+    if (!(diameter > 0 && diameter <= 1e3)) node.child("diameter").fail("expected a diameter > 0, at most 1000 m");
+    light.halfLength = light.halfWidth = diameter / 2;
+    light.round = true;
+  }
+  if (node.has("area_samples") && !light.isArea())
+    node.child("area_samples").fail("only a luminaire with a \"size\" or \"diameter\" has an area to sample");
+  light.lattice = light.isArea() ? static_cast<int>(node.integer("area_samples", 4, 1, 32)) : 1;
+}
+
 }  // namespace
 
 void parseLights(Scene &scene, const JsonNode &lights, double metres) {
@@ -128,7 +149,8 @@ void parseLuminaires(Scene &scene, const JsonNode &luminaires, double metres, co
   for (size_t index = 0; index < entries.size(); ++index) {
     const JsonNode &node = entries[index];
     node.expectObject();
-    node.checkKeys({"name", "ies", "ldt", "position", "aim", "rotation", "multiplier", "colour"});
+    node.checkKeys({"name", "ies", "ldt", "position", "aim", "rotation", "multiplier", "colour", "size", "diameter",
+                    "area_samples"});
     PointLight light;
     light.kind = PointLightKind::Photometric;
     light.definedAt = node.location();
@@ -153,6 +175,7 @@ void parseLuminaires(Scene &scene, const JsonNode &luminaires, double metres, co
     const double tilt = std::acos(std::clamp(dot(light.axis, -normalize(scene.camera.up)), -1.0, 1.0)) * 180.0 / kPi;
     light.multiplier *= light.photometry->tiltFactor(tilt);
     lightColour(light, node, scene.spectral.enabled());
+    parseOpening(light, node, metres);
     scene.lights.push_back(std::move(light));
   }
 }
