@@ -287,6 +287,34 @@ TEST(MgfImport, UnknownEntitiesAreWarnedAndIgnored) {
   EXPECT_NE(all.find(":9: unknown MGF entity 'frobnicate'"), std::string::npos) << all;
 }
 
+/// `ies FILE -m MULTIPLIER xf…`: a luminaire at the transformed origin, its
+/// nadir along the transformed −z and C = 0 along the transformed +x; a
+/// missing file is an error at the entity's line.
+TEST(MgfImport, IesEntityPlacesALuminaire) {
+  TempDir dir;
+  const std::string ies = RADIANT_SOURCE_DIR "/tests/photometry/lambertian_downlight.ies";
+  const std::string path = dir.write(
+      "scene.mgf", std::string("m white =\n rd 0.5\n") + kSquare + "f a b c d\nies " + ies + " -m 2 -rx 90 -t 0 0 3\n");
+  const Scene scene = loadScene(path);
+  ASSERT_EQ(scene.lights.size(), 1u);
+  const PointLight &light = scene.lights[0];
+  EXPECT_EQ(light.kind, PointLightKind::Photometric);
+  EXPECT_NEAR(length(light.position - Vec3{0, 0, 3}), 0, 1e-12);
+  // -rx 90 turns −z to +y: the luminaire lights along +y; C = 0 stays +x.
+  EXPECT_NEAR(length(light.axis - Vec3{0, 1, 0}), 0, 1e-12);
+  EXPECT_NEAR(length(light.c0 - Vec3{1, 0, 0}), 0, 1e-12);
+  EXPECT_NEAR(light.candelaTowards(light.axis), 2 * 800, 1e-6);  // the file's 800 cd × -m 2
+  for (const std::string &w : scene.warnings) EXPECT_EQ(w.find("ies"), std::string::npos) << w;
+  const std::string missing = dir.write("missing.mgf", std::string("ies nowhere.ies\n"));
+  std::string message;
+  try {
+    loadScene(missing);
+  } catch (const InputError &e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("missing.mgf:1"), std::string::npos) << message;
+}
+
 TEST(MgfImport, JsonSceneEntry) {
   TempDir dir;
   dir.write("part.mgf", std::string("m w =\n rd 0.5\n") + kSquare + "f a b c d\n");

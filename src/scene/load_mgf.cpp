@@ -9,6 +9,9 @@
 // array can replay its entities N times. Every error names the file and the
 // line its entity starts on.
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -114,6 +117,7 @@ class MgfReader {
   Scene &scene_;
   Transform toWorld_;
   std::string objectName_;
+  int luminaires_ = 0;  ///< ies entities read, for their names
   std::map<std::string, Vertex> vertices_;
   std::map<std::string, MgfColour> colours_;
   std::map<std::string, MgfMaterial> materials_;
@@ -445,10 +449,52 @@ class MgfReader {
     } else if (k == "sph" || k == "cyl" || k == "cone" || k == "ring" || k == "torus" || k == "prism") {
       primitive(e);
     } else if (k == "ies") {
-      warnOnce(k, "IES luminaires ('ies') are not read; the entity is ignored");
+      luminaire(e);
     } else {
       unknown_.emplace(k, here().toString());
     }
+  }
+
+  /// `ies FILE [-m MULTIPLIER] [xf arguments]`: an IES luminaire with its
+  /// photometric centre at the origin, its nadir along −z and C = 0 along +x
+  /// (MGF 2.0), placed by the transform; a point light (docs/luminaires.md).
+  void luminaire(const Entity &e) {
+    expectArguments(e, 1, kMaxEntityWords, "a file name, then an optional -m multiplier and xf arguments");
+    std::vector<std::string> args(e.words.begin() + 2, e.words.end());
+    double multiplier = 1;
+    if (args.size() >= 2 && args[0] == "-m") {
+      multiplier = number(args[1]);
+      if (!(multiplier >= 0)) fail("ies: the multiplier after -m must be ≥ 0");
+      args.erase(args.begin(), args.begin() + 2);
+    }
+    std::vector<int> counts;
+    parseTransform(args, &counts, {});
+    if (!counts.empty()) fail("ies: an array (-a) of luminaires is not read; place each with its own entity");
+    const Transform t = toWorld_ * transforms_.back().total * parseTransform(args, nullptr, {});
+    PointLight light;
+    light.kind = PointLightKind::Photometric;
+    light.definedAt = here();
+    const std::string file = (fs::path(path_).parent_path() / e.words[1]).string();
+    try {
+      light.photometry = readIesFile(file);
+    } catch (const InputError &error) {
+      throw InputError(error.location(), error.message() + " (the luminaire of " + here().toString() + ")");
+    }
+    light.name = fmt::format("{}ies-{}", objectNames_.empty() ? "" : objectNames_.back() + "/", ++luminaires_);
+    for (const PointLight &other : scene_.lights)
+      if (other.name == light.name) light.name += "@" + here().toString();
+    light.position = t.point(Vec3{0, 0, 0});
+    if (!withinCoordinateRange(light.position)) fail("the luminaire lies beyond 10⁹ m");
+    const Vec3 aim = t.vector(Vec3{0, 0, -1}), c0 = t.vector(Vec3{1, 0, 0});
+    if (!(length(aim) > 0) || !(length(cross(aim, c0)) > 0)) fail("ies: the transform collapses the luminaire");
+    light.axis = normalize(aim);
+    light.c0 = normalize(c0 - light.axis * dot(c0, light.axis));
+    light.c90 = normalize(cross(light.c0, light.axis));
+    const Vec3 down = normalize(toWorld_.vector(Vec3{0, 0, -1}));
+    const double tilt = std::acos(std::clamp(dot(light.axis, down), -1.0, 1.0)) * 180.0 / kPi;
+    light.multiplier = multiplier * light.photometry->tiltFactor(tilt);
+    if (scene_.spectral.enabled()) light.spectrum = SampledSpectrum{{550.0}, {1.0}};  // white: a constant spectrum
+    scene_.lights.push_back(std::move(light));
   }
 
   void warnOnce(const std::string &key, const std::string &message) {
