@@ -30,6 +30,7 @@
 // neighbour's edge) are recorded so interpolation stays continuous.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <optional>
@@ -98,7 +99,8 @@ class Hierarchy {
       if (textured_.back()) n.reflectance = nodeReflectance(n);
       n.lightIrradiance = lightIrradianceOf(n);
       n.radiosity = n.emission;
-      maxEmission = std::max(maxEmission, n.emission.max());
+      // The brightest source: an emitter, or a patch the point lights make bright.
+      maxEmission = std::max({maxEmission, n.emission.max(), (n.reflectance * n.lightIrradiance).max()});
       nodes_.push_back(n);
     }
     patchCount_ = static_cast<uint32_t>(nodes_.size());
