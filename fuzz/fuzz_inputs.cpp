@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -16,6 +18,7 @@
 #include "io/solution_file.h"
 #include "radiosity/solution_query.h"
 #include "scene/load_scene.h"
+#include "scene/photometry.h"
 #include "texture/texture.h"
 
 #ifndef RADIANT_SOURCE_DIR
@@ -104,6 +107,8 @@ void writeFixtures(const std::string &folder) {
             "Kd 0.8 0.8 0.8\n"
             "map_Kd textures/checker.png\n"
             "bump -bm 0.01 textures/egg-crate.png\n");
+  // An IES tilt file (lamp-to-luminaire geometry, count, angles, factors).
+  writeFile(inFolder(folder, "tilt.tlt"), "1\n3\n0 45 90\n1 0.9 0.8\n");
 }
 
 void feedSceneJson(std::span<const uint8_t> input, const std::string &folder) {
@@ -212,6 +217,58 @@ void feedSolutionFile(std::span<const uint8_t> input, const std::string &folder)
   for (const Solution &solution : readSolutionPasses(path, scene)) readLikeARenderer(solution, scene);
 }
 
+namespace {
+
+/// What an accepted distribution must satisfy; a logic_error (not an
+/// InputError) when it does not, which the fuzz target reports and the
+/// regression test fails on.
+void require(bool condition, const std::string &file, const char *what) {
+  if (!condition) throw std::logic_error("fuzz: accepted photometric file " + file + " gives " + what);
+}
+
+/// Asks of the distribution what a renderer asks: candela and pdf towards a
+/// few directions, samples, the flux, the tilt factor.
+void checkDistribution(const PhotometricDistribution &d) {
+  static constexpr std::array<Vec3, 5> kDirections{{{0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {0, -1, 0}, {0.3, -0.4, 0.866}}};
+  const std::string &file = d.file();
+  require(std::isfinite(d.lumens()) && d.lumens() >= 0, file, "a flux that is negative or not finite");
+  require(std::isfinite(d.maxCandela()) && d.maxCandela() >= 0, file,
+          "a largest intensity that is negative or not finite");
+  for (double degrees : {0.0, 30.0, 90.0, 180.0})
+    require(std::isfinite(d.tiltFactor(degrees)), file, "a tilt factor that is not finite");
+  for (const Vec3 &w : kDirections) {
+    const double candela = d.candela(w), pdf = d.pdf(w);
+    require(std::isfinite(candela) && candela >= 0, file, "an intensity that is negative or not finite");
+    require(std::isfinite(pdf) && pdf >= 0, file, "a pdf that is negative or not finite");
+    require(candela == 0 || pdf > 0, file, "pdf 0 where the intensity is not");
+  }
+  for (double u : {0.0, 0.25, 0.5, 0.999999}) {
+    double pdf = 0;
+    const Vec3 w = d.sample(u, 1 - u, pdf);
+    require(std::isfinite(pdf) && pdf >= 0, file, "a sample whose pdf is negative or not finite");
+    require(pdf == 0 || std::abs(length(w) - 1) < 1e-9, file, "a sample direction that is not a unit vector");
+  }
+}
+
+}  // namespace
+
+void feedPhotometry(std::span<const uint8_t> input, const std::string &folder) {
+  ensureFixtures(folder);
+  std::exception_ptr firstRefusal;
+  bool accepted = false;
+  for (const char *name : {"lamp.ies", "lamp.ldt"}) {
+    const std::string path = inFolder(folder, name);
+    writeFile(path, input.data(), input.size());
+    try {
+      checkDistribution(*readPhotometricFile(path));
+      accepted = true;
+    } catch (const InputError &) {
+      if (!firstRefusal) firstRefusal = std::current_exception();
+    }
+  }
+  if (!accepted) std::rethrow_exception(firstRefusal);
+}
+
 std::span<const FuzzTarget> fuzzTargets() {
   static constexpr FuzzTarget kTargets[] = {
       {"scene_json", feedSceneJson, "scene.json"},
@@ -219,6 +276,7 @@ std::span<const FuzzTarget> fuzzTargets() {
       {"texture", feedTexture, "texture"},
       {"image", feedImage, "image."},
       {"solution_file", feedSolutionFile, "solution.rad"},
+      {"photometry", feedPhotometry, "lamp.ies"},
   };
   return kTargets;
 }

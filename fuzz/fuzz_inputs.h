@@ -77,13 +77,27 @@ void feedImage(std::span<const uint8_t> input, const std::string &folder);
 /// input would stop at the first check.
 void feedSolutionFile(std::span<const uint8_t> input, const std::string &folder);
 
+/// A photometric file (docs/luminaires.md#photometric-files), through
+/// readPhotometricFile twice: written as lamp.ies (the IES LM-63 reader) and
+/// as lamp.ldt (the EULUMDAT reader); the folder also holds the fixture
+/// tilt.tlt, so that TILT=tilt.tlt reaches the tilt-file reader. An accepted
+/// distribution is then asked what a renderer asks (candela, pdf and sample
+/// towards a few directions, lumens, tiltFactor), and must give finite,
+/// non-negative values, pdf > 0 where candela > 0 and unit sample
+/// directions: else it throws std::logic_error, a finding. Since one input
+/// is rarely both formats, the input counts as accepted when either reader
+/// accepts it (the other's refusal is dropped), and as refused only when
+/// both refuse it: then the IES reader's InputError is rethrown.
+void feedPhotometry(std::span<const uint8_t> input, const std::string &folder);
+
 /// All targets, in the order tools/fuzz.sh runs them.
 std::span<const FuzzTarget> fuzzTargets();
 
 /// Writes the files a fuzzed scene may name into `folder`, under the names
 /// scenes/cornell-textured uses: textures/checker.png (8-bit RGB) and
 /// textures/egg-crate.png (16-bit), both 8 × 8, and mesh.obj with mesh.mtl
-/// (a quad with a texture and a bump map). Called once per folder.
+/// (a quad with a texture and a bump map); and tilt.tlt, an IES tilt file of
+/// three angles (for TILT=tilt.tlt). Called once per folder.
 void writeFixtures(const std::string &folder);
 
 /// The file's bytes.
