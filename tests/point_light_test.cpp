@@ -115,6 +115,20 @@ TEST(PointLight, BadLightsAreRefusedAtTheirJsonPath) {
             }).find("/lights/0/aim"),
             std::string::npos);
   EXPECT_NE(errorOf([] {
+              loadSceneText(sceneWithLights(
+                  R"([{"type": "spot", "position": [0, 2, 0], "intensity": 1, "cone_angle": 0.00001}])"));
+            }).find("/lights/0/cone_angle"),
+            std::string::npos);
+  // A spectrum that is 0 at every sample wavelength has no luminance to keep the candela by.
+  EXPECT_NE(errorOf([] {
+              loadSceneText(R"({"version": 1, "spectral": {"wavelengths": [450, 550, 650]},
+                "materials": {"grey": {"reflectance": 0.5}},
+                "objects": [{"type": "quad", "material": "grey", "vertices": [[0, 0, 0], [0, 0, 1], [1, 0, 1], [1, 0, 0]]}],
+                "lights": [{"type": "point", "position": [0, 2, 0], "intensity": 1,
+                            "colour": {"spectrum": [[460, 0], [500, 1], [540, 0]]}}]})");
+            }).find("no luminance"),
+            std::string::npos);
+  EXPECT_NE(errorOf([] {
               loadSceneText(sceneWithLights(R"([{"type": "point", "position": [0, 2, 0], "intensity": -5}])"));
             }).find("/lights/0/intensity"),
             std::string::npos);
@@ -294,6 +308,28 @@ TEST(PointLight, EverySolverMeetsTheInterreflectionFormulaInAPointLitRoom) {
     EXPECT_NEAR(direct / (rho * flux), 1.0, 0.003) << solver;
     EXPECT_NEAR(s.stats.emittedPower[0], flux, 1e-9 * flux) << solver;
   }
+}
+
+TEST(PointLight, TheStochasticSolverShootsThePointLightsOnBesideAFaintEmitter) {
+  // The walls emit a ten-thousandth of the lamp's flux: the emission is spent
+  // after one iteration (residual below the tolerance), but the lamp's
+  // reflected light must still be shot on — the formula holds for the total flux.
+  const double rho = 0.6;
+  Scene scene = pointLitRoom(rho);
+  const double area = 2 * (4 * 2.5 + 4 * 3 + 3 * 2.5);
+  const double lampFlux = scene.lights[0].power()[0];
+  scene.materials[0].emission = Bands(1e-4 * lampFlux / (kPi * area));
+  const double flux = lampFlux * (1 + 1e-4);
+  RayTracer tracer(scene);
+  MeshOptions mesh;
+  mesh.maxEdgeLength = 0.5;
+  SolverOptions options;
+  options.solver = "stochastic";
+  options.tolerance = 1e-3;
+  Solution s = meshAndSolve(scene, tracer, mesh, options);
+  double sum = 0;
+  for (size_t e = 0; e < s.elementCount(); ++e) sum += s.irradiance[e][0] * s.mesh.elements[e].area;
+  EXPECT_NEAR(sum / area / (flux / (area * (1 - rho))), 1.0, 0.01);
 }
 
 }  // namespace

@@ -328,20 +328,34 @@ Bands DirectIrradiance::pointLightIrradiance(const Vec3 &x, const Vec3 &n) const
       if (cosTheta <= 0) continue;
       // The inverse-square law: E = I(ω) cos θ / d², ω the direction from the light to x.
       const Bands intensity = light.intensity(-w);
-      if (intensity.max() <= 0 || segmentBlocked(x, p)) continue;
+      if (intensity.max() <= 0 || segmentBlocked(x, n, p)) continue;
       h += intensity * (cosTheta / (distanceSquared * count));
     }
   }
   return h;
 }
 
-bool DirectIrradiance::segmentBlocked(const Vec3 &x, const Vec3 &p) const {
+bool DirectIrradiance::segmentBlocked(const Vec3 &x, const Vec3 &n, const Vec3 &p) const {
   thread_local std::vector<uint32_t> candidates;
   Box3 box;
   box.extend(x);
   box.extend(p);
   const double tolerance = 1e-9 * scale_;
-  faces_.facesOverlapping(box, tolerance, candidates);
+  // The faces whose boxes meet the segment's; past kMaxExactSegmentFaces of
+  // them (a long segment over a tessellated model) one ray through the
+  // tracer instead, stopped 10⁻⁵ of the way short of p like the renderers'.
+  const HalfSpace sides[6] = {{{1, 0, 0}, -box.lo.x}, {{-1, 0, 0}, box.hi.x}, {{0, 1, 0}, -box.lo.y},
+                              {{0, -1, 0}, box.hi.y}, {{0, 0, 1}, -box.lo.z}, {{0, 0, -1}, box.hi.z}};
+  faces_.facesInConvexRegion(sides, 6, tolerance, candidates, tracer_ ? kMaxExactSegmentFaces : SIZE_MAX);
+  if (tracer_ && candidates.size() > kMaxExactSegmentFaces) {
+    const Vec3 d = p - x;
+    if (!(dot(d, d) > 0)) return false;
+    Ray ray = tracer_->spawnRay(x, n, normalize(d));
+    const Vec3 toLight = p - ray.origin;
+    const double distance = length(toLight);
+    ray.direction = toLight / distance;
+    return distance * (1 - 1e-5) > 0 && tracer_->occluded(ray, distance * (1 - 1e-5));
+  }
   const Vec3 d = p - x;
   for (uint32_t f : candidates) {
     const Face &face = scene_.faces[f];
@@ -375,6 +389,7 @@ Bands meanPointLightIrradiance(const DirectIrradiance &direct, const Scene &scen
   double size = 0, nearest = INFINITY;
   for (size_t k = 0; k < polygon.size(); ++k)
     size = std::max(size, length(polygon[(k + 1) % polygon.size()] - polygon[k]));
+  if (!(size > 0)) return Bands(0.0);
   const Vec3 centre = polygonCentroid(polygon);
   for (const PointLight &light : scene.lights)
     nearest = std::min(nearest, std::max(length(light.position - centre) - light.halfLength, 0.0));
@@ -402,9 +417,10 @@ Bands meanPointLightIrradiance(const DirectIrradiance &direct, const Scene &scen
   return count > 0 ? sum / double(count) : Bands(0.0);
 }
 
-std::vector<Bands> pointLightIrradianceOfElements(const Scene &scene, const Solution &solution) {
+std::vector<Bands> pointLightIrradianceOfElements(const RayTracer &tracer, const Solution &solution) {
+  const Scene &scene = tracer.scene();
   if (scene.lights.empty()) return {};
-  const DirectIrradiance direct(scene);
+  const DirectIrradiance direct(scene, tracer, SIZE_MAX);
   const size_t n = solution.elementCount();
   std::vector<Bands> h(n, Bands(0.0));
   tbb::parallel_for(size_t(0), n, [&](size_t e) {

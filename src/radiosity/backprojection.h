@@ -72,7 +72,7 @@ Bands meanPointLightIrradiance(const DirectIrradiance &direct, const Scene &scen
 /// it: ρ·H is each element's first reflected light, as if shot from the
 /// lights before anything else (as progressive refinement shoots from the
 /// brightest sources first: Cohen, Chen, Wallace & Greenberg 1988).
-std::vector<Bands> pointLightIrradianceOfElements(const Scene &scene, const Solution &solution);
+std::vector<Bands> pointLightIrradianceOfElements(const RayTracer &tracer, const Solution &solution);
 
 class DirectIrradiance {
  public:
@@ -100,9 +100,12 @@ class DirectIrradiance {
   /// (Scene::lights, read at each query like the materials) that x sees,
   /// exactly (a segment test against the faces, no sampling).
   Bands pointLightIrradiance(const Vec3 &x, const Vec3 &n) const;
-  /// True when a face lies strictly between x and p (faces through either
-  /// end, as x's own, block nothing).
-  bool segmentBlocked(const Vec3 &x, const Vec3 &p) const;
+  /// True when a face lies strictly between x (normal n) and p (faces
+  /// through either end, as x's own, block nothing): exact, unless more than
+  /// kMaxExactSegmentFaces faces' boxes meet the segment and there is a
+  /// tracer, which then answers with one shadow ray.
+  bool segmentBlocked(const Vec3 &x, const Vec3 &n, const Vec3 &p) const;
+  static constexpr size_t kMaxExactSegmentFaces = 64;
   /// The same when no emitter's shaft holds more than `maxOccluders` faces
   /// (then true, and `out` is set); false otherwise, for the caller to sample.
   bool irradianceWithin(const Vec3 &x, const Vec3 &n, size_t maxOccluders, Bands &out) const;

@@ -72,7 +72,7 @@ void solveGaussSeidel(const RayTracer &tracer, Solution &s, const SolverOptions 
 
   // The direct part is one gather from the emitters, ρ_i Σ_j F_ij E_j, plus
   // what the point lights give, ρ_i H_i: a source term beside the emission.
-  const std::vector<Bands> lightIrradiance = pointLightIrradianceOfElements(tracer.scene(), s);
+  const std::vector<Bands> lightIrradiance = pointLightIrradianceOfElements(tracer, s);
   std::vector<Bands> source = s.emission;
   for (size_t i = 0; i < n; ++i) {
     Bands gathered(0.0);

@@ -75,7 +75,7 @@ class Hierarchy {
  public:
   Hierarchy(const RayTracer &tracer, const Solution &initial, const SolverOptions &options)
       : tracer_(tracer), options_(options) {
-    if (!tracer.scene().lights.empty()) lights_.emplace(tracer.scene());
+    if (!tracer.scene().lights.empty()) lights_.emplace(tracer.scene(), tracer, SIZE_MAX);
     double maxEmission = 0, largestElement = 0;
     for (const Element &e : initial.mesh.elements) largestElement = std::max(largestElement, e.area);
     for (uint32_t p = 0; p < initial.mesh.patches.size(); ++p) {

@@ -67,7 +67,7 @@ void solveProgressive(const RayTracer &tracer, Solution &s, const SolverOptions 
   std::vector<Bands> unshotReflected(n, Bands(0.0));
   // Point lights shoot first, exactly (backprojection.h): ρH is direct light
   // received, to be shot on as reflected light.
-  if (const std::vector<Bands> h = pointLightIrradianceOfElements(tracer.scene(), s); !h.empty())
+  if (const std::vector<Bands> h = pointLightIrradianceOfElements(tracer, s); !h.empty())
     for (size_t j = 0; j < n; ++j) {
       const Bands gain = s.reflectance[j] * h[j];
       s.irradiance[j] += h[j];

@@ -55,7 +55,7 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
   // already received, and is shot on as reflected light once the emission
   // has been (iteration 1 stays the emitters' direct light).
   std::vector<Bands> lightGain;
-  if (const std::vector<Bands> h = pointLightIrradianceOfElements(tracer.scene(), s); !h.empty()) {
+  if (const std::vector<Bands> h = pointLightIrradianceOfElements(tracer, s); !h.empty()) {
     lightGain.resize(n);
     for (size_t e = 0; e < n; ++e) {
       lightGain[e] = s.reflectance[e] * h[e];
@@ -81,7 +81,15 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
       cdf[e] = total;
     }
     s.stats.residual = total / emitted;
-    if (s.stats.residual < options.tolerance || total <= 0) break;
+    if (s.stats.residual < options.tolerance || total <= 0) {
+      if (lightGain.empty()) break;
+      // The emitters' light is (all but) spent before the point lights' was
+      // shot on (a faint panel beside strong lamps): shoot that now.
+      shootLightGain();
+      emissionFirst = false;
+      --iteration;
+      continue;
+    }
     const size_t rays = std::max<size_t>(1000, static_cast<size_t>(double(firstRays) * total / emitted));
     const double powerPerRay = total / double(rays);
     const size_t chunks = (rays + kChunk - 1) / kChunk;

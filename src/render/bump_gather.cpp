@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "radiosity/solution_query.h"
+#include "render/light_sampler.h"
 #include "util/error.h"
 #include "util/random.h"
 
@@ -101,6 +102,22 @@ BumpGather::BumpGather(const RayTracer &tracer, const Solution &solution, const 
         flat += L * cosTheta;
         for (int k = 0; k < perNode; ++k) sums[k] += L * std::max(0.0, dot(tilted[k], local));
       }
+    // Point lights are no surfaces a ray can meet: their direct light enters
+    // exactly, scaled as the sums are (the sums estimate E·N/2π from N
+    // uniform directions). Not for reflected light only (shirley, kok sample them per pixel).
+    if (!options.reflectedOnly)
+      for (const PointLight &light : tracer.scene().lights)
+        for (int p = 0; p < light.latticePointCount(); ++p) {
+          const Vec3 at = light.latticePoint(p), toLight = at - origin;
+          const double distance2 = dot(toLight, toLight);
+          if (!(distance2 > 0)) continue;
+          const Vec3 w = toLight / std::sqrt(distance2), local = frame.toLocal(w);
+          if (local.z <= 0 || !pointLightVisible(tracer, origin, n, at)) continue;
+          const Bands scaled =
+              light.intensity(-w) * (double(strata * strata) / (2 * kPi * distance2 * light.latticePointCount()));
+          flat += scaled * local.z;
+          for (int k = 0; k < perNode; ++k) sums[k] += scaled * std::max(0.0, dot(tilted[k], local));
+        }
     // Directions of a tilted normal's hemisphere below the node's horizon
     // bring nothing, as in the path tracer (a shading normal never lets light
     // through the geometric surface): in a furnace r(θ') = (1 + cos θ')/2.

@@ -52,7 +52,7 @@ CausticPhotonMap::CausticPhotonMap(const RayTracer &tracer, size_t emitted, uint
         direction = light.pointLight->sampleDirection(rng.next(), rng.next(), pdf);
         if (!(pdf > 0)) continue;
         power = light.pointLight->intensity(direction) * (1.0 / (pdf * light.probability * double(emitted)));
-        ray = Ray{light.position, direction};
+        ray = tracer.spawnRay(light.position, direction, direction);  // ε off the point: a ceiling it is set in
       } else {
         // Cosine-distributed direction: power = L·cos/(p_A · cos/π) / N = π L / (p_A N).
         direction = Frame::fromNormal(light.normal).toWorld(sampleCosineHemisphere(rng.next(), rng.next()));

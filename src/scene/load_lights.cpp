@@ -28,9 +28,9 @@ Vec3 lightPosition(const JsonNode &node, double metres) {
   return p;
 }
 
-/// "aim" (default straight down the scene's up) and "rotation" (degrees about it).
-void lightFrame(PointLight &light, const JsonNode &node, const Scene &scene) {
-  Vec3 aim = -normalize(scene.camera.up);
+/// "aim" (default straight down, −y: JSON scenes are y-up) and "rotation" (degrees about it).
+void lightFrame(PointLight &light, const JsonNode &node) {
+  Vec3 aim{0, -1, 0};
   if (node.has("aim")) {
     aim = node.child("aim").asVec3();
     if (!(length(aim) > 0)) node.child("aim").fail("the aim has zero length");
@@ -115,12 +115,13 @@ void parseLights(Scene &scene, const JsonNode &lights, double metres) {
     }
     light.name = uniqueLightName(scene, node, fmt::format("{}-{}", type, index));
     light.position = lightPosition(node, metres);
-    lightFrame(light, node, scene);
+    lightFrame(light, node);
     if (light.kind == PointLightKind::Spot) {
       // cone_angle: the full angle of the outer cone (no light beyond);
       // falloff_angle: how much of it, at its edge, fades (0: a hard edge).
       const double cone = node.number("cone_angle", 60.0);
-      if (!(cone > 0 && cone <= 180)) node.child("cone_angle").fail("expected a full cone angle in (0, 180] degrees");
+      if (!(cone >= 0.1 && cone <= 180))
+        node.child("cone_angle").fail("expected a full cone angle from 0.1 to 180 degrees");
       const double falloff = node.number("falloff_angle", 0.0);
       if (!(falloff >= 0 && falloff <= cone / 2))
         node.child("falloff_angle")
@@ -166,14 +167,15 @@ void parseLuminaires(Scene &scene, const JsonNode &luminaires, double metres, co
     }
     light.name = uniqueLightName(scene, node, fmt::format("luminaire-{}", index));
     light.position = lightPosition(node, metres);
-    lightFrame(light, node, scene);
+    lightFrame(light, node);
     light.multiplier = node.number("multiplier", 1.0);
-    if (!(light.multiplier >= 0) || light.multiplier * light.photometry->maxCandela() > kMaxCandela)
+    // IES TILT: the lamp's output at the luminaire's tilt from straight down (−y).
+    const double tilt = std::acos(std::clamp(-light.axis.y, -1.0, 1.0)) * 180.0 / kPi;
+    const double tiltFactor = light.photometry->tiltFactor(tilt);
+    if (!(light.multiplier >= 0) || light.multiplier * tiltFactor * light.photometry->maxCandela() > kMaxCandela)
       node.child("multiplier")
           .fail(fmt::format("expected a multiplier ≥ 0 that keeps the intensity under {:g} cd", kMaxCandela));
-    // IES TILT: the lamp's output at the luminaire's tilt from straight down.
-    const double tilt = std::acos(std::clamp(dot(light.axis, -normalize(scene.camera.up)), -1.0, 1.0)) * 180.0 / kPi;
-    light.multiplier *= light.photometry->tiltFactor(tilt);
+    light.multiplier *= tiltFactor;
     lightColour(light, node, scene.spectral.enabled());
     parseOpening(light, node, metres);
     scene.lights.push_back(std::move(light));

@@ -493,6 +493,8 @@ class MgfReader {
     const Vec3 down = normalize(toWorld_.vector(Vec3{0, 0, -1}));
     const double tilt = std::acos(std::clamp(dot(light.axis, down), -1.0, 1.0)) * 180.0 / kPi;
     light.multiplier = multiplier * light.photometry->tiltFactor(tilt);
+    if (light.multiplier * light.photometry->maxCandela() > 1e12)
+      fail("ies: -m makes the luminaire brighter than 10¹² cd");
     if (scene_.spectral.enabled()) light.spectrum = SampledSpectrum{{550.0}, {1.0}};  // white: a constant spectrum
     scene_.lights.push_back(std::move(light));
   }

@@ -174,6 +174,14 @@ void checkSpectralScene(Scene &scene) {
     }
   }
   applySpectralColour(scene);
+  // A light's candela are kept through its spectrum's luminance: a spectrum
+  // with none at the scene's wavelengths would make it silently dark.
+  for (const PointLight &light : scene.lights)
+    if (light.spectrum && light.wattsPerCandela.max() <= 0)
+      throw InputError(light.definedAt,
+                       fmt::format("light '{}': its colour's spectrum has no luminance at the scene's wavelengths "
+                                   "(it is 0 at every sample): its candela could not be kept",
+                                   light.name));
 }
 
 }  // namespace radiant::detail
