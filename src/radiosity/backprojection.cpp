@@ -315,23 +315,8 @@ Bands DirectIrradiance::irradiance(const Vec3 &x, const Vec3 &n) const {
 
 Bands DirectIrradiance::pointLightIrradiance(const Vec3 &x, const Vec3 &n) const {
   Bands h(0.0);
-  for (const PointLight &light : scene_.lights) {
-    // A luminaire on an area: the mean over its lattice of points.
-    const int count = light.latticePointCount();
-    for (int k = 0; k < count; ++k) {
-      const Vec3 p = light.latticePoint(k);
-      const Vec3 toLight = p - x;
-      const double distanceSquared = dot(toLight, toLight);
-      if (!(distanceSquared > 0)) continue;
-      const Vec3 w = toLight / std::sqrt(distanceSquared);
-      const double cosTheta = dot(n, w);
-      if (cosTheta <= 0) continue;
-      // The inverse-square law: E = I(ω) cos θ / d², ω the direction from the light to x.
-      const Bands intensity = light.intensity(-w);
-      if (intensity.max() <= 0 || segmentBlocked(x, n, p)) continue;
-      h += intensity * (cosTheta / (distanceSquared * count));
-    }
-  }
+  for (const PointLight &light : scene_.lights)
+    h += irradianceFrom(light, x, n, [&](const Vec3 &p, const Vec3 &) { return !segmentBlocked(x, n, p); });
   return h;
 }
 
@@ -347,15 +332,7 @@ bool DirectIrradiance::segmentBlocked(const Vec3 &x, const Vec3 &n, const Vec3 &
   const HalfSpace sides[6] = {{{1, 0, 0}, -box.lo.x}, {{-1, 0, 0}, box.hi.x}, {{0, 1, 0}, -box.lo.y},
                               {{0, -1, 0}, box.hi.y}, {{0, 0, 1}, -box.lo.z}, {{0, 0, -1}, box.hi.z}};
   faces_.facesInConvexRegion(sides, 6, tolerance, candidates, tracer_ ? kMaxExactSegmentFaces : SIZE_MAX);
-  if (tracer_ && candidates.size() > kMaxExactSegmentFaces) {
-    const Vec3 d = p - x;
-    if (!(dot(d, d) > 0)) return false;
-    Ray ray = tracer_->spawnRay(x, n, normalize(d));
-    const Vec3 toLight = p - ray.origin;
-    const double distance = length(toLight);
-    ray.direction = toLight / distance;
-    return distance * (1 - 1e-5) > 0 && tracer_->occluded(ray, distance * (1 - 1e-5));
-  }
+  if (tracer_ && candidates.size() > kMaxExactSegmentFaces) return !tracer_->seesPoint(x, n, p);
   const Vec3 d = p - x;
   for (uint32_t f : candidates) {
     const Face &face = scene_.faces[f];

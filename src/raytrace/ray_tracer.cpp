@@ -135,6 +135,17 @@ bool RayTracer::occluded(const Ray &ray, double tMax) const {
   return r.tfar < 0.0f;  // Embree sets tfar to −inf on a hit
 }
 
+bool RayTracer::seesPoint(const Vec3 &from, const Vec3 &fromNormal, const Vec3 &p) const {
+  const Vec3 d = p - from;
+  if (!(dot(d, d) > 0)) return true;
+  Ray ray = spawnRay(from, fromNormal, normalize(d));
+  const Vec3 toPoint = p - ray.origin;
+  const double distance = length(toPoint);
+  ray.direction = toPoint / distance;
+  const double tMax = distance * (1 - 1e-5);
+  return tMax <= 0 || !occluded(ray, tMax);
+}
+
 bool RayTracer::visible(const Vec3 &from, const Vec3 &fromNormal, const Vec3 &to, const Vec3 &toNormal) const {
   Vec3 d = to - from;
   if (!(dot(d, d) > 0)) return true;

@@ -49,6 +49,11 @@ class RayTracer {
   bool occluded(const Ray &ray, double tMax) const;
   /// True if the two points see each other (both offset off their surfaces).
   bool visible(const Vec3 &from, const Vec3 &fromNormal, const Vec3 &to, const Vec3 &toNormal) const;
+  /// True when nothing lies between a surface point and a point p that is on
+  /// no surface (a point light): the shadow ray stops 10⁻⁵ of the distance
+  /// short of p, so a light set in a ceiling's plane is not hidden by that
+  /// plane through round-off along a grazing ray (ε short is not enough there).
+  bool seesPoint(const Vec3 &from, const Vec3 &fromNormal, const Vec3 &p) const;
 
   /// Many rays at once (Embree's stream API, coherent flag), compact results.
   void intersectMany(std::span<const Ray> rays, std::span<HitRecord> records) const;

@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include "radiosity/solution_query.h"
-#include "render/light_sampler.h"
 #include "util/error.h"
 #include "util/random.h"
 
@@ -112,7 +111,7 @@ BumpGather::BumpGather(const RayTracer &tracer, const Solution &solution, const 
           const double distance2 = dot(toLight, toLight);
           if (!(distance2 > 0)) continue;
           const Vec3 w = toLight / std::sqrt(distance2), local = frame.toLocal(w);
-          if (local.z <= 0 || !pointLightVisible(tracer, origin, n, at)) continue;
+          if (local.z <= 0 || !tracer.seesPoint(origin, n, at)) continue;
           const Bands scaled =
               light.intensity(-w) * (double(strata * strata) / (2 * kPi * distance2 * light.latticePointCount()));
           flat += scaled * local.z;

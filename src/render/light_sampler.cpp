@@ -77,7 +77,7 @@ Bands estimatePointLight(const PointLight &light, const Vec3 &position, double p
   const Bands f = bsdf.evaluate(wi);
   if (f.max() <= 0) return Bands(0.0);
   // The light has no surface: the shadow ray ends at the point, offset along −wi.
-  if (!pointLightVisible(tracer, hit.position, hit.geometricNormal, position)) return Bands(0.0);
+  if (!tracer.seesPoint(hit.position, hit.geometricNormal, position)) return Bands(0.0);
   const double cosSurface = std::abs(dot(wi, hit.shadingNormal));
   return f * intensity * (cosSurface / (distance2 * probability));
 }
@@ -108,34 +108,13 @@ Bands estimateDirectLight(const LightSampler &lights, const RayTracer &tracer, c
   return f * light.radiance * (cosSurface * weight / lightPdf);
 }
 
-bool pointLightVisible(const RayTracer &tracer, const Vec3 &from, const Vec3 &fromNormal, const Vec3 &p) {
-  const Vec3 d = p - from;
-  if (!(dot(d, d) > 0)) return true;
-  Ray ray = tracer.spawnRay(from, fromNormal, normalize(d));
-  const Vec3 toLight = p - ray.origin;
-  const double distance = length(toLight);
-  ray.direction = toLight / distance;
-  const double tMax = distance * (1 - 1e-5);
-  return tMax <= 0 || !tracer.occluded(ray, tMax);
-}
-
 Bands pointLightIrradiance(const RayTracer &tracer, const Hit &hit) {
   Bands h(0.0);
-  for (const PointLight &light : tracer.scene().lights) {
-    const int count = light.latticePointCount();  // a luminaire on an area: the mean over its lattice
-    for (int k = 0; k < count; ++k) {
-      const Vec3 p = light.latticePoint(k);
-      const Vec3 toLight = p - hit.position;
-      const double distance2 = dot(toLight, toLight);
-      if (!(distance2 > 0)) continue;
-      const Vec3 wi = toLight / std::sqrt(distance2);
-      const double cosSurface = dot(wi, hit.shadingNormal);
-      if (cosSurface <= 0 || dot(wi, hit.geometricNormal) <= 0) continue;
-      const Bands intensity = light.intensity(-wi);
-      if (intensity.max() <= 0 || !pointLightVisible(tracer, hit.position, hit.geometricNormal, p)) continue;
-      h += intensity * (cosSurface / (distance2 * count));
-    }
-  }
+  // cos θ against the shading normal; nothing from behind the geometric surface.
+  for (const PointLight &light : tracer.scene().lights)
+    h += irradianceFrom(light, hit.position, hit.shadingNormal, [&](const Vec3 &p, const Vec3 &w) {
+      return dot(w, hit.geometricNormal) > 0 && tracer.seesPoint(hit.position, hit.geometricNormal, p);
+    });
   return h;
 }
 

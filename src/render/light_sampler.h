@@ -62,12 +62,6 @@ class LightSampler {
   Bands totalPower_;
 };
 
-/// True when nothing lies between a surface point and a point light at p.
-/// The shadow ray stops 10⁻⁵ of the distance short of p, so a light set in
-/// a ceiling's plane is not hidden by that plane through round-off along a
-/// grazing ray (RayTracer::visible stops ε short, which is not enough there).
-bool pointLightVisible(const RayTracer &tracer, const Vec3 &from, const Vec3 &fromNormal, const Vec3 &p);
-
 /// Irradiance at a surface point from every point light (Scene::lights) it
 /// sees, exactly: Σ I(ω) cos θ / d² with cos θ against the shading normal and
 /// one shadow ray per light (the per-pixel gather of reichert).

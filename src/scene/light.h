@@ -16,6 +16,7 @@
 // anything lies between (hard shadows).
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -95,6 +96,29 @@ struct PointLight {
   /// Density of sampleDirection at a world direction, per steradian.
   double directionPdf(const Vec3 &direction) const;
 };
+
+/// The irradiance at x, on a plane of unit normal n, from `light`:
+/// I(ω) cos θ / d², the inverse-square law, or its mean over the lattice
+/// points of a luminaire on an area, counting only the points p for which
+/// `sees(p, w)` is true (w the unit direction from x to p): the shadow test,
+/// exact or by ray, is the caller's.
+template <typename Sees>
+Bands irradianceFrom(const PointLight &light, const Vec3 &x, const Vec3 &n, const Sees &sees) {
+  Bands h(0.0);
+  const int count = light.latticePointCount();
+  for (int k = 0; k < count; ++k) {
+    const Vec3 p = light.latticePoint(k), toLight = p - x;
+    const double distanceSquared = dot(toLight, toLight);
+    if (!(distanceSquared > 0)) continue;
+    const Vec3 w = toLight / std::sqrt(distanceSquared);
+    const double cosTheta = dot(n, w);
+    if (cosTheta <= 0) continue;
+    const Bands intensity = light.intensity(-w);
+    if (intensity.max() <= 0 || !sees(p, w)) continue;
+    h += intensity * (cosTheta / (distanceSquared * count));
+  }
+  return h;
+}
 
 /// "'desk-1': 2400 lm, at most 1270 cd (downlight.ies: LED downlight 20 W)":
 /// what the light gives, for the solver's summary and the grid report.
