@@ -196,7 +196,7 @@ TEST(MgfImport, MaterialsMapToRadiantKinds) {
   std::string text = kSquare;
   text += "m mirror =\n rs 0.9 0\nf a b c d\n";
   text += "m glossy =\n rd 0.3\n rs 0.2 0.1\nf a b c d\n";
-  text += "m glass =\n ir 1.5 0\n ts 0.9 0\nf a b c d\n";
+  text += "m glass =\n ir 1.5 0\n ts 0.9 0\n sides 2\nf a b c d\n";
   text += "m lamp =\n ed 1000\nf a b c d\n";
   text += "m cloth =\n rd 0.4\n td 0.2\n sides 2\nf a b c d\n";
   Scene scene = loadMgfText(text);
@@ -212,7 +212,10 @@ TEST(MgfImport, MaterialsMapToRadiantKinds) {
   std::string all;
   for (const std::string &w : scene.warnings) all += w + "\n";
   EXPECT_NE(all.find("diffuse transmittance (td 0.2)"), std::string::npos) << all;
-  EXPECT_NE(all.find("'sides 2'"), std::string::npos) << all;
+  // sides 2 makes a two-sided surface (a back face per face), except for glass, an interface.
+  EXPECT_TRUE(scene.materials[4].twoSided);
+  EXPECT_FALSE(scene.materials[2].twoSided);
+  EXPECT_NE(all.find("material 'glass': 'sides 2' is dropped"), std::string::npos) << all;
   // A material changed after use is a second Radiant material; the faces before keep the first.
   Scene changed =
       loadMgfText(std::string(kSquare) + "m w =\n rd 0.5\nf a b c d\nm w\n rd 0.2\nxf -t 0 0 1\nf a b c d\nxf\n");

@@ -222,7 +222,8 @@ std::vector<FaceSplit> splitFaces(const Scene &scene, const RayTracer &tracer, c
     tree.facesOverlapping(box, gap, near);
     std::vector<CutSegment> cuts;
     for (uint32_t g : near)
-      if (g != f) cutsOf(face, planarFace(scene, g), onPlane, gap, tolerance, cuts);
+      if (g != f && g != scene.geometricFace(uint32_t(f)) && int64_t(g) != scene.faces[f].twin)
+        cutsOf(face, planarFace(scene, g), onPlane, gap, tolerance, cuts);
     if (cuts.empty()) return;
     std::vector<std::vector<Vec3>> pieces{face.polygon};
     for (const CutSegment &cut : cuts) splitPieces(pieces, cut, face.normal, tolerance);

@@ -213,8 +213,10 @@ double visibleFormFactor(const Scene &scene, const FaceTree *tree, const std::ve
   const double baseSize = std::sqrt(baseArea);
 
   bool occluded = false;
+  // The tree lists the front of a two-sided pair for its back too.
+  const int64_t skipGeometry = skipFace >= 0 ? int64_t(scene.geometricFace(uint32_t(skipFace))) : -1;
   for (uint32_t f : candidates) {
-    if (int64_t(f) == skipFace) continue;
+    if (int64_t(f) == skipFace || int64_t(f) == skipGeometry) continue;
     const Face &face = scene.faces[f];
     const Vec3 faceNormal = scene.faceNormal(face);
     // A face whose plane passes through x (x's own face, a coplanar

@@ -101,7 +101,7 @@ bool LinkEstimator::shaftOccluders(const LinkEnd &receiver, const LinkEnd &sourc
   faces_.facesInConvexRegion(hull, planes, tolerance, candidates, limit == SIZE_MAX ? limit : limit + 2);
   if (limit != SIZE_MAX && candidates.size() > limit + 2) return false;
   for (uint32_t f : candidates) {
-    if (f == receiver.face || f == source.face) continue;
+    if (f == scene_.geometricFace(receiver.face) || f == scene_.geometricFace(source.face)) continue;
     const Face &face = scene_.faces[f];
     polygon.clear();
     for (int k = 0; k < face.vertexCount; ++k) polygon.push_back(scene_.positions[face.vertices[k]]);

@@ -18,11 +18,13 @@ FaceTree::FaceTree(const Scene &scene) {
     for (int k = 0; k < face.vertexCount; ++k) faceBounds_[f].extend(scene.positions[face.vertices[k]]);
     centres[f] = (faceBounds_[f].lo + faceBounds_[f].hi) * 0.5;
   }
-  faces_.resize(count);
-  std::iota(faces_.begin(), faces_.end(), 0u);
-  if (count == 0) return;
-  nodes_.reserve(2 * (count / kLeafSize + 1));
-  build(0, count, centres);
+  // A back face (Face::back) is the same polygon as its front: the tree holds the front only.
+  for (uint32_t f = 0; f < count; ++f)
+    if (!scene.faces[f].back) faces_.push_back(f);
+  const uint32_t held = static_cast<uint32_t>(faces_.size());
+  if (held == 0) return;
+  nodes_.reserve(2 * (held / kLeafSize + 1));
+  build(0, held, centres);
 }
 
 int32_t FaceTree::build(uint32_t first, uint32_t count, const std::vector<Vec3> &centres) {

@@ -49,6 +49,8 @@ struct HalfSpace {
 
 class FaceTree {
  public:
+  /// Holds every face but the backs of two-sided surfaces (Face::back): a
+  /// query lists a pair's front for both sides, Scene::geometricFace.
   explicit FaceTree(const Scene &scene);
 
   /// Faces whose bounding box is not excluded by any of the half-spaces (a

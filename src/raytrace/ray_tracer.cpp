@@ -36,7 +36,28 @@ RayTracer::RayTracer(const Scene &scene) : scene_(scene) {
                          t.material, t.face, t.n[0] >= 0 && t.n[1] >= 0 && t.n[2] >= 0});
   }
 
-  if (!scene.triangles.empty()) {
+  // Back faces stay out of the BVH: each is the same polygon as its front.
+  bool anyBack = false;
+  for (const Face &f : scene.faces) anyBack = anyBack || f.back;
+  if (anyBack) {
+    std::vector<BackTriangles> ofFace(scene.faces.size());
+    for (uint32_t t = 0; t < scene.triangles.size(); ++t) {
+      BackTriangles &b = ofFace[scene.triangles[t].face];
+      if (b.count++ == 0) b.first = t;  // a face's triangles are consecutive (Scene::addFace)
+    }
+    back_.resize(scene.triangles.size());
+    for (uint32_t t = 0; t < scene.triangles.size(); ++t) {
+      const Face &face = scene.faces[scene.triangles[t].face];
+      if (face.back)
+        continue;
+      else
+        embreeTriangle_.push_back(t);
+      if (face.twin >= 0) back_[t] = ofFace[size_t(face.twin)];
+    }
+  }
+  const size_t primitives = anyBack ? embreeTriangle_.size() : scene.triangles.size();
+
+  if (primitives > 0) {
     RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto *vertices = static_cast<float *>(rtcSetNewGeometryBuffer(
         geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), scene.positions.size()));
@@ -46,9 +67,9 @@ RayTracer::RayTracer(const Scene &scene) : scene_(scene) {
       vertices[3 * i + 2] = static_cast<float>(scene.positions[i].z);
     }
     auto *indices = static_cast<unsigned *>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), scene.triangles.size()));
-    for (size_t i = 0; i < scene.triangles.size(); ++i)
-      for (int j = 0; j < 3; ++j) indices[3 * i + j] = scene.triangles[i].v[j];
+        geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), primitives));
+    for (size_t i = 0; i < primitives; ++i)
+      for (int j = 0; j < 3; ++j) indices[3 * i + j] = scene.triangles[anyBack ? embreeTriangle_[i] : i].v[j];
     rtcCommitGeometry(geometry);
     rtcAttachGeometry(rtcScene_, geometry);
     rtcReleaseGeometry(geometry);
@@ -95,9 +116,30 @@ inline void setEmbreeRayHit(RTCRayHit &out, const Ray &ray, double tMax) {
   out.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }
 
-void RayTracer::completeHit(const Ray &ray, float tfar, unsigned primitive, float u, float v, Hit &hit) const {
-  const TriangleGeometry &g = geometry_[primitive];
-  hit.triangle = primitive;
+void RayTracer::resolveHit(const Ray &ray, unsigned primitive, float &u, float &v, uint32_t &triangle) const {
+  triangle = embreeTriangle_.empty() ? primitive : embreeTriangle_[primitive];
+  if (back_.empty() || back_[triangle].count == 0 || !(dot(ray.direction, geometry_[triangle].normal) > 0)) return;
+  // From behind: the back triangle holding the same point (the back's fan may
+  // cut the polygon along the other diagonal), in its own barycentrics.
+  const TriangleGeometry &g = geometry_[triangle];
+  const Vec3 p = g.p0 + g.edge1 * double(u) + g.edge2 * double(v);
+  double bestOutside = INFINITY;
+  const BackTriangles &b = back_[triangle];
+  for (uint32_t t = b.first; t < b.first + b.count; ++t) {
+    const TriangleGeometry &h = geometry_[t];
+    const Vec3 d = p - h.p0;
+    const double a11 = dot(h.edge1, h.edge1), a12 = dot(h.edge1, h.edge2), a22 = dot(h.edge2, h.edge2);
+    const double r1 = dot(d, h.edge1), r2 = dot(d, h.edge2), det = a11 * a22 - a12 * a12;
+    if (!(det > 0)) continue;
+    const double b1 = (a22 * r1 - a12 * r2) / det, b2 = (a11 * r2 - a12 * r1) / det;
+    const double outside = std::max({0.0, -b1, -b2, b1 + b2 - 1});
+    if (outside < bestOutside) bestOutside = outside, triangle = t, u = float(b1), v = float(b2);
+  }
+}
+
+void RayTracer::completeHit(const Ray &ray, float tfar, unsigned triangle, float u, float v, Hit &hit) const {
+  const TriangleGeometry &g = geometry_[triangle];
+  hit.triangle = triangle;
   hit.b1 = u;
   hit.b2 = v;
   hit.material = g.material;
@@ -108,7 +150,7 @@ void RayTracer::completeHit(const Ray &ray, float tfar, unsigned primitive, floa
   hit.geometricNormal = g.normal;
   hit.shadingNormal = g.normal;
   if (g.hasVertexNormals) {
-    const Triangle &t = scene_.triangles[primitive];
+    const Triangle &t = scene_.triangles[triangle];
     double b0 = 1.0 - hit.b1 - hit.b2;
     Vec3 n = normalize(scene_.normals[t.n[0]] * b0 + scene_.normals[t.n[1]] * hit.b1 + scene_.normals[t.n[2]] * hit.b2);
     if (isFinite(n) && length(n) > 0) hit.shadingNormal = dot(n, g.normal) < 0 ? -n : n;
@@ -122,7 +164,9 @@ bool RayTracer::intersect(const Ray &ray, Hit &hit, double tMax) const {
   setEmbreeRayHit(rh, ray, tMax);
   rtcIntersect1(rtcScene_, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-  completeHit(ray, rh.ray.tfar, rh.hit.primID, rh.hit.u, rh.hit.v, hit);
+  uint32_t triangle;
+  resolveHit(ray, rh.hit.primID, rh.hit.u, rh.hit.v, triangle);
+  completeHit(ray, rh.ray.tfar, triangle, rh.hit.u, rh.hit.v, hit);
   return true;
 }
 
@@ -173,9 +217,11 @@ void RayTracer::intersectMany(std::span<const Ray> rays, std::span<HitRecord> re
     for (size_t i = 0; i < count; ++i) setEmbreeRayHit(batch[i], rays[start + i], INFINITY);
     rtcIntersect1M(rtcScene_, &context, batch, static_cast<unsigned>(count), sizeof(RTCRayHit));
     for (size_t i = 0; i < count; ++i) {
-      const RTCRayHit &rh = batch[i];
+      RTCRayHit &rh = batch[i];
       HitRecord &r = records[start + i];
-      r.triangle = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? rh.hit.primID : HitRecord::kNone;
+      r.triangle = HitRecord::kNone;
+      if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID)
+        resolveHit(rays[start + i], rh.hit.primID, rh.hit.u, rh.hit.v, r.triangle);
       r.distance = rh.ray.tfar;
       r.b1 = rh.hit.u;
       r.b2 = rh.hit.v;

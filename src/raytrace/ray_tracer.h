@@ -75,8 +75,10 @@ class RayTracer {
   const Scene &scene() const { return scene_; }
   RTCScene embreeScene() const { return rtcScene_; }
 
-  /// Fills a Hit from Embree's primitive id and barycentrics (used by the stream path and the benchmark).
-  void completeHit(const Ray &ray, float tfar, unsigned primitive, float u, float v, Hit &hit) const;
+  /// Fills a Hit from a scene triangle and its barycentrics (used by the
+  /// stream path and the benchmark; without back faces Embree's primitive
+  /// ids are the scene's triangle indices).
+  void completeHit(const Ray &ray, float tfar, unsigned triangle, float u, float v, Hit &hit) const;
 
  private:
   const Scene &scene_;
@@ -92,6 +94,17 @@ class RayTracer {
     bool hasVertexNormals;
   };
   std::vector<TriangleGeometry> geometry_;
+
+  // Two-sided surfaces (Face::twin): Embree holds only the fronts; a hit on a
+  // front triangle from behind is a hit on its face's back.
+  static constexpr uint32_t kNoBack = 0xFFFFFFFFu;
+  struct BackTriangles {
+    uint32_t first = kNoBack, count = 0;  ///< the back face's triangles in Scene::triangles
+  };
+  std::vector<BackTriangles> back_;       ///< per triangle; empty when the scene has no back faces
+  std::vector<uint32_t> embreeTriangle_;  ///< Embree primitive id → scene triangle; empty: the same
+  /// Scene triangle and barycentrics of an Embree hit, the back's when the ray arrives from behind.
+  void resolveHit(const Ray &ray, unsigned primitive, float &u, float &v, uint32_t &triangle) const;
 };
 
 }  // namespace radiant

@@ -107,7 +107,8 @@ Material parseMaterial(const JsonNode &node, const std::string &name, const fs::
   node.expectObject();
   static const std::vector<std::string> kTypes = {"lambertian", "mirror", "dielectric", "glossy"};
   std::string type = parseType(node, kTypes, "lambertian", "material");
-  checkTypedKeys(node, {"type", "emission", "bump", "bump_scale", "normal_map", "texture_wrap", "texture_scale"},
+  checkTypedKeys(node,
+                 {"type", "emission", "two_sided", "bump", "bump_scale", "normal_map", "texture_wrap", "texture_scale"},
                  {{"lambertian", {"reflectance", "texture"}},
                   {"mirror", {"reflectance"}},
                   {"dielectric", {"ior", "transmittance"}},
@@ -145,6 +146,15 @@ Material parseMaterial(const JsonNode &node, const std::string &name, const fs::
     m.roughness = node.number("roughness", 0.2);
   }
   m.emission = value("emission", Bands(0.0), m.spectra.emission);
+  if (node.has("two_sided")) {
+    const JsonNode sided = node.child("two_sided");
+    if (!sided.value().is_boolean()) sided.fail("expected true or false, got " + describeJson(sided.value()));
+    m.twoSided = sided.value().get<bool>();
+    if (m.twoSided && m.kind == MaterialKind::Dielectric)
+      sided.fail(
+          "a dielectric is the interface between two media: its faces' sides are inside and outside, "
+          "so it cannot be two-sided (a thin glass pane is two faces, one per side)");
+  }
   if (node.has("texture")) {
     m.diffuseTexture = resolveExistingFile(node.child("texture"), sceneDirectory, "texture file");
     m.diffuseTextureFrom = node.child("texture").location();

@@ -45,6 +45,9 @@ struct Material {
   double roughness = 0.2;  ///< GGX α (Glossy), in (0, 1]
   /// Emitted radiance, W·sr⁻¹·m⁻², uniform over the front hemisphere only.
   Bands emission{0.0};
+  /// Both sides of each face reflect (and emit) alike (MGF `sides 2`, JSON
+  /// "two_sided"): the radiosity mesh gets a patch on each side.
+  bool twoSided = false;
 
   /// Spectral scenes only. The Bands above then hold the values at the three
   /// wavelengths of the current pass (applySpectralPass), or, outside a pass,

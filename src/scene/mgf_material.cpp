@@ -186,8 +186,14 @@ Material mgfToMaterial(const MgfMaterial &mgf, const std::string &name, const In
       m.roughness = std::clamp(mgf.rsAlpha, 0.01, 1.0);
     }
   }
-  if (mgf.sides == 2)
-    warnings.push_back(prefix + "'sides 2': Radiant's surfaces are one-sided; the back of each face absorbs all light");
+  if (mgf.sides == 2) {
+    if (m.kind == MaterialKind::Dielectric)
+      warnings.push_back(prefix +
+                         "'sides 2' is dropped: a transmitting (ts) material is smooth glass, the "
+                         "interface between inside and outside, whose faces are one-sided");
+    else
+      m.twoSided = true;
+  }
   if (anyClipped)
     warnings.push_back(prefix + "a colour outside the sRGB gamut was clipped to it (negative components set to 0)");
 

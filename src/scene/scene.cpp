@@ -1,5 +1,8 @@
 #include "scene/scene.h"
 
+#include <array>
+#include <map>
+
 namespace radiant {
 
 double Scene::faceArea(const Face &f) const {
@@ -63,6 +66,50 @@ bool Scene::addFace(const Face &face) {
   faces.push_back(face);
   triangles.insert(triangles.end(), kept.begin(), kept.end());
   return true;
+}
+
+void Scene::addBackFaces() {
+  // Faces already back to back (the same corners in the reverse cyclic order,
+  // as a modeller makes a sheet with two sides) are paired as they are.
+  using Key = std::vector<std::array<double, 3>>;
+  auto keyOf = [&](const Face &f, bool reversed) {
+    Key key;
+    for (int k = 0; k < f.vertexCount; ++k) {
+      const Vec3 &p = positions[f.vertices[reversed ? (f.vertexCount - k) % f.vertexCount : k]];
+      key.push_back({p.x, p.y, p.z});
+    }
+    std::rotate(key.begin(), std::min_element(key.begin(), key.end()), key.end());
+    return key;
+  };
+  std::map<Key, uint32_t> unpaired;
+  for (uint32_t f = 0; f < faces.size(); ++f) {
+    if (faces[f].twin >= 0) continue;
+    if (auto it = unpaired.find(keyOf(faces[f], true)); it != unpaired.end()) {
+      faces[it->second].twin = int32_t(f);
+      faces[f].twin = int32_t(it->second);
+      faces[f].back = true;
+      unpaired.erase(it);
+    } else {
+      unpaired.emplace(keyOf(faces[f], false), f);
+    }
+  }
+  const size_t count = faces.size();
+  for (size_t f = 0; f < count; ++f) {
+    if (faces[f].twin >= 0 || !materials[faces[f].material].twoSided) continue;
+    // The same corners counter-clockwise seen from behind: 0, n−1, …, 1.
+    const Face &front = faces[f];
+    Face back = front;
+    for (int k = 1; k < front.vertexCount; ++k) {
+      const int from = front.vertexCount - k;
+      back.vertices[k] = front.vertices[from];
+      back.uvs[k] = front.uvs[from];
+      back.normals[k] = front.normals[from];
+    }
+    back.twin = static_cast<int32_t>(f);
+    back.back = true;
+    const int32_t index = static_cast<int32_t>(faces.size());
+    if (addFace(back)) faces[f].twin = index;
+  }
 }
 
 const char *materialKindName(MaterialKind kind) {

@@ -37,6 +37,14 @@ struct Face {
   int32_t normals[4] = {-1, -1, -1, -1};  ///< indices into Scene::normals, or −1
   uint32_t material = 0;
   uint32_t object = 0;
+  /// Two-sided surfaces (Material::twoSided) are a pair of faces back to back:
+  /// the face as given and its back, the same polygon wound the other way
+  /// (added by Scene::addBackFaces). `twin` is the other face of the pair, −1
+  /// for a one-sided face; `back` marks the added one. Each side is its own
+  /// radiosity patch; the ray tracer and the face tree hold only the front's
+  /// geometry and report a hit from behind it as a hit on its back.
+  int32_t twin = -1;
+  bool back = false;
 };
 
 /// One triangle as the ray tracer sees it; `face` is the input polygon it came from.
@@ -139,6 +147,15 @@ struct Scene {
   /// Adds a face, and its triangles; returns false (and counts it) when the face
   /// is degenerate (zero area or non-finite).
   bool addFace(const Face &face);
+  /// Pairs the faces that are already back to back (the same corners in the
+  /// reverse order: the later one becomes the back), then gives every other
+  /// face of a two-sided material a back (Face::twin, Face::back) after all
+  /// faces. validateScene calls it; a scene built in code calls it once its
+  /// faces are in.
+  void addBackFaces();
+  /// The face that holds face f's geometry for the ray tracer and the face
+  /// tree: f itself, or the front of a back face.
+  uint32_t geometricFace(uint32_t f) const { return faces[f].back ? uint32_t(faces[f].twin) : f; }
 };
 
 }  // namespace radiant

@@ -163,6 +163,7 @@ void validateScene(Scene &scene) {
               f.normals[k] < static_cast<int64_t>(scene.normals.size());
     if (!valid) throw InputError(where, "a face refers to a vertex, material or object that does not exist");
   }
+  scene.addBackFaces();
   detail::checkCamera(scene.camera, where);
   detail::checkRenderSettings(scene.render, where);
 
