@@ -211,7 +211,10 @@ TEST(MgfImport, MaterialsMapToRadiantKinds) {
   for (int b = 0; b < 3; ++b) EXPECT_NEAR(scene.materials[3].emission[b], 1000 / (683 * kPi), 1e-3);
   std::string all;
   for (const std::string &w : scene.warnings) all += w + "\n";
-  EXPECT_NE(all.find("diffuse transmittance (td 0.2)"), std::string::npos) << all;
+  // td is diffuse transmittance: a translucent, two-sided material.
+  EXPECT_EQ(all.find("td"), std::string::npos) << all;
+  EXPECT_NEAR(scene.materials[4].transmittance[1], 0.2, 1e-3);
+  EXPECT_NEAR(scene.materials[4].diffuse[1], 0.4, 1e-3);
   // sides 2 makes a two-sided surface (a back face per face), except for glass, an interface.
   EXPECT_TRUE(scene.materials[4].twoSided);
   EXPECT_FALSE(scene.materials[2].twoSided);

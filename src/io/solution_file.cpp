@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "radiosity/transmission.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
 
@@ -137,6 +138,14 @@ uint64_t sceneFingerprint(const Scene &scene) {
       f.bytes(texels.data(), texels.size_bytes());
       f.value(m.uvScale[0]), f.value(m.uvScale[1]);
     }
+    // Translucency (a scene from before it existed: nothing added).
+    if (m.isTranslucent() || m.spectra.transmittance) {
+      f.value(uint8_t(3));
+      if (spectral)
+        spectrum(m.spectra.transmittance, m.transmittance);
+      else
+        for (int b = 0; b < kBandCount; ++b) f.value(m.transmittance[b]);
+    }
     if (spectral) {
       spectrum(m.spectra.diffuse, m.diffuse), spectrum(m.spectra.emission, m.emission);
       spectrum(m.spectra.specular, m.specular);
@@ -237,6 +246,10 @@ void putSolution(Writer &w, const Solution &s) {
   for (uint32_t c : m.facePatchCount) w.put(c);
   w.put(uint8_t(m.nodeOnCut.empty() ? 0 : 1));
   for (uint8_t c : m.nodeOnCut) w.put(c);
+  // Version 6: the light through translucent faces per element, direct and indirect (hierarchical-exact; else none).
+  w.put(uint8_t(s.hasTransmitted() ? 1 : 0));
+  if (s.hasTransmitted())
+    for (size_t e = 0; e < m.elements.size(); ++e) w.put(s.transmittedDirect[e]), w.put(s.transmittedIndirect[e]);
 }
 
 }  // namespace
@@ -395,6 +408,15 @@ Solution getSolution(Reader &r, const Scene &scene) {
     m.nodeOnCut.resize(r.count(nodes, 1, "node cut flags"));
     for (uint8_t &c : m.nodeOnCut) c = r.get<uint8_t>();
   }
+  if (r.get<uint8_t>() != 0) {
+    s.transmittedDirect.resize(r.count(elements, 2 * kBandCount * 8, "transmitted radiosities"));
+    s.transmittedIndirect.resize(s.transmittedDirect.size());
+    for (size_t e = 0; e < s.transmittedDirect.size(); ++e) {
+      s.transmittedDirect[e] = r.bands(), s.transmittedIndirect[e] = r.bands();
+      for (const Bands *b : {&s.transmittedDirect[e], &s.transmittedIndirect[e]})
+        if (!b->isFinite() || b->min() < 0) r.fail("an element's transmitted radiosity is negative or not finite");
+    }
+  }
 
   // Cross-references must stay inside their arrays: a corrupt file must not crash a renderer.
   if (m.patchOfFace.size() != scene.faces.size()) r.fail("the solution's face count differs from the scene's");
@@ -466,6 +488,9 @@ Solution getSolution(Reader &r, const Scene &scene) {
     if (!isFinite(e.centre) || !std::isfinite(e.area)) r.fail("an element's centre or area is not finite");
   m.buildPatchLookup();
   s.nodeReflectance = s.nodeValues(s.reflectance);  // derived, not stored: only after the checks above
+  for (const Patch &p : m.patches)
+    if (p.material >= scene.materials.size()) r.fail("a patch refers to a material that does not exist");
+  s.transmittance = elementTransmittance(scene, m);  // from the materials, as the fingerprint holds them
   return s;
 }
 

@@ -12,7 +12,8 @@
 namespace radiant {
 
 /// 4: a pass count, then one solution per spectral pass (one for RGB scenes).
-constexpr uint32_t kSolutionFormatVersion = 5;
+/// 6: the light through translucent faces per element (Solution::transmittedDirect).
+constexpr uint32_t kSolutionFormatVersion = 6;
 
 /// A hash of what the solution depends on: geometry, faces and the
 /// radiometric material values. A solution is refused for a scene whose

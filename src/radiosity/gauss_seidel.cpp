@@ -1,6 +1,7 @@
 // `gauss-seidel` — gathering on the element matrix (Cohen & Wallace §5.3).
 //
-// B_i = E_i + ρ_i Σ_j F_ij B_j, swept in place until the largest change of B
+// B_i = E_i + ρ_i Σ_j F_ij B_j (+ τ_i H' through a translucent face,
+// radiosity/transmission.h), swept in place until the largest change of B
 // in a sweep, relative to the largest reflected radiosity B − E, falls below
 // the tolerance. F_ij is the
 // form factor from element i's centre to the front of element j's polygon: exact
@@ -20,6 +21,7 @@
 #include "radiosity/backprojection.h"
 #include "radiosity/form_factor.h"
 #include "radiosity/solver.h"
+#include "radiosity/transmission.h"
 #include "util/error.h"
 
 namespace radiant {
@@ -72,15 +74,25 @@ void solveGaussSeidel(const RayTracer &tracer, Solution &s, const SolverOptions 
 
   // The direct part is one gather from the emitters, ρ_i Σ_j F_ij E_j, plus
   // what the point lights give, ρ_i H_i: a source term beside the emission.
+  // Through a translucent face, τ of the other side's the same.
   const std::vector<Bands> lightIrradiance = pointLightIrradianceOfElements(tracer, s);
+  const ElementTransmission transmission(tracer.scene(), s);
   std::vector<Bands> source = s.emission;
   for (size_t i = 0; i < n; ++i) {
     Bands gathered(0.0);
     for (const Coupling &c : rows[i]) gathered += s.emission[c.element] * double(c.formFactor);
     if (!lightIrradiance.empty()) gathered += lightIrradiance[i];
-    s.direct[i] = s.reflectance[i] * gathered;
-    if (!lightIrradiance.empty()) source[i] += s.reflectance[i] * lightIrradiance[i];
+    s.direct[i] += s.reflectance[i] * gathered;
+    transmission.pass(i, gathered, [&](uint32_t to, const Bands &gain) { s.direct[to] += gain; });
+    if (!lightIrradiance.empty()) {
+      source[i] += s.reflectance[i] * lightIrradiance[i];
+      transmission.pass(i, lightIrradiance[i], [&](uint32_t to, const Bands &gain) { source[to] += gain; });
+    }
   }
+  // H of every element as last gathered (without the point lights, which
+  // `source` holds), for what passes through to the other side.
+  const std::vector<std::vector<std::pair<uint32_t, double>>> incoming = transmission.incoming();
+  std::vector<Bands> lastGathered(transmission.empty() ? 0 : n, Bands(0.0));
 
   const int maxSweeps = options.maxIterations > 0 ? options.maxIterations : 10000;
   for (int sweep = 1; sweep <= maxSweeps; ++sweep) {
@@ -89,6 +101,10 @@ void solveGaussSeidel(const RayTracer &tracer, Solution &s, const SolverOptions 
       Bands gathered(0.0);
       for (const Coupling &c : rows[i]) gathered += s.radiosity[c.element] * double(c.formFactor);
       Bands updated = source[i] + s.reflectance[i] * gathered;
+      if (!lastGathered.empty()) {
+        lastGathered[i] = gathered;
+        for (const auto &[from, weight] : incoming[i]) updated += s.transmittance[i] * lastGathered[from] * weight;
+      }
       for (int b = 0; b < kBandCount; ++b) {
         largestChange = std::max(largestChange, std::abs(updated[b] - s.radiosity[i][b]));
         // Against the largest *reflected* radiosity: next to an emitter's B the
@@ -112,7 +128,7 @@ void solveGaussSeidel(const RayTracer &tracer, Solution &s, const SolverOptions 
     for (const Coupling &c : rows[i]) irradiance += s.radiosity[c.element] * double(c.formFactor);
     if (!lightIrradiance.empty()) irradiance += lightIrradiance[i];
     s.irradiance[i] = irradiance;
-    s.stats.absorbedPower += (Bands(1.0) - s.reflectance[i]) * irradiance * s.mesh.elements[i].area;
+    s.stats.absorbedPower += s.absorptance(i) * irradiance * s.mesh.elements[i].area;
     s.indirect[i] = s.radiosity[i] - s.emission[i] - s.direct[i];
     s.unshot[i] = Bands(0.0);
   }

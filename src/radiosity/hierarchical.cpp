@@ -14,7 +14,9 @@
 //
 // Solve: Gather (each node: H_g = Σ_links F·B_source) then Push–Pull (push
 // irradiance down to the leaves, B_leaf = E + ρ·H, pull area-weighted
-// averages up), repeated until B changes by less than the tolerance.
+// averages up), repeated until B changes by less than the tolerance. A leaf
+// of a translucent face adds τ·H' (transmission.h), H' the irradiance of the
+// node over the same region of the other side's tree, as last pulled.
 // Multigridding: the first round refines against B = E (only emitters have
 // radiosity, so only their links refine), then every link is re-examined with
 // the solved B and refined where it now carries too much, and the system is
@@ -39,6 +41,7 @@
 #include "radiosity/form_factor.h"
 #include "radiosity/importance.h"
 #include "radiosity/solver.h"
+#include "radiosity/transmission.h"
 #include "raytrace/surface_detail.h"
 #include "util/error.h"
 #include "util/sampling.h"
@@ -55,10 +58,10 @@ struct Node {
   double area = 0;
   int level = 0;
   std::array<int32_t, 4> children{-1, -1, -1, -1};
-  Bands emission, reflectance;
-  Bands radiosity;                     ///< B: at a leaf E + ρH, above the area average of the children
+  Bands emission, reflectance, transmittance;
+  Bands radiosity;                     ///< B: at a leaf E + ρH + τH', above the area average of the children
   Bands gathered, gatheredDirect;      ///< Σ F·B_source and Σ F·E_source over this node's links
-  Bands irradiance, irradianceDirect;  ///< leaves: everything pushed down to them
+  Bands irradiance, irradianceDirect;  ///< leaves: everything pushed down to them; above: their area average
   Bands lightIrradiance;               ///< from the point lights, averaged over the node (backprojection.h)
   std::vector<uint32_t> links;         ///< incoming links (indices into Hierarchy::links_)
   bool isLeaf() const { return children[0] < 0; }
@@ -90,6 +93,8 @@ class Hierarchy {
       // A patch's elements share its material: take ρ and E from its first element.
       n.emission = initial.emission[patch.firstElement];
       n.reflectance = initial.reflectance[patch.firstElement];
+      n.transmittance = initial.transmittanceOf(patch.firstElement);
+      oppositePatch_.push_back(n.transmittance.max() > 0 ? oppositePatch(tracer.scene(), initial.mesh, p) : -1);
       patchFace_.push_back(patch.face);
       // Decided by the material, not by the first element's ρ̄, which a black
       // corner of the texture makes 0 (review): diffuse, textured, not black.
@@ -287,6 +292,7 @@ class Hierarchy {
       child.level = parent.level + 1;
       child.emission = parent.emission;
       child.reflectance = textured_[parent.patch] ? nodeReflectance(child) : parent.reflectance;
+      child.transmittance = parent.transmittance;
       child.radiosity = parent.radiosity;
       child.lightIrradiance = lightIrradianceOf(child);
       nodes_[n].children[k] = static_cast<int32_t>(nodes_.size());
@@ -388,19 +394,34 @@ class Hierarchy {
       hd += node.lightIrradiance;
       node.irradiance = h;
       node.irradianceDirect = hd;
-      b = node.emission + node.reflectance * h;
+      b = node.emission + node.reflectance * h + node.transmittance * transmitted(node).first;
       change = std::max(change, (b - node.radiosity).max());
       change = std::max(change, (node.radiosity - b).max());
       largest = std::max(largest, (b - node.emission).max());  // reflected radiosity: emitters would mask the walls
     } else {
       b = Bands(0.0);
+      Bands irradiance(0.0), irradianceDirect(0.0);
       for (int c = 0; c < 4; ++c) {
         uint32_t child = static_cast<uint32_t>(node.children[c]);
-        b += pushPull(child, h, hd, change, largest) * (nodes_[child].area / nodes_[n].area);
+        const double w = nodes_[child].area / nodes_[n].area;
+        b += pushPull(child, h, hd, change, largest) * w;
+        irradiance += nodes_[child].irradiance * w;
+        irradianceDirect += nodes_[child].irradianceDirect * w;
       }
+      nodes_[n].irradiance = irradiance;
+      nodes_[n].irradianceDirect = irradianceDirect;
     }
     nodes_[n].radiosity = b;
     return b;
+  }
+
+  /// H' and its direct part: the irradiance of the other side of a
+  /// translucent leaf's face over the same region; 0 for an opaque one.
+  std::pair<Bands, Bands> transmitted(const Node &leaf) const {
+    const int32_t other = oppositePatch_[leaf.patch];
+    if (other < 0) return {Bands(0.0), Bands(0.0)};
+    const Node &m = nodes_[coveringNode(nodes_, uint32_t(other), leaf.centre, nodes_[size_t(other)].normal, leaf.area)];
+    return {m.irradiance, m.irradianceDirect};
   }
 
   /// What the point lights give the node, averaged over it; 0 without lights.
@@ -416,8 +437,9 @@ class Hierarchy {
   }
 
   const RayTracer &tracer_;
-  std::vector<uint32_t> patchFace_;  ///< the scene face of each patch
-  std::vector<bool> textured_;       ///< per patch: its ρ varies with a texture
+  std::vector<uint32_t> patchFace_;     ///< the scene face of each patch
+  std::vector<bool> textured_;          ///< per patch: its ρ varies with a texture
+  std::vector<int32_t> oppositePatch_;  ///< per patch of a translucent face: the other side's, else −1
   const SolverOptions &options_;
   std::vector<Node> nodes_;
   std::vector<HierarchicalLink> links_;
@@ -450,17 +472,19 @@ void Hierarchy::writeTo(Solution &s) const {
   rebuildElementsFromTrees(mesh);
 
   const size_t elements = mesh.elements.size();
-  for (auto *v : {&s.reflectance, &s.emission, &s.radiosity, &s.direct, &s.indirect, &s.irradiance, &s.unshot})
+  for (auto *v :
+       {&s.reflectance, &s.emission, &s.radiosity, &s.direct, &s.indirect, &s.irradiance, &s.unshot, &s.transmittance})
     v->assign(elements, Bands(0.0));
   for (uint32_t n = 0; n < nodes_.size(); ++n) {
     if (mesh.tree[n].element < 0) continue;
     const Node &node = nodes_[n];
     const size_t e = static_cast<size_t>(mesh.tree[n].element);
     s.reflectance[e] = node.reflectance;
+    s.transmittance[e] = node.transmittance;
     s.emission[e] = node.emission;
     s.radiosity[e] = node.radiosity;
     s.irradiance[e] = node.irradiance;
-    s.direct[e] = node.reflectance * node.irradianceDirect;
+    s.direct[e] = node.reflectance * node.irradianceDirect + node.transmittance * transmitted(node).second;
     s.indirect[e] = node.radiosity - node.emission - s.direct[e];
   }
   s.treeRadiosity.resize(nodes_.size());
@@ -485,7 +509,7 @@ void Hierarchy::writeTo(Solution &s) const {
   s.ambient = Bands(0.0);
   s.stats.absorbedPower = Bands(0.0);
   for (size_t e = 0; e < s.elementCount(); ++e)
-    s.stats.absorbedPower += (Bands(1.0) - s.reflectance[e]) * s.irradiance[e] * s.mesh.elements[e].area;
+    s.stats.absorbedPower += s.absorptance(e) * s.irradiance[e] * s.mesh.elements[e].area;
   s.stats.escapedPower = s.stats.emittedPower - s.stats.absorbedPower;
 }
 

@@ -77,6 +77,9 @@ void solveHierarchicalExact(const RayTracer &tracer, Solution &s, const SolverOp
   for (uint32_t p = 0; p < mesh.patches.size(); ++p) {
     const Material &m = scene.materials[mesh.patches[p].material];
     patchReflectance[p] = m.kind == MaterialKind::Lambertian || m.kind == MaterialKind::Glossy ? m.diffuse : Bands(0.0);
+    // A translucent face passes τ of its direct light to its other side: its
+    // error there counts as much (the refinement's weight is max(ρ, τ)).
+    for (int b = 0; b < kBandCount; ++b) patchReflectance[p][b] = std::max(patchReflectance[p][b], m.transmittance[b]);
   }
   const double extent = [&] {
     Box3 b;

@@ -27,6 +27,7 @@
 #include "radiosity/form_factor.h"
 #include "radiosity/hemicube.h"
 #include "radiosity/solver.h"
+#include "radiosity/transmission.h"
 #include "util/error.h"
 
 namespace radiant {
@@ -45,7 +46,7 @@ void ambientTerms(Solution &s, const std::vector<Bands> &unshotEmission) {
     unshotPower += s.unshot[j] * a;
     unshotEmitted += unshotEmission[j] * a;
     area += Bands(a);
-    reflectedArea += s.reflectance[j] * a;
+    reflectedArea += (s.reflectance[j] + s.transmittanceOf(j)) * a;  // scattered to either side
   }
   s.ambient = s.indirectAmbient = Bands(0.0);
   for (int b = 0; b < kBandCount; ++b) {
@@ -65,16 +66,23 @@ void solveProgressive(const RayTracer &tracer, Solution &s, const SolverOptions 
   const auto start = std::chrono::steady_clock::now();
   std::vector<Bands> unshotEmission = s.emission;  // not yet shot emission: becomes `direct` where it lands
   std::vector<Bands> unshotReflected(n, Bands(0.0));
+  // Light through translucent faces (transmission.h): what arrives on one
+  // side gains τH on the other, shot on like reflected light.
+  const ElementTransmission transmission(tracer.scene(), s);
+  auto gainAt = [&](size_t j, const Bands &directGain, const Bands &indirectGain) {
+    s.direct[j] += directGain;
+    s.indirect[j] += indirectGain;
+    s.radiosity[j] += directGain + indirectGain;
+    unshotReflected[j] += directGain + indirectGain;
+    s.unshot[j] += directGain + indirectGain;
+  };
   // Point lights shoot first, exactly (backprojection.h): ρH is direct light
   // received, to be shot on as reflected light.
   if (const std::vector<Bands> h = pointLightIrradianceOfElements(tracer, s); !h.empty())
     for (size_t j = 0; j < n; ++j) {
-      const Bands gain = s.reflectance[j] * h[j];
       s.irradiance[j] += h[j];
-      s.direct[j] += gain;
-      s.radiosity[j] += gain;
-      unshotReflected[j] += gain;
-      s.unshot[j] += gain;
+      gainAt(j, s.reflectance[j] * h[j], Bands(0.0));
+      transmission.pass(j, h[j], [&](uint32_t to, const Bands &gain) { gainAt(to, gain, Bands(0.0)); });
     }
   std::vector<Bands> &irradiance = s.irradiance;  // H: what arrived, for reports and the energy balance
   std::vector<std::vector<Vec3>> polygons(n);
@@ -168,12 +176,14 @@ void solveProgressive(const RayTracer &tracer, Solution &s, const SolverOptions 
       if (formFactor[j] <= 0) continue;
       Bands fromEmission = shootEmission * formFactor[j], fromReflection = shootReflected * formFactor[j];
       irradiance[j] += fromEmission + fromReflection;
-      Bands directGain = s.reflectance[j] * fromEmission, indirectGain = s.reflectance[j] * fromReflection;
-      s.direct[j] += directGain;
-      s.indirect[j] += indirectGain;
-      s.radiosity[j] += directGain + indirectGain;
-      unshotReflected[j] += directGain + indirectGain;
-      s.unshot[j] += directGain + indirectGain;
+      gainAt(j, s.reflectance[j] * fromEmission, s.reflectance[j] * fromReflection);
+      if (!transmission.empty()) {
+        Bands throughDirect(0.0), throughIndirect(0.0);
+        uint32_t other = 0;
+        transmission.pass(j, fromEmission, [&](uint32_t to, const Bands &gain) { other = to, throughDirect = gain; });
+        transmission.pass(j, fromReflection, [&](uint32_t, const Bands &gain) { throughIndirect = gain; });
+        if (throughDirect.max() > 0 || throughIndirect.max() > 0) gainAt(other, throughDirect, throughIndirect);
+      }
     }
     // Shadow rays cast (at most: samples behind a receiver's plane are skipped).
     const size_t k = size_t(std::max(1L, std::lround(std::sqrt(double(options.visibilitySamples)))));
@@ -194,7 +204,7 @@ void solveProgressive(const RayTracer &tracer, Solution &s, const SolverOptions 
   s.stats.absorbedPower = Bands(0.0);
   for (size_t j = 0; j < n; ++j) {
     double a = s.mesh.elements[j].area;
-    s.stats.absorbedPower += (Bands(1.0) - s.reflectance[j]) * irradiance[j] * a;
+    s.stats.absorbedPower += s.absorptance(j) * irradiance[j] * a;
     unshotPower += s.unshot[j] * a;
   }
   s.stats.escapedPower = s.stats.emittedPower - s.stats.absorbedPower - unshotPower;

@@ -30,7 +30,7 @@ void ReflectedLightHierarchy::initialiseClusters() {
       const uint32_t p = clusters_.order[k];
       const uint32_t root = static_cast<uint32_t>(mesh_.patches[p].treeRoot);
       for (int b = 0; b < kBandCount; ++b)
-        clusterReflectance_[i][b] = std::max(clusterReflectance_[i][b], reflectance_[root][b]);
+        clusterReflectance_[i][b] = std::max(clusterReflectance_[i][b], scattering(root)[b]);
       clusterArea_[i].addLobe(mesh_.patches[p].normal, Bands(mesh_.patches[p].area));
     }
     for (int32_t child : {c.left, c.right}) {
@@ -172,7 +172,7 @@ double ReflectedLightHierarchy::clusterLinkError(uint32_t r, uint32_t s, const C
   // from that over them: its largest against its mean (a node: how far its
   // polynomial misses its children).
   const Bands spreadOfR = isCluster(s) ? largest - mean : variation_[s];
-  const Bands &rho = isCluster(r) ? clusterReflectance_[clusterIndex(r)] : reflectance_[r];
+  const Bands rho = isCluster(r) ? clusterReflectance_[clusterIndex(r)] : scattering(r);
   // The kernel's spread is over the receiver: splitting the source cannot
   // make it smaller, only spread it over more links (each under the
   // threshold, all together no better). A receiver that cannot be split

@@ -10,7 +10,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <tuple>
 
+#include "radiosity/transmission.h"
 #include "raytrace/surface_detail.h"
 
 namespace radiant {
@@ -44,7 +46,31 @@ ReflectedLightHierarchy::ReflectedLightHierarchy(const Scene &scene, const RayTr
     addNodeData(n);
     leaves_ += mesh_.tree[n].isLeaf();
   }
+  oppositeRoot_.assign(mesh_.patches.size(), -1);
+  for (uint32_t p = 0; p < mesh_.patches.size(); ++p) {
+    if (transmittance_[size_t(mesh_.patches[p].treeRoot)].max() <= 0) continue;
+    anyTranslucent_ = true;
+    if (const int32_t other = oppositePatch(scene_, mesh_, p); other >= 0)
+      oppositeRoot_[p] = mesh_.patches[size_t(other)].treeRoot;
+  }
   initialiseClusters();
+}
+
+std::pair<Bands, Bands> ReflectedLightHierarchy::transmitted(uint32_t leaf) const {
+  const MeshTreeNode &t = mesh_.tree[leaf];
+  const int32_t root = oppositeRoot_[t.patch];
+  if (root < 0) return {Bands(0.0), Bands(0.0)};
+  Vec3 centre;
+  for (int k = 0; k < t.vertexCount; ++k) centre += t.corners[k] / double(t.vertexCount);
+  const uint32_t m =
+      coveringNode(mesh_.tree, uint32_t(root), centre, mesh_.patches[mesh_.tree[size_t(root)].patch].normal, t.area);
+  return {transmittance_[leaf] * direct_[m], transmittance_[leaf] * meanIrradiance_[m]};
+}
+
+Bands ReflectedLightHierarchy::scattering(uint32_t n) const {
+  Bands s = reflectance_[n];
+  for (int b = 0; b < kBandCount; ++b) s[b] = std::max(s[b], transmittance_[n][b]);
+  return s;
 }
 
 void ReflectedLightHierarchy::addNodeData(uint32_t n) {
@@ -56,6 +82,10 @@ void ReflectedLightHierarchy::addNodeData(uint32_t n) {
   if (material.diffuseTextureIndex >= 0 && rho.max() > 0)
     rho = averageDiffuse(scene_, patch.face, std::span<const Vec3>(t.corners.data(), size_t(t.vertexCount)));
   reflectance_.push_back(rho);
+  transmittance_.push_back(material.kind == MaterialKind::Lambertian || material.kind == MaterialKind::Glossy
+                               ? material.transmittance
+                               : Bands(0.0));
+  meanIrradiance_.push_back(Bands(0.0));
   emission_.push_back(material.emission * kPi);
   reflected_.push_back(Bands(0.0));
   sourceShape_.emplace_back();
@@ -84,9 +114,11 @@ void ReflectedLightHierarchy::initialiseFromDirectLight() {
   // again, H_ambient = R₁ / (1 − ρ̄), ρ̄ the area-mean reflectance.
   Bands firstBounce(0.0), reflectance(0.0);
   double area = 0;
+  // Twice with translucent faces: the second pass reads the other sides' direct light.
+  for (int pass = 0; pass < (anyTranslucent_ ? 2 : 1); ++pass)
+    for (uint32_t p = 0; p < mesh_.patches.size(); ++p) pullDirect(static_cast<uint32_t>(mesh_.patches[p].treeRoot));
   for (uint32_t p = 0; p < mesh_.patches.size(); ++p) {
     const uint32_t root = static_cast<uint32_t>(mesh_.patches[p].treeRoot);
-    pullDirect(root);
     firstBounce += reflected_[root] * mesh_.tree[root].area;
     reflectance += reflectance_[root] * mesh_.tree[root].area;
     area += mesh_.tree[root].area;
@@ -251,6 +283,11 @@ void ReflectedLightHierarchy::pullShapes(uint32_t n) {
     ReceiverPolynomial<Bands> r = directShape_[n];
     r += irradiance_[n];
     for (auto &c : r.c) c = reflectance_[n] * c;
+    // What comes through from the other side, as a constant over the leaf.
+    if (anyTranslucent_) {
+      const auto [throughDirect, throughReflected] = transmitted(n);
+      r.c[0] += throughDirect + throughReflected;
+    }
     sourceShape_[n] = r;
     return;
   }
@@ -268,6 +305,7 @@ void ReflectedLightHierarchy::pullDirect(uint32_t n) {
     direct_[n] = field_.nodeAverage(t);
     directShape_[n] = directShape(n);
     reflected_[n] = reflectance_[n] * direct_[n];
+    if (anyTranslucent_) reflected_[n] += transmitted(n).first;
     return;
   }
   Bands d(0.0), r(0.0);
@@ -329,15 +367,24 @@ Bands ReflectedLightHierarchy::pushPull(uint32_t n, const ReceiverPolynomial<Ban
     if (n < closure_.size() && closure_[n] < 1)
       for (auto &c : h.c) c *= double(closure_[n]);
     irradiance_[n] = h;
-    r = reflectance_[n] * (direct_[n] + nonNegative(h.mean(quad)));
+    meanIrradiance_[n] = nonNegative(h.mean(quad));
+    r = reflectance_[n] * (direct_[n] + meanIrradiance_[n]);
+    if (anyTranslucent_) {
+      const auto [throughDirect, throughReflected] = transmitted(n);
+      r += throughDirect + throughReflected;
+    }
     change = std::max({change, (r - reflected_[n]).max(), (reflected_[n] - r).max()});
     largest = std::max(largest, r.max());
   } else {
     r = Bands(0.0);
+    Bands mean(0.0);
     for (int c = 0; c < 4; ++c) {
       const uint32_t child = static_cast<uint32_t>(t.children[c]);
-      r += pushPull(child, h.restrictTo(quad, c), change, largest) * (mesh_.tree[child].area / t.area);
+      const double w = mesh_.tree[child].area / t.area;
+      r += pushPull(child, h.restrictTo(quad, c), change, largest) * w;
+      mean += meanIrradiance_[child] * w;
     }
+    meanIrradiance_[n] = mean;
   }
   reflected_[n] = r;
   return r;
@@ -346,8 +393,12 @@ Bands ReflectedLightHierarchy::pushPull(uint32_t n, const ReceiverPolynomial<Ban
 void ReflectedLightHierarchy::writeTo(Solution &s) const {
   rebuildElementsFromTrees(mesh_);
   const size_t elements = mesh_.elements.size();
-  for (auto *v : {&s.reflectance, &s.emission, &s.radiosity, &s.direct, &s.indirect, &s.irradiance, &s.unshot})
+  for (auto *v :
+       {&s.reflectance, &s.emission, &s.radiosity, &s.direct, &s.indirect, &s.irradiance, &s.unshot, &s.transmittance})
     v->assign(elements, Bands(0.0));
+  s.transmittedDirect.clear(), s.transmittedIndirect.clear();
+  if (anyTranslucent_)
+    s.transmittedDirect.assign(elements, Bands(0.0)), s.transmittedIndirect.assign(elements, Bands(0.0));
   s.treeRadiosity.assign(mesh_.tree.size(), Bands(0.0));
   for (uint32_t n = 0; n < mesh_.tree.size(); ++n) {
     s.treeRadiosity[n] = emission_[n] + reflected_[n];
@@ -358,6 +409,12 @@ void ReflectedLightHierarchy::writeTo(Solution &s) const {
     const Bands reflectedIrradiance = nonNegative(irradiance_[n].mean(mesh_.tree[n].vertexCount == 4));
     s.direct[e] = reflectance_[n] * direct_[n];
     s.indirect[e] = reflectance_[n] * reflectedIrradiance;
+    s.transmittance[e] = transmittance_[n];
+    if (anyTranslucent_) {
+      std::tie(s.transmittedDirect[e], s.transmittedIndirect[e]) = transmitted(n);
+      s.direct[e] += s.transmittedDirect[e];
+      s.indirect[e] += s.transmittedIndirect[e];
+    }
     s.radiosity[e] = s.emission[e] + s.direct[e] + s.indirect[e];
     s.irradiance[e] = direct_[n] + reflectedIrradiance;
   }
@@ -391,7 +448,7 @@ void ReflectedLightHierarchy::writeTo(Solution &s) const {
   s.ambient = s.indirectAmbient = Bands(0.0);
   s.stats.absorbedPower = Bands(0.0);
   for (size_t e = 0; e < elements; ++e)
-    s.stats.absorbedPower += (Bands(1.0) - s.reflectance[e]) * s.irradiance[e] * mesh_.elements[e].area;
+    s.stats.absorbedPower += s.absorptance(e) * s.irradiance[e] * mesh_.elements[e].area;
   s.stats.escapedPower = s.stats.emittedPower - s.stats.absorbedPower;
 }
 

@@ -197,6 +197,19 @@ class ReflectedLightHierarchy {
   mutable tbb::task_arena arena_;
   // Per tree node.
   std::vector<Bands> reflectance_, emission_, reflected_, direct_;
+  /// Translucent faces (transmission.h): τ per node, and the mean reflected
+  /// irradiance (at a leaf its polynomial's mean, above the children's),
+  /// which the other side's leaves read over the same region.
+  std::vector<Bands> transmittance_, meanIrradiance_;
+  /// Per patch: the tree root of the other side of a translucent face, −1 if none.
+  std::vector<int32_t> oppositeRoot_;
+  bool anyTranslucent_ = false;
+  /// τ·H' at a leaf, direct and reflected parts: τ times the irradiance of
+  /// the other side over the same region (0 for an opaque leaf).
+  std::pair<Bands, Bands> transmitted(uint32_t leaf) const;
+  /// What the oracles weigh an irradiance error by: max(ρ, τ) per band, since
+  /// a translucent receiver passes τ of it to its other side.
+  Bands scattering(uint32_t n) const;
   /// What each node's R polynomial misses of its children's (computeVariation), as of updateVariation.
   std::vector<Bands> variation_;
   /// R over each node as a polynomial in its parameters (mean: reflected_),

@@ -77,7 +77,7 @@ double ReflectedLightHierarchy::error(uint32_t r, uint32_t s, double formFactor,
   const Bands spread = reflected_[s] * spreadOfF + variation_[s] * formFactor;
   double worst = 0;
   for (int b = 0; b < kBandCount; ++b)
-    worst = std::max(worst, std::max(reflectance_[r][b], kLeastReflectance) * spread[b]);
+    worst = std::max(worst, std::max(scattering(r)[b], kLeastReflectance) * spread[b]);
   return worst;
 }
 

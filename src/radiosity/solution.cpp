@@ -3,6 +3,7 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "radiosity/transmission.h"
 #include "raytrace/surface_detail.h"
 
 namespace radiant {
@@ -27,6 +28,7 @@ Solution initialSolution(const Scene &scene, RadiosityMesh mesh) {
     }
     s.emission[e] = m.emission * kPi;
   }
+  s.transmittance = elementTransmittance(scene, mesh);
   s.radiosity = s.emission;
   s.direct.assign(n, Bands(0.0));
   s.indirect.assign(n, Bands(0.0));
@@ -136,6 +138,13 @@ void Solution::updateNodesAndErrors() {
       reflected[v] = nodeReflectance[v] * (nodeDirectIrradiance[v] + nodeIndirectIrradiance[v]);
     applyTVertices(reflected);
     for (size_t v = 0; v < mesh.nodes.size(); ++v) nodeRadiosity[v] += reflected[v];
+    // Light through translucent faces: computed per element, shown at the nodes like B.
+    if (hasTransmitted()) {
+      std::vector<Bands> through(elementCount());
+      for (size_t e = 0; e < elementCount(); ++e) through[e] = transmittedDirect[e] + transmittedIndirect[e];
+      const std::vector<Bands> atNode = nodeValues(through);
+      for (size_t v = 0; v < mesh.nodes.size(); ++v) nodeRadiosity[v] += atNode[v];
+    }
   }
   // Gradient estimate (C&W ch. 6, Cohen et al. 1986): how far the nodes around
   // an element stray from its own value, relative to it. Large where the
@@ -161,6 +170,10 @@ std::vector<Bands> Solution::nodeIndirectRadiosity() const {
   std::vector<Bands> values(mesh.nodes.size());
   for (size_t v = 0; v < mesh.nodes.size(); ++v) values[v] = nodeReflectance[v] * nodeIndirectIrradiance[v];
   applyTVertices(values);
+  if (hasTransmitted()) {
+    const std::vector<Bands> through = nodeValues(transmittedIndirect);
+    for (size_t v = 0; v < values.size(); ++v) values[v] += through[v];
+  }
   return values;
 }
 
@@ -169,6 +182,10 @@ std::vector<Bands> Solution::nodeDirectRadiosity() const {
   std::vector<Bands> values(mesh.nodes.size());
   for (size_t v = 0; v < mesh.nodes.size(); ++v) values[v] = nodeReflectance[v] * nodeDirectIrradiance[v];
   applyTVertices(values);
+  if (hasTransmitted()) {
+    const std::vector<Bands> through = nodeValues(transmittedDirect);
+    for (size_t v = 0; v < values.size(); ++v) values[v] += through[v];
+  }
   return values;
 }
 

@@ -52,8 +52,16 @@ struct Solution {
   std::vector<Bands> direct;       ///< received straight from emitters, W·m⁻²
   std::vector<Bands> indirect;     ///< received after one or more reflections, W·m⁻²
   std::vector<Bands> unshot;       ///< progressive refinement's unshot radiosity, W·m⁻²
-  std::vector<Bands> irradiance;   ///< H, arriving at the front, W·m⁻² (B = E + ρH)
-  Bands ambient;                   ///< progressive refinement's ambient term (display only)
+  std::vector<Bands> irradiance;   ///< H, arriving at the front, W·m⁻² (B = E + ρH + τH')
+  /// τ per element, the diffuse transmittance of its material (radiosity/transmission.h):
+  /// B gains τH', H' the irradiance on the other side of a translucent face.
+  std::vector<Bands> transmittance;
+  /// τH' per element, its direct share (τ times the other side's irradiance
+  /// straight from the emitters) and the rest. Part of `radiosity`, `direct`
+  /// and `indirect`; kept apart for the display at nodes (hasNodeIrradiance),
+  /// which forms ρ̄H from the node irradiances. Empty when nothing is translucent.
+  std::vector<Bands> transmittedDirect, transmittedIndirect;
+  Bands ambient;  ///< progressive refinement's ambient term (display only)
   /// The part of `ambient` that is not the first arrival of still-unshot
   /// emission: what a method that samples the emitters per pixel (shirley,
   /// kok) may add as indirect light without counting direct light twice.
@@ -88,9 +96,17 @@ struct Solution {
   SolveStats stats;
 
   size_t elementCount() const { return mesh.elements.size(); }
-  /// Radiosity for display: B plus, when `withAmbient`, ρ·ambient.
+  /// τ of an element (0 when the solution has no transmittances).
+  Bands transmittanceOf(size_t e) const { return e < transmittance.size() ? transmittance[e] : Bands(0.0); }
+  /// What an element absorbs of its irradiance, 1 − ρ − τ.
+  Bands absorptance(size_t e) const { return Bands(1.0) - reflectance[e] - transmittanceOf(e); }
+  bool hasTransmitted() const {
+    return transmittedDirect.size() == elementCount() && transmittedIndirect.size() == elementCount();
+  }
+  /// Radiosity for display: B plus, when `withAmbient`, (ρ + τ)·ambient.
   Bands displayRadiosity(uint32_t element, bool withAmbient = true) const {
-    return withAmbient ? radiosity[element] + reflectance[element] * ambient : radiosity[element];
+    if (!withAmbient) return radiosity[element];
+    return radiosity[element] + (reflectance[element] + transmittanceOf(element)) * ambient;
   }
   /// B interpolated from the nodes at a location (continuous within a patch).
   Bands interpolatedRadiosity(const MeshLocation &location) const { return interpolate(nodeRadiosity, location); }

@@ -26,6 +26,7 @@
 
 #include "radiosity/backprojection.h"
 #include "radiosity/solver.h"
+#include "radiosity/transmission.h"
 #include "util/sampling.h"
 
 namespace radiant {
@@ -54,15 +55,18 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
   // Point lights shoot first, exactly (backprojection.h): ρH is direct light
   // already received, and is shot on as reflected light once the emission
   // has been (iteration 1 stays the emitters' direct light).
+  // Through a translucent face (transmission.h) the other side gains τH of
+  // what arrives, shot on with the reflected light.
+  const ElementTransmission transmission(tracer.scene(), s);
   std::vector<Bands> lightGain;
   if (const std::vector<Bands> h = pointLightIrradianceOfElements(tracer, s); !h.empty()) {
-    lightGain.resize(n);
+    lightGain.assign(n, Bands(0.0));
     for (size_t e = 0; e < n; ++e) {
-      lightGain[e] = s.reflectance[e] * h[e];
-      s.radiosity[e] += lightGain[e];
-      s.direct[e] += lightGain[e];
+      lightGain[e] += s.reflectance[e] * h[e];
+      transmission.pass(e, h[e], [&](uint32_t to, const Bands &gain) { lightGain[to] += gain; });
       s.irradiance[e] += h[e];
     }
+    for (size_t e = 0; e < n; ++e) s.radiosity[e] += lightGain[e], s.direct[e] += lightGain[e];
   }
   bool emissionFirst = false;
   for (size_t e = 0; e < n && !emissionFirst; ++e) emissionFirst = s.unshot[e].max() > 0;
@@ -154,14 +158,17 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
     // emission, so what it deposits is the direct part; later ones, reflections.
     const bool direct = iteration == 1 && emissionFirst;
     for (size_t e = 0; e < n; ++e) s.unshot[e] = Bands(0.0);
+    auto gainAt = [&](size_t e, const Bands &gain) {
+      s.radiosity[e] += gain;
+      (direct ? s.direct[e] : s.indirect[e]) += gain;
+      s.unshot[e] += gain;
+    };
     for (size_t e = 0; e < n; ++e) {
       if (arrived[e].max() <= 0) continue;
       Bands irradiance = arrived[e] / s.mesh.elements[e].area;
-      Bands gain = s.reflectance[e] * irradiance;
       s.irradiance[e] += irradiance;
-      s.radiosity[e] += gain;
-      (direct ? s.direct[e] : s.indirect[e]) += gain;
-      s.unshot[e] = gain;
+      gainAt(e, s.reflectance[e] * irradiance);
+      transmission.pass(e, irradiance, gainAt);
     }
     if (!lightGain.empty()) shootLightGain();
     s.stats.formFactorRays += rays;
@@ -176,7 +183,7 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
   for (size_t e = 0; e < n; ++e) {
     double a = s.mesh.elements[e].area;
     unshotPower += s.unshot[e] * a;
-    s.stats.absorbedPower += (Bands(1.0) - s.reflectance[e]) * s.irradiance[e] * a;
+    s.stats.absorbedPower += s.absorptance(e) * s.irradiance[e] * a;
   }
   s.stats.residual = unshotPower.average() / emitted;
   s.stats.escapedPower = s.stats.emittedPower - s.stats.absorbedPower - unshotPower;

@@ -40,7 +40,23 @@ double Bsdf::specularLobeProbability() const {
   return d + s > 0 ? s / (d + s) : 0;
 }
 
+double Bsdf::transmissionLobeProbability() const {
+  if (!material_.isTranslucent() || material_.isDelta()) return 0;
+  const double t = material_.transmittance.average();
+  const double r = diffuse_.average() + (material_.kind == MaterialKind::Glossy ? material_.specular.average() : 0);
+  return t / (t + r);
+}
+
+bool Bsdf::transmits(const Vec3 &wiWorld, Vec3 &wiLocal) const {
+  // Diffuse transmission: wi on the other side of the surface, below both
+  // the geometric and the shading plane.
+  if (!material_.isTranslucent() || material_.isDelta() || dot(wiWorld, geometricNormal_) >= 0) return false;
+  wiLocal = frame_.toLocal(wiWorld);
+  return wiLocal.z < 0 && woLocal_.z > 0;
+}
+
 Bands Bsdf::evaluate(const Vec3 &wiWorld) const {
+  if (Vec3 through; transmits(wiWorld, through)) return material_.transmittance * kInvPi;
   if (material_.isDelta() || !sameHemisphere(wiWorld)) return Bands(0.0);
   Vec3 wi = frame_.toLocal(wiWorld);
   if (wi.z <= 0 || woLocal_.z <= 0) return Bands(0.0);
@@ -56,11 +72,13 @@ Bands Bsdf::evaluate(const Vec3 &wiWorld) const {
 }
 
 double Bsdf::pdf(const Vec3 &wiWorld) const {
+  const double pTransmit = transmissionLobeProbability();
+  if (Vec3 through; transmits(wiWorld, through)) return pTransmit * cosineHemispherePdf(-through.z);
   if (material_.isDelta() || !sameHemisphere(wiWorld)) return 0;
   Vec3 wi = frame_.toLocal(wiWorld);
   if (wi.z <= 0 || woLocal_.z <= 0) return 0;
-  double pSpecular = specularLobeProbability();
-  double p = (1 - pSpecular) * cosineHemispherePdf(wi.z);
+  double pSpecular = specularLobeProbability() * (1 - pTransmit);
+  double p = (1 - pTransmit) * (1 - specularLobeProbability()) * cosineHemispherePdf(wi.z);
   if (pSpecular > 0) {
     Vec3 h = normalize(wi + woLocal_);
     double dotWoH = dot(woLocal_, h);
@@ -102,6 +120,20 @@ bool Bsdf::sample(double uLobe, double u1, double u2, BsdfSample &out) const {
     case MaterialKind::Lambertian:
     case MaterialKind::Glossy: {
       if (woLocal_.z <= 0) return false;
+      if (const double pTransmit = transmissionLobeProbability(); pTransmit > 0) {
+        // Diffuse transmission with probability pTransmit: cosine-weighted on the far side.
+        if (uLobe < pTransmit) {
+          Vec3 wi = sampleCosineHemisphere(u1, u2);
+          wi.z = -wi.z;
+          out.wi = frame_.toWorld(wi);
+          out.pdf = pdf(out.wi);
+          if (out.pdf <= 0) return false;
+          out.weight = evaluate(out.wi) * (-wi.z / out.pdf);
+          out.isTransmission = true;
+          return true;
+        }
+        uLobe = (uLobe - pTransmit) / (1 - pTransmit);
+      }
       double pSpecular = specularLobeProbability();
       Vec3 wi;
       if (uLobe < pSpecular) {

@@ -16,7 +16,7 @@ struct BsdfSample {
   Bands weight;    ///< f·|cos θi| / pdf (for delta lobes: the lobe's reflectance or transmittance)
   double pdf = 0;  ///< solid-angle density; meaningless for delta lobes
   bool isDelta = false;
-  bool isTransmission = false;
+  bool isTransmission = false;  ///< through the surface: refraction (delta) or diffuse transmission
 };
 
 class Bsdf {
@@ -38,7 +38,12 @@ class Bsdf {
 
  private:
   bool sameHemisphere(const Vec3 &wi) const;
+  /// Of the non-transmitted samples, the share of the glossy lobe.
   double specularLobeProbability() const;
+  /// The share of samples that go through a translucent surface (τ̄ against ρ̄ + τ̄).
+  double transmissionLobeProbability() const;
+  /// True when wi lies on the far side for diffuse transmission; its shading-frame direction in `wiLocal`.
+  bool transmits(const Vec3 &wiWorld, Vec3 &wiLocal) const;
 
   const Material &material_;
   Bands diffuse_;         ///< the Lambertian (or glossy base) reflectance at this point

@@ -66,6 +66,20 @@ class Reichert final : public TwoPassRenderer {
 
  protected:
   Bands reflected(const VisiblePoint &x, Sampler &rng) const override {
+    Bands radiosity = x.reflectance * irradianceAt(x.hit, rng);  // ρ(x): a texture is applied directly
+    // A translucent surface passes on τ of what reaches its other side.
+    const Material &material = tracer_.scene().materials[x.hit.material];
+    if (material.isTranslucent()) {
+      Hit behind = x.hit;
+      behind.geometricNormal = -behind.geometricNormal, behind.shadingNormal = -behind.shadingNormal;
+      radiosity += material.transmittance * irradianceAt(behind, rng);
+    }
+    return radiosity * kInvPi;
+  }
+
+  /// The irradiance at a surface point, on the side its normals face: every
+  /// element's F(dx → A_j) V B_j, plus the point lights.
+  Bands irradianceAt(const Hit &hit, Sampler &rng) const {
     const RadiosityMesh &mesh = solution_.mesh;
     Bands irradiance(0.0);
     for (uint32_t j = 0; j < mesh.elements.size(); ++j) {
@@ -73,13 +87,13 @@ class Reichert final : public TwoPassRenderer {
       // Draw the sample point first, so the random sequence does not depend on geometry.
       double u1 = rng.next(), u2 = rng.next();
       const Vec3 &nj = mesh.normalOf(j);
-      if (dot(x.hit.position - element.centre, nj) <= 0) continue;  // x is behind j: j's front faces away
-      double f = visibleFormFactor(x, {polygons_[j].data(), size_t(element.vertexCount)}, nj, u1, u2);
+      if (dot(hit.position - element.centre, nj) <= 0) continue;  // x is behind j: j's front faces away
+      double f = visibleFormFactor(hit, {polygons_[j].data(), size_t(element.vertexCount)}, nj, u1, u2);
       if (f > 0) irradiance += solution_.displayRadiosity(j) * f;
     }
     // Point lights are no elements: their light is gathered the same way, exactly.
-    if (!tracer_.scene().lights.empty()) irradiance += pointLightIrradiance(tracer_, x.hit);
-    return x.reflectance * irradiance * kInvPi;  // ρ(x): a texture is applied directly
+    if (!tracer_.scene().lights.empty()) irradiance += pointLightIrradiance(tracer_, hit);
+    return irradiance;
   }
 
   Bands reflectedByLinks(const VisiblePoint &x, Sampler &rng) const override {
@@ -92,7 +106,7 @@ class Reichert final : public TwoPassRenderer {
       Vec3 centre{};
       for (int k = 0; k < source.vertexCount; ++k) centre += source.corners[k] / double(source.vertexCount);
       double f = dot(x.hit.position - centre, ns) > 0
-                     ? visibleFormFactor(x, {source.corners.data(), size_t(source.vertexCount)}, ns, u1, u2)
+                     ? visibleFormFactor(x.hit, {source.corners.data(), size_t(source.vertexCount)}, ns, u1, u2)
                      : 0.0;
       correction += solution_.treeRadiosity[link.source] * (f - link.formFactor);
     });
@@ -103,12 +117,12 @@ class Reichert final : public TwoPassRenderer {
   /// F(dx → polygon) × V (radiosity/form_factor.h), visibility tested at
   /// one point of the polygon's part in front of x: its centroid (--ff
   /// point) or a uniform one from (u1, u2) (--ff mc).
-  double visibleFormFactor(const VisiblePoint &x, std::span<const Vec3> polygon, const Vec3 &polygonNormal, double u1,
+  double visibleFormFactor(const Hit &x, std::span<const Vec3> polygon, const Vec3 &polygonNormal, double u1,
                            double u2) const {
     VisibilitySamples samples;
     samples.centroid = pointSampled_, samples.u1 = u1, samples.u2 = u2;
-    return radiant::visibleFormFactor(tracer_, x.hit.position, x.hit.shadingNormal, x.hit.geometricNormal, polygon,
-                                      polygonNormal, samples);
+    return radiant::visibleFormFactor(tracer_, x.position, x.shadingNormal, x.geometricNormal, polygon, polygonNormal,
+                                      samples);
   }
 
   const bool pointSampled_;

@@ -63,11 +63,8 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
 
  protected:
   Bands reflected(const VisiblePoint &x, Sampler &rng) const override {
-    Bands exact;
-    Bands L = exactDirectApplies(x) &&
-                      exactDirect_->irradianceWithin(x.hit.position, x.hit.geometricNormal, kMaxExactOccluders, exact)
-                  ? x.reflectance * exact * kInvPi
-                  : directLight(x, rng);
+    const std::optional<Bands> exact = exactDirectLight(x);
+    Bands L = exact ? *exact : directLight(x, rng);
     if (sources_) L += secondaryLight(x, rng);
     // The indirect field with eq. 9.11 at x (radiosity/solution_query.h), and Chen's ratio on a bump map.
     Bands indirect = fieldRadiance(solution_, remainingIndirect_, x.at);
@@ -83,6 +80,23 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
   /// More faces than this in a point's shaft to a light (a tessellated model
   /// in the way): the shadow ray is cheaper than subtracting them all.
   static constexpr size_t kMaxExactOccluders = 32;
+
+  /// ρ/π times the exact irradiance, plus through a translucent face τ/π
+  /// times the other side's; nothing where exactDirectApplies does not, or a
+  /// shaft holds too many faces.
+  std::optional<Bands> exactDirectLight(const VisiblePoint &x) const {
+    Bands exact;
+    if (!exactDirectApplies(x) ||
+        !exactDirect_->irradianceWithin(x.hit.position, x.hit.geometricNormal, kMaxExactOccluders, exact))
+      return std::nullopt;
+    Bands L = x.reflectance * exact * kInvPi;
+    if (x.material->isTranslucent()) {
+      if (!exactDirect_->irradianceWithin(x.hit.position, -x.hit.geometricNormal, kMaxExactOccluders, exact))
+        return std::nullopt;
+      L += x.material->transmittance * exact * kInvPi;
+    }
+    return L;
+  }
 
   /// The exact direct light is ρ/π times the exact irradiance: for a
   /// Lambertian point whose shading normal is its geometric one (a bump or

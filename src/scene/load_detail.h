@@ -35,6 +35,7 @@ struct MaterialFieldNames {
   /// MTL: the line of each statement ("Kd" → 12), so that a bad value is
   /// reported at its own line rather than at newmtl's.
   std::map<std::string, int> lines;
+  const char *transmittance = "diffuse_transmittance";
 };
 void checkMaterial(const Material &material, const InputLocation &where, const MaterialFieldNames &names = {});
 

@@ -109,10 +109,10 @@ Material parseMaterial(const JsonNode &node, const std::string &name, const fs::
   std::string type = parseType(node, kTypes, "lambertian", "material");
   checkTypedKeys(node,
                  {"type", "emission", "two_sided", "bump", "bump_scale", "normal_map", "texture_wrap", "texture_scale"},
-                 {{"lambertian", {"reflectance", "texture"}},
+                 {{"lambertian", {"reflectance", "diffuse_transmittance", "texture"}},
                   {"mirror", {"reflectance"}},
                   {"dielectric", {"ior", "transmittance"}},
-                  {"glossy", {"reflectance", "specular", "roughness", "texture"}}},
+                  {"glossy", {"reflectance", "specular", "roughness", "diffuse_transmittance", "texture"}}},
                  type, "material");
   Material m;
   m.name = name;
@@ -146,9 +146,16 @@ Material parseMaterial(const JsonNode &node, const std::string &name, const fs::
     m.roughness = node.number("roughness", 0.2);
   }
   m.emission = value("emission", Bands(0.0), m.spectra.emission);
+  if (m.kind == MaterialKind::Lambertian || m.kind == MaterialKind::Glossy) {
+    m.transmittance = value("diffuse_transmittance", Bands(0.0), m.spectra.transmittance);
+    // Light goes through to the other side: that side must be part of the solution.
+    m.twoSided = m.isTranslucent() || m.spectra.transmittance.has_value();
+  }
   if (node.has("two_sided")) {
     const JsonNode sided = node.child("two_sided");
     if (!sided.value().is_boolean()) sided.fail("expected true or false, got " + describeJson(sided.value()));
+    if (!sided.value().get<bool>() && m.twoSided)
+      sided.fail("a material with a diffuse_transmittance is two-sided: light goes through to the other side");
     m.twoSided = sided.value().get<bool>();
     if (m.twoSided && m.kind == MaterialKind::Dielectric)
       sided.fail(

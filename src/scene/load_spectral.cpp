@@ -125,6 +125,8 @@ void checkSpectra(const Material &m, const InputLocation &where, const MaterialF
   check(m.spectra.diffuse, names.diffuse, 1.0, true, ": a diffuse reflectance of 1 or more makes radiosity diverge");
   check(m.spectra.specular, names.specular, 1.0, false, ": a surface cannot reflect more than it receives");
   check(m.spectra.emission, names.emission, HUGE_VAL, false, "");
+  check(m.spectra.transmittance, names.transmittance, 1.0, true,
+        ": a surface cannot pass on all the light it receives");
 }
 
 void checkSpectralScene(Scene &scene) {
@@ -145,7 +147,7 @@ void checkSpectralScene(Scene &scene) {
       if (!spectrum && grey[0] > 0) spectrum = SampledSpectrum{{scene.spectral.wavelengths.front()}, {grey[0]}};
     };
     constant(m.spectra.diffuse, m.diffuse), constant(m.spectra.specular, m.specular);
-    constant(m.spectra.emission, m.emission);
+    constant(m.spectra.emission, m.emission), constant(m.spectra.transmittance, m.transmittance);
     // Emission that falls between the scene's wavelengths is never sampled.
     if (m.spectra.emission) {
       double sampled = 0, given = 0;
@@ -164,6 +166,15 @@ void checkSpectralScene(Scene &scene) {
     applySpectralPass(scene, pass);
     for (size_t i = 0; i < scene.materials.size(); ++i) {
       const Material &m = scene.materials[i];
+      if (m.isTranslucent() && m.spectra.any())
+        for (int b = 0; b < kBandCount; ++b) {
+          const double sum = m.diffuse[b] + m.transmittance[b] + (m.kind == MaterialKind::Glossy ? m.specular[b] : 0);
+          if (m.diffuse[b] + m.transmittance[b] >= 1.0 || sum > 1.0)
+            throw InputError(definedAt(m), fmt::format("material '{}': its reflectances and diffuse_transmittance add "
+                                                       "up to {} at {} nm: the surface would scatter as much light "
+                                                       "as it receives or more",
+                                                       m.name, sum, scene.spectral.wavelength(pass, b)));
+        }
       if (m.kind != MaterialKind::Glossy || !m.spectra.any()) continue;
       for (int b = 0; b < kBandCount; ++b)
         if (m.diffuse[b] + m.specular[b] > 1.0)

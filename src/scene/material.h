@@ -32,8 +32,8 @@ constexpr double kMaxDiffuseReflectance = 0.999;
 /// The values of a spectral scene's material given as spectra (docs/spectral.md).
 /// A value without a spectrum is grey: the same at every wavelength.
 struct MaterialSpectra {
-  std::optional<SampledSpectrum> diffuse, specular, emission;
-  bool any() const { return diffuse || specular || emission; }
+  std::optional<SampledSpectrum> diffuse, specular, emission, transmittance;
+  bool any() const { return diffuse || specular || emission || transmittance; }
 };
 
 struct Material {
@@ -48,6 +48,12 @@ struct Material {
   /// Both sides of each face reflect (and emit) alike (MGF `sides 2`, JSON
   /// "two_sided"): the radiosity mesh gets a patch on each side.
   bool twoSided = false;
+  /// Diffuse transmittance τ per band (MGF `td`, JSON "diffuse_transmittance";
+  /// Lambertian and glossy only): of the light arriving on one side, τ leaves
+  /// the other side diffusely, BTDF τ/π. The τ of the side the light leaves
+  /// from applies. τ > 0 makes the material two-sided; ρ + τ < 1.
+  Bands transmittance{0.0};
+  bool isTranslucent() const { return transmittance.max() > 0; }
 
   /// Spectral scenes only. The Bands above then hold the values at the three
   /// wavelengths of the current pass (applySpectralPass), or, outside a pass,

@@ -161,9 +161,6 @@ Material mgfToMaterial(const MgfMaterial &mgf, const std::string &name, const In
   // ed is luminous exitance in lm/m²; a Lambertian emitter's luminance is
   // ed/π cd/m², and Radiant's emission v has luminance 683·v cd/m².
   m.emission = bands(mgf.ed / (kPi * kLuminousEfficacy), mgf.edColour);
-  if (mgf.td > 0)
-    warnings.push_back(prefix + "diffuse transmittance (td " + number(mgf.td) +
-                       ") is not supported by Radiant's materials and is dropped");
   if (mgf.ts > 0) {
     m.kind = MaterialKind::Dielectric;
     m.ior = mgf.iorReal > 0 ? mgf.iorReal : 1.0;
@@ -186,6 +183,17 @@ Material mgfToMaterial(const MgfMaterial &mgf, const std::string &name, const In
       m.roughness = std::clamp(mgf.rsAlpha, 0.01, 1.0);
     }
   }
+  if (mgf.td > 0) {
+    if (m.kind == MaterialKind::Lambertian || m.kind == MaterialKind::Glossy) {
+      // Light goes through to the back, which must then be part of the
+      // solution: a translucent surface is two-sided whatever its `sides`.
+      m.transmittance = bands(mgf.td, mgf.tdColour);
+      m.twoSided = true;
+    } else {
+      warnings.push_back(prefix + "diffuse transmittance (td " + number(mgf.td) + ") is dropped: it applies to " +
+                         "diffuse materials, and this one is " + materialKindName(m.kind));
+    }
+  }
   if (mgf.sides == 2) {
     if (m.kind == MaterialKind::Dielectric)
       warnings.push_back(prefix +
@@ -202,17 +210,19 @@ Material mgfToMaterial(const MgfMaterial &mgf, const std::string &name, const In
   double scatter = 0;
   for (int b = 0; b < kBandCount; ++b) {
     const double sum = (m.kind == MaterialKind::Glossy || m.kind == MaterialKind::Lambertian)
-                           ? m.diffuse[b] + m.specular[b]
+                           ? m.diffuse[b] + m.specular[b] + m.transmittance[b]
                            : m.specular[b];
     scatter = std::max(scatter, sum);
   }
   double factor = 1;
   // Slightly below 1/scatter, so that rounding cannot leave a sum above 1.
   if (scatter > 1) factor = (1 - 1e-12) / scatter;
-  if (m.diffuse.max() * factor > kMaxDiffuseReflectance) factor = kMaxDiffuseReflectance / m.diffuse.max();
+  const double diffuseScatter = (m.diffuse + m.transmittance).max();
+  if (diffuseScatter * factor > kMaxDiffuseReflectance) factor = kMaxDiffuseReflectance / diffuseScatter;
   if (factor < 1) {
     m.diffuse *= factor;
     m.specular *= factor;
+    m.transmittance *= factor;
   }
   // MGF files often give rd + rs = 1 exactly, which the neutral colour's
   // rounding (its sRGB is 1 ± 10⁻⁵) takes just above 1: not worth a warning.
@@ -248,6 +258,7 @@ Material mgfToMaterial(const MgfMaterial &mgf, const std::string &name, const In
     if (m.kind == MaterialKind::Mirror || m.kind == MaterialKind::Glossy)
       m.spectra.specular = spectrumOf(mgf.rs * factor, mgf.rsColour, "rs");
     m.spectra.emission = spectrumOf(mgf.ed / (kPi * kLuminousEfficacy), mgf.edColour, "ed");
+    if (m.isTranslucent()) m.spectra.transmittance = spectrumOf(mgf.td * factor, mgf.tdColour, "td");
   }
   return m;
 }

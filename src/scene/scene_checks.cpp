@@ -66,6 +66,25 @@ void detail::checkMaterial(const Material &m, const InputLocation &where, const 
   checkBands(m.specular, fieldLocation(where, names.specular, names), subject, names.specular, 1.0, false,
              ": a surface cannot reflect more than it receives");
   checkBands(m.emission, fieldLocation(where, names.emission, names), subject, names.emission, kInfinity, false, "");
+  checkBands(m.transmittance, fieldLocation(where, names.transmittance, names), subject, names.transmittance, 1.0, true,
+             ": a surface cannot pass on all the light it receives");
+  if (m.isTranslucent()) {
+    if (m.kind != MaterialKind::Lambertian && m.kind != MaterialKind::Glossy)
+      throw InputError(where,
+                       subject + names.transmittance + " applies to diffuse (lambertian, glossy) materials only");
+    // ρ + τ < 1: what a translucent surface scatters, to either side, stays
+    // below what it receives, or radiosity's series diverges (as for ρ alone).
+    const double specular = m.kind == MaterialKind::Glossy ? 1.0 : 0.0;
+    for (int i = 0; i < kBandCount; ++i) {
+      const double sum = m.diffuse[i] + m.transmittance[i] + specular * m.specular[i];
+      if (m.diffuse[i] + m.transmittance[i] >= 1.0 || sum > 1.0)
+        throw InputError(where, subject + names.diffuse + " + " +
+                                    (specular > 0 ? names.specular + std::string(" + ") : "") + names.transmittance +
+                                    " = " + formatNumber(sum) + " in band " + bandName(i) +
+                                    (sum > 1.0 ? " exceeds 1" : " reaches 1") +
+                                    ": the surface would scatter as much light as it receives or more");
+    }
+  }
   if (m.kind == MaterialKind::Glossy) {
     for (int i = 0; i < kBandCount; ++i)
       if (m.diffuse[i] + m.specular[i] > 1.0)

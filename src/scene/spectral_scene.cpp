@@ -55,6 +55,7 @@ void applySpectralPass(Scene &scene, int pass) {
     if (m.spectra.diffuse) m.diffuse = atPass(*m.spectra.diffuse);
     if (m.spectra.specular) m.specular = atPass(*m.spectra.specular);
     if (m.spectra.emission) m.emission = atPass(*m.spectra.emission);
+    if (m.spectra.transmittance) m.transmittance = atPass(*m.spectra.transmittance);
   }
   for (PointLight &light : scene.lights)
     if (light.spectrum) light.wattsPerCandela = atPass(*light.spectrum) * wattsPerCandelaScale(*light.spectrum, scene);
@@ -74,6 +75,11 @@ void applySpectralColour(Scene &scene, WhiteBalance balance) {
     if (m.spectra.diffuse) m.diffuse = clamped(colourOf(*m.spectra.diffuse, scene, adaptation), kMaximumReflectance);
     if (m.spectra.specular) m.specular = clamped(colourOf(*m.spectra.specular, scene, adaptation), 1.0);
     if (m.spectra.emission) m.emission = clamped(colourOf(*m.spectra.emission, scene, adaptation), HUGE_VAL);
+    if (m.spectra.transmittance)
+      m.transmittance = clamped(colourOf(*m.spectra.transmittance, scene, adaptation), kMaximumReflectance);
+    if (m.isTranslucent())  // keep ρ + τ below 1 after clamping each
+      for (int i = 0; i < kBandCount; ++i)
+        m.transmittance[i] = std::min(m.transmittance[i], kMaximumReflectance - m.diffuse[i]);
     if (m.kind == MaterialKind::Glossy)  // keep ρd + ρs ≤ 1 after clamping each
       for (int i = 0; i < kBandCount; ++i) m.diffuse[i] = std::min(m.diffuse[i], 1.0 - m.specular[i]);
   }
