@@ -198,6 +198,51 @@ TEST(Translucency, TheSecondRoomGetsExactlyWhatTheWallPassesThrough) {
   }
 }
 
+TEST(Translucency, TheLightThroughLandsWhereItBelongsWhenTheSidesAreMeshedApart) {
+  // The first room's side of the wall split once more than the second's
+  // (as adaptive rounds split each side by its own error): each element of
+  // the second side takes the mean over the four finer ones under it, not
+  // one of them, and the balance of the second room holds for every solver
+  // on that fixed mesh.
+  const Scene scene = twoRoomsThroughAWall();
+  RayTracer tracer(scene);
+  MeshOptions meshOptions;
+  meshOptions.maxEdgeLength = 0.5;
+  RadiosityMesh mesh = buildTreeMesh(scene, meshOptions);
+  for (int round = 0; round < 1; ++round) {
+    std::vector<double> error(mesh.elements.size(), 0.0);
+    for (size_t e = 0; e < mesh.elements.size(); ++e) error[e] = mesh.patchOf(uint32_t(e)).face == 1 ? 1.0 : 0.0;
+    ASSERT_GT(refineMesh(mesh, error, 0.5, 100000), 0u);
+  }
+  for (const char *solver : {"gauss-seidel", "progressive", "stochastic"}) {
+    Solution s = initialSolution(scene, mesh);
+    SolverOptions options;
+    options.solver = solver;
+    options.tolerance = 1e-5;
+    solveRadiosity(tracer, s, options);
+    size_t first = 0, second = 0;
+    double secondRoom = 0, wallFirst = 0;
+    for (size_t e = 0; e < s.elementCount(); ++e) {
+      const double a = s.mesh.elements[e].area;
+      const uint32_t face = s.mesh.patchOf(uint32_t(e)).face;
+      if (face >= 6) secondRoom += s.irradiance[e][0] * a;
+      if (face == 1) wallFirst += s.irradiance[e][0] * a, ++first;
+      if (face == 6) ++second;
+    }
+    ASSERT_EQ(first, 4 * second) << solver;
+    EXPECT_NEAR(0.6 * secondRoom / (0.3 * wallFirst), 1.0, formulaTolerance(solver)) << solver;
+    // The other way, each of the four finer elements gets τ times the H of
+    // the coarse one over it: B − ρH = τH' everywhere, not four times that
+    // in one of them and nothing in the rest.
+    for (size_t e = 0; e < s.elementCount(); ++e) {
+      if (s.mesh.patchOf(uint32_t(e)).face != 1) continue;
+      const uint32_t over = s.mesh.locate(6, s.mesh.elements[e].centre).element;
+      const double through = s.radiosity[e][0] - 0.4 * s.irradiance[e][0];
+      EXPECT_NEAR(through, 0.3 * s.irradiance[over][0], 1e-3 * 0.3 * s.irradiance[over][0]) << solver << " " << e;
+    }
+  }
+}
+
 TEST(Translucency, InterpolatedRadiosityMatchesThePathTracerBehindTheWall) {
   // The camera in the second room looks at the translucent wall: everything
   // it sees came through it. hierarchical-exact's interpolated image against
@@ -259,6 +304,23 @@ TEST(Translucency, MaterialsSayDiffuseTransmittance) {
           "two-sided");
   refused(R"({"type": "mirror", "diffuse_transmittance": 0.3})", "/materials/paper/diffuse_transmittance",
           "does not apply");
+}
+
+TEST(Translucency, BothSidesOfASurfaceHaveOneTransmittance) {
+  // Two faces back to back (one surface) of materials with different τ: refused.
+  const std::string text = R"({"camera": {"eye": [0.5, 0.5, 2], "target": [0.5, 0.5, 0]},
+    "materials": {"a": {"reflectance": 0.5, "diffuse_transmittance": 0.3},
+                  "b": {"reflectance": 0.5, "diffuse_transmittance": 0.2}},
+    "objects": [{"name": "front", "type": "quad", "material": "a",
+                 "vertices": [[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]]},
+                {"name": "back", "type": "quad", "material": "b",
+                 "vertices": [[0, 0, 0], [0, 1, 0], [1, 1, 0], [1, 0, 0]]}]})";
+  try {
+    parseSceneJson(text, "sides.json");
+    FAIL() << "accepted";
+  } catch (const InputError &e) {
+    EXPECT_NE(e.message().find("the two sides of one surface"), std::string::npos) << e.message();
+  }
 }
 
 }  // namespace

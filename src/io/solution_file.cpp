@@ -8,7 +8,6 @@
 #include <fstream>
 #include <iterator>
 
-#include "radiosity/transmission.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
 
@@ -246,7 +245,13 @@ void putSolution(Writer &w, const Solution &s) {
   for (uint32_t c : m.facePatchCount) w.put(c);
   w.put(uint8_t(m.nodeOnCut.empty() ? 0 : 1));
   for (uint8_t c : m.nodeOnCut) w.put(c);
-  // Version 6: the light through translucent faces per element, direct and indirect (hierarchical-exact; else none).
+  // Version 6: translucent faces' τ per element (none when nothing is translucent), and the light
+  // through them per element, direct and indirect (hierarchical-exact; else none).
+  bool translucent = false;
+  for (size_t e = 0; e < m.elements.size(); ++e) translucent = translucent || s.transmittanceOf(e).max() > 0;
+  w.put(uint8_t(translucent ? 1 : 0));
+  if (translucent)
+    for (size_t e = 0; e < m.elements.size(); ++e) w.put(s.transmittanceOf(e));
   w.put(uint8_t(s.hasTransmitted() ? 1 : 0));
   if (s.hasTransmitted())
     for (size_t e = 0; e < m.elements.size(); ++e) w.put(s.transmittedDirect[e]), w.put(s.transmittedIndirect[e]);
@@ -408,6 +413,14 @@ Solution getSolution(Reader &r, const Scene &scene) {
     m.nodeOnCut.resize(r.count(nodes, 1, "node cut flags"));
     for (uint8_t &c : m.nodeOnCut) c = r.get<uint8_t>();
   }
+  s.transmittance.assign(m.elements.size(), Bands(0.0));
+  if (r.get<uint8_t>() != 0) {
+    r.count(elements, kBandCount * 8, "transmittances");
+    for (Bands &t : s.transmittance) {
+      t = r.bands();
+      if (!t.isFinite() || t.min() < 0 || t.max() >= 1) r.fail("an element's transmittance is not in [0, 1)");
+    }
+  }
   if (r.get<uint8_t>() != 0) {
     s.transmittedDirect.resize(r.count(elements, 2 * kBandCount * 8, "transmitted radiosities"));
     s.transmittedIndirect.resize(s.transmittedDirect.size());
@@ -488,9 +501,6 @@ Solution getSolution(Reader &r, const Scene &scene) {
     if (!isFinite(e.centre) || !std::isfinite(e.area)) r.fail("an element's centre or area is not finite");
   m.buildPatchLookup();
   s.nodeReflectance = s.nodeValues(s.reflectance);  // derived, not stored: only after the checks above
-  for (const Patch &p : m.patches)
-    if (p.material >= scene.materials.size()) r.fail("a patch refers to a material that does not exist");
-  s.transmittance = elementTransmittance(scene, m);  // from the materials, as the fingerprint holds them
   return s;
 }
 

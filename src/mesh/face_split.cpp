@@ -157,6 +157,10 @@ double enclosedFraction(const RayTracer &tracer, const Vec3 &x, const Vec3 &n, i
       const double u = (i + rng.next()) / side, v = (j + rng.next()) / side;
       const double r = std::sqrt(u), phi = 2 * kPi * v;
       const Vec3 d = frame.toWorld({r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1 - u))});
+      // The back of a one-sided face. A two-sided face has no back to be
+      // inside of (the ray meets its back face, Face::back, from the front):
+      // its orientation is the modeller's whim, and counting its back face
+      // would hide the floor of a room whose two-sided walls face outwards.
       Hit hit;
       if (tracer.intersect(tracer.spawnRay(x, n, d), hit) && dot(d, hit.geometricNormal) > 0) ++enclosed;
     }

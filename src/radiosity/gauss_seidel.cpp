@@ -103,7 +103,7 @@ void solveGaussSeidel(const RayTracer &tracer, Solution &s, const SolverOptions 
       Bands updated = source[i] + s.reflectance[i] * gathered;
       if (!lastGathered.empty()) {
         lastGathered[i] = gathered;
-        for (const auto &[from, weight] : incoming[i]) updated += s.transmittance[i] * lastGathered[from] * weight;
+        for (const auto &[from, weight] : incoming[i]) updated += s.transmittanceOf(i) * lastGathered[from] * weight;
       }
       for (int b = 0; b < kBandCount; ++b) {
         largestChange = std::max(largestChange, std::abs(updated[b] - s.radiosity[i][b]));

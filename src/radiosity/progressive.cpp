@@ -177,13 +177,8 @@ void solveProgressive(const RayTracer &tracer, Solution &s, const SolverOptions 
       Bands fromEmission = shootEmission * formFactor[j], fromReflection = shootReflected * formFactor[j];
       irradiance[j] += fromEmission + fromReflection;
       gainAt(j, s.reflectance[j] * fromEmission, s.reflectance[j] * fromReflection);
-      if (!transmission.empty()) {
-        Bands throughDirect(0.0), throughIndirect(0.0);
-        uint32_t other = 0;
-        transmission.pass(j, fromEmission, [&](uint32_t to, const Bands &gain) { other = to, throughDirect = gain; });
-        transmission.pass(j, fromReflection, [&](uint32_t, const Bands &gain) { throughIndirect = gain; });
-        if (throughDirect.max() > 0 || throughIndirect.max() > 0) gainAt(other, throughDirect, throughIndirect);
-      }
+      transmission.pass(j, fromEmission, [&](uint32_t to, const Bands &gain) { gainAt(to, gain, Bands(0.0)); });
+      transmission.pass(j, fromReflection, [&](uint32_t to, const Bands &gain) { gainAt(to, Bands(0.0), gain); });
     }
     // Shadow rays cast (at most: samples behind a receiver's plane are skipped).
     const size_t k = size_t(std::max(1L, std::lround(std::sqrt(double(options.visibilitySamples)))));

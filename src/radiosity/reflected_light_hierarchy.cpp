@@ -46,25 +46,39 @@ ReflectedLightHierarchy::ReflectedLightHierarchy(const Scene &scene, const RayTr
     addNodeData(n);
     leaves_ += mesh_.tree[n].isLeaf();
   }
-  oppositeRoot_.assign(mesh_.patches.size(), -1);
+  twinFace_.assign(mesh_.patches.size(), -1);
   for (uint32_t p = 0; p < mesh_.patches.size(); ++p) {
     if (transmittance_[size_t(mesh_.patches[p].treeRoot)].max() <= 0) continue;
+    const int32_t twin = scene_.faces[mesh_.patches[p].face].twin;
+    if (twin < 0 || mesh_.patchOfFace[size_t(twin)] < 0) continue;
+    twinFace_[p] = twin;
     anyTranslucent_ = true;
-    if (const int32_t other = oppositePatch(scene_, mesh_, p); other >= 0)
-      oppositeRoot_[p] = mesh_.patches[size_t(other)].treeRoot;
   }
   initialiseClusters();
 }
 
+void ReflectedLightHierarchy::keepForTransmission() {
+  if (!anyTranslucent_) return;
+  directBefore_ = direct_;
+  meanIrradianceBefore_ = meanIrradiance_;
+}
+
 std::pair<Bands, Bands> ReflectedLightHierarchy::transmitted(uint32_t leaf) const {
   const MeshTreeNode &t = mesh_.tree[leaf];
-  const int32_t root = oppositeRoot_[t.patch];
-  if (root < 0) return {Bands(0.0), Bands(0.0)};
+  const int32_t twin = twinFace_[t.patch];
+  if (twin < 0) return {Bands(0.0), Bands(0.0)};
   Vec3 centre;
   for (int k = 0; k < t.vertexCount; ++k) centre += t.corners[k] / double(t.vertexCount);
+  // The other side's patch under this leaf (a face cut on one side only has
+  // pieces that differ), then its node over the same region.
+  const int32_t other = mesh_.patchAt(uint32_t(twin), centre);
+  if (other < 0) return {Bands(0.0), Bands(0.0)};
+  const uint32_t root = uint32_t(mesh_.patches[size_t(other)].treeRoot);
+  if (root >= directBefore_.size()) return {Bands(0.0), Bands(0.0)};
+  // Nodes split since the last keepForTransmission have no kept values yet: their parents stand in.
   const uint32_t m =
-      coveringNode(mesh_.tree, uint32_t(root), centre, mesh_.patches[mesh_.tree[size_t(root)].patch].normal, t.area);
-  return {transmittance_[leaf] * direct_[m], transmittance_[leaf] * meanIrradiance_[m]};
+      coveringNode(mesh_.tree, root, centre, mesh_.patches[size_t(other)].normal, t.area, directBefore_.size());
+  return {transmittance_[leaf] * directBefore_[m], transmittance_[leaf] * meanIrradianceBefore_[m]};
 }
 
 Bands ReflectedLightHierarchy::scattering(uint32_t n) const {
@@ -115,8 +129,11 @@ void ReflectedLightHierarchy::initialiseFromDirectLight() {
   Bands firstBounce(0.0), reflectance(0.0);
   double area = 0;
   // Twice with translucent faces: the second pass reads the other sides' direct light.
-  for (int pass = 0; pass < (anyTranslucent_ ? 2 : 1); ++pass)
+  for (int pass = 0; pass < (anyTranslucent_ ? 2 : 1); ++pass) {
+    keepForTransmission();
     for (uint32_t p = 0; p < mesh_.patches.size(); ++p) pullDirect(static_cast<uint32_t>(mesh_.patches[p].treeRoot));
+  }
+  keepForTransmission();
   for (uint32_t p = 0; p < mesh_.patches.size(); ++p) {
     const uint32_t root = static_cast<uint32_t>(mesh_.patches[p].treeRoot);
     firstBounce += reflected_[root] * mesh_.tree[root].area;
@@ -222,6 +239,7 @@ int ReflectedLightHierarchy::solve(double tolerance, int maxSweeps, double &resi
   int sweeps = 0;
   std::vector<double> change(mesh_.patches.size()), largest(mesh_.patches.size());
   while (sweeps < maxSweeps) {
+    keepForTransmission();
     arena_.execute([&] {
       gatherAll();
       tbb::parallel_for(size_t(0), mesh_.patches.size(), [&](size_t p) {
@@ -242,6 +260,7 @@ int ReflectedLightHierarchy::solve(double tolerance, int maxSweeps, double &resi
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
     if (residual < tolerance) break;
   }
+  keepForTransmission();  // what writeTo passes through: the last sweep's
   return sweeps;
 }
 

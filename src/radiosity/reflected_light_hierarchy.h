@@ -201,11 +201,16 @@ class ReflectedLightHierarchy {
   /// irradiance (at a leaf its polynomial's mean, above the children's),
   /// which the other side's leaves read over the same region.
   std::vector<Bands> transmittance_, meanIrradiance_;
-  /// Per patch: the tree root of the other side of a translucent face, −1 if none.
-  std::vector<int32_t> oppositeRoot_;
+  /// direct_ and meanIrradiance_ as of the start of the sweep, what
+  /// transmitted() reads: the patches are pushed and pulled in parallel, and
+  /// one side must not read the other's while it is being written.
+  std::vector<Bands> directBefore_, meanIrradianceBefore_;
+  void keepForTransmission();
+  /// Per patch of a translucent face: its face's other side (Face::twin), −1 if none.
+  std::vector<int32_t> twinFace_;
   bool anyTranslucent_ = false;
   /// τ·H' at a leaf, direct and reflected parts: τ times the irradiance of
-  /// the other side over the same region (0 for an opaque leaf).
+  /// the other side over the same region (0 for an opaque leaf), as of keepForTransmission.
   std::pair<Bands, Bands> transmitted(uint32_t leaf) const;
   /// What the oracles weigh an irradiance error by: max(ρ, τ) per band, since
   /// a translucent receiver passes τ of it to its other side.

@@ -127,7 +127,7 @@ void Solution::updateNodesAndErrors() {
   const bool atNodes = hasNodeIrradiance();
   std::vector<Bands> display(mesh.elements.size());
   for (uint32_t e = 0; e < mesh.elements.size(); ++e)
-    display[e] = atNodes ? emission[e] + reflectance[e] * ambient : displayRadiosity(e);
+    display[e] = atNodes ? emission[e] + (reflectance[e] + transmittanceOf(e)) * ambient : displayRadiosity(e);
   nodeRadiosity = nodeValues(display);
   nodeReflectance = nodeValues(reflectance);
   if (atNodes) {

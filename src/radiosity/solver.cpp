@@ -74,9 +74,9 @@ std::string resolveSolverName(const std::string &name, size_t patches, bool impo
 }
 
 std::string resolveSolverName(const std::string &name, const Scene &scene, bool importance) {
-  size_t emitters = 0;
-  for (const Face &f : scene.faces) emitters += scene.materials[f.material].isEmitter();
-  return resolveSolverName(name, scene.faces.size(), importance, emitters);
+  size_t emitters = 0, faces = 0;
+  for (const Face &f : scene.faces) emitters += scene.materials[f.material].isEmitter(), faces += !f.back;
+  return resolveSolverName(name, faces, importance, emitters);
 }
 
 Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOptions &meshOptions,

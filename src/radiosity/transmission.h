@@ -22,27 +22,29 @@ namespace radiant {
 std::vector<Bands> elementTransmittance(const Scene &scene, const RadiosityMesh &mesh);
 
 /// The coupling over a solution's elements (the solvers on a fixed mesh:
-/// gauss-seidel, progressive, stochastic): element `from` passes τ_to ·
-/// weight · H_from to the element `to` of the other side at its centre,
-/// weight = A_from / A_to, which is the power τ H A when the two sides are
-/// meshed alike (the uniform mesher makes them so) and keeps it otherwise.
+/// gauss-seidel, progressive, stochastic): element `to` gains τ_to Σ w H_from
+/// over the elements `from` of the other side under it, w the share of its
+/// area over each (from 4 × 4 points spread over it). The uniform mesher
+/// meshes the two sides alike, so there each element has one `from`, w = 1;
+/// where they differ (adaptive rounds, a cut on one side only) the light
+/// through still lands where it belongs.
 class ElementTransmission {
  public:
   ElementTransmission(const Scene &scene, const Solution &solution);
-  bool empty() const { return to_.empty(); }
-  /// Calls f(to, gain) with gain = τ_to · weight · h when `from` passes light through.
+  bool empty() const { return outgoing_.empty(); }
+  /// Calls f(to, gain) for every element `to` that `from`'s irradiance h
+  /// passes through to, gain = τ_to · w · h (radiosity, W·m⁻²).
   template <typename F>
   void pass(size_t from, const Bands &h, F &&f) const {
-    if (to_.empty() || to_[from] < 0) return;
-    const uint32_t to = uint32_t(to_[from]);
-    f(to, transmittance_[to] * h * weight_[from]);
+    if (outgoing_.empty()) return;
+    for (const auto &[to, weight] : outgoing_[from]) f(to, transmittance_[to] * h * weight);
   }
   /// For each receiving element, the elements passing light to it, with their weights.
   std::vector<std::vector<std::pair<uint32_t, double>>> incoming() const;
 
  private:
-  std::vector<int32_t> to_;  ///< per element, −1: passes nothing on
-  std::vector<double> weight_;
+  std::vector<std::vector<std::pair<uint32_t, double>>>
+      outgoing_;  ///< per element: (to, w); empty: nothing translucent
   std::vector<Bands> transmittance_;
 };
 
@@ -55,12 +57,13 @@ int32_t oppositePatch(const Scene &scene, const RadiosityMesh &mesh, uint32_t pa
 /// `area` at `point`: the two sides of a face are subdivided alike where they
 /// are subdivided at all (quads at their midpoints, triangles into four), so
 /// it is the node of that area containing the point, or the leaf containing
-/// it where the tree is coarser. `normal` is the tree's plane's.
+/// it where the tree is coarser. `normal` is the tree's plane's. Nodes from
+/// `limit` on (made by a split since some values were kept) are taken as absent.
 template <typename Node>
-uint32_t coveringNode(const std::vector<Node> &nodes, uint32_t root, const Vec3 &point, const Vec3 &normal,
-                      double area) {
+uint32_t coveringNode(const std::vector<Node> &nodes, uint32_t root, const Vec3 &point, const Vec3 &normal, double area,
+                      size_t limit = SIZE_MAX) {
   uint32_t n = root;
-  while (nodes[n].children[0] >= 0 && nodes[n].area > area * (1 + 1e-6)) {
+  while (nodes[n].children[0] >= 0 && size_t(nodes[n].children[0]) < limit && nodes[n].area > area * (1 + 1e-6)) {
     // The child the point lies deepest inside (round-off on shared edges).
     uint32_t best = uint32_t(nodes[n].children[0]);
     double bestDepth = -INFINITY;

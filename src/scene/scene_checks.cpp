@@ -183,6 +183,23 @@ void validateScene(Scene &scene) {
     if (!valid) throw InputError(where, "a face refers to a vertex, material or object that does not exist");
   }
   scene.addBackFaces();
+  // A translucent surface passes τ of what arrives on either side to the
+  // other: one τ for the pair, or the light through would depend on its
+  // direction (and ρ of one side + τ of the other could reach 1).
+  for (const Face &f : scene.faces) {
+    if (f.twin < 0 || f.back) continue;
+    const Material &front = scene.materials[f.material], &back = scene.materials[scene.faces[size_t(f.twin)].material];
+    const auto tau = [](const Material &m) {
+      return m.kind == MaterialKind::Lambertian || m.kind == MaterialKind::Glossy ? m.transmittance : Bands(0.0);
+    };
+    const Bands a = tau(front), b = tau(back);
+    if (a[0] != b[0] || a[1] != b[1] || a[2] != b[2])
+      throw InputError(front.definedAt.file.empty() ? where : front.definedAt,
+                       "materials '" + front.name + "' and '" + back.name +
+                           "' are the two sides of one surface (faces back to back), and their "
+                           "diffuse_transmittance differs: the light through a surface is the same both ways; give "
+                           "both sides the same diffuse_transmittance");
+  }
   detail::checkCamera(scene.camera, where);
   detail::checkRenderSettings(scene.render, where);
 
