@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # What the command-line test scripts share: the program, a scratch folder, the
-# pass/fail counters and checks. Sourced by cli_test.sh and cli_output_test.sh
-# (two scripts, so that ctest -j runs them side by side: one took 190 s under the
-# sanitizers). Usage of each: SCRIPT path/to/radiant SOURCE_DIR
+# pass/fail counters and checks. Sourced by every command-line test script
+# (cli_test.sh and cli_output_test.sh are two so that ctest -j runs them side by
+# side: as one they took 190 s under the sanitizers). Usage of each: SCRIPT
+# path/to/radiant SOURCE_DIR
 set -u
 radiant=$1
 source_dir=$2
@@ -21,7 +22,7 @@ expect_error() {
   shift 2
   if "$@" >out.txt 2>err.txt; then
     fail "$name: expected a non-zero exit"
-  elif ! grep -qE "$pattern" err.txt; then
+  elif ! grep -qE -- "$pattern" err.txt; then
     fail "$name: stderr does not match '$pattern':"; cat err.txt
   else
     pass

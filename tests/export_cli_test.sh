@@ -3,30 +3,10 @@
 # files each format writes, determinism, refusals that write nothing, and a
 # server that answers only for the viewer's folder and the model.
 # Usage: export_cli_test.sh path/to/radiant SOURCE_DIR
-set -u
-radiant=$1
-source_dir=$2
-work=$(mktemp -d)
+source "$(dirname "$0")/cli_common.sh"
 server=""
 trap '[ -n "$server" ] && kill $server 2>/dev/null; rm -rf "$work"' EXIT
-cd "$work"
-passed=0
-failed=0
-pass() { passed=$((passed + 1)); }
-fail() { echo "FAIL: $*"; failed=$((failed + 1)); }
-expect_error() {
-  local name=$1 pattern=$2
-  shift 2
-  if "$@" >out.txt 2>err.txt; then
-    fail "$name: expected a non-zero exit"
-  elif ! grep -qE -- "$pattern" err.txt; then
-    fail "$name: stderr does not match '$pattern':"; cat err.txt
-  else
-    pass
-  fi
-}
 
-cornell="$source_dir/scenes/cornell-box/scene.json"
 quick=(--solver gauss-seidel --mesh-size 150 --width 64 --height 64 -q)
 
 # Each format: glTF binary (magic "glTF", version 2), glTF JSON, PLY.
@@ -108,5 +88,4 @@ rm -r viewer/node_modules
 expect_error "serve: viewer without its packages" "run scripts/install-deps.sh" \
   "$radiant" serve box.glb --port 0 --viewer viewer
 
-echo "$passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+finish

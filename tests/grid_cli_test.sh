@@ -2,29 +2,9 @@
 # radiant solve --grid-report / --grid-image and render -o x.hdr as a user runs
 # them (docs/scene-format.md "grids", docs/validation.md, docs/cli.md).
 # Usage: grid_cli_test.sh path/to/radiant SOURCE_DIR
-set -u
-radiant=$1
-source_dir=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-passed=0
-failed=0
-pass() { passed=$((passed + 1)); }
-fail() { echo "FAIL: $*"; failed=$((failed + 1)); }
-expect_error() {
-  local name=$1 pattern=$2
-  shift 2
-  if "$@" >out.txt 2>err.txt; then
-    fail "$name: expected a non-zero exit"
-  elif ! grep -qE -- "$pattern" err.txt; then
-    fail "$name: stderr does not match '$pattern':"; cat err.txt
-  else
-    pass
-  fi
-}
+source "$(dirname "$0")/cli_common.sh"
+
 validation="$source_dir/scenes/validation"
-cornell="$source_dir/scenes/cornell-box/scene.json"
 
 # Validation 2: the closed room, every point at Φ/(A(1−ρ)) = 536.4 lx.
 if "$radiant" solve "$validation/closed-room.json" --grid-report room.csv --grid-image room.png 2>room.txt; then
@@ -83,5 +63,4 @@ else
   fail "render -o a.hdr"
 fi
 
-echo "$passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+finish

@@ -255,24 +255,12 @@ TEST(PointLight, ALuminaireOnADiscIsTheDiscSourcesClosedForm) {
   EXPECT_NEAR(mean, expected, 4 * standardError + 0.002 * expected);
 }
 
-/// A closed 4 × 3 × 2.5 m room of one reflectance ρ lit by an isotropic point
-/// source of flux Φ: all the light is absorbed in the end, so the area-mean
-/// irradiance of every surface is Φ / (A (1 − ρ)) exactly (the interreflection
-/// formula), what every solver must reproduce.
+/// test::pointLitRoom with walls of one reflectance ρ.
 Scene pointLitRoom(double rho) {
-  const int walls[6] = {0, 0, 0, 0, 0, 0};
-  Scene scene = test::closedBox(1.0, walls);
-  for (Vec3 &p : scene.positions) p = Vec3{p.x * 4, p.y * 2.5, p.z * 3};
   Material m;
   m.name = "wall";
   m.diffuse = Bands(rho);
-  scene.materials.push_back(m);
-  PointLight light;
-  light.name = "bulb";
-  light.position = Vec3{1.3, 1.9, 1.1};
-  light.candela = 1000;
-  scene.lights.push_back(light);
-  return scene;
+  return test::pointLitRoom(m);
 }
 
 TEST(PointLight, EverySolverMeetsTheInterreflectionFormulaInAPointLitRoom) {

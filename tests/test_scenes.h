@@ -48,6 +48,36 @@ inline void addQuads(Scene &s, std::initializer_list<uint32_t> materials) {
   }
 }
 
+/// Appends one quad over four new positions (counter-clockwise seen from its front).
+inline void addQuad(Scene &s, std::initializer_list<Vec3> corners, uint32_t material) {
+  Face f;
+  f.vertexCount = 4;
+  f.material = material;
+  uint32_t k = 0;
+  for (const Vec3 &p : corners) {
+    f.vertices[k++] = uint32_t(s.positions.size());
+    s.positions.push_back(p);
+  }
+  s.addFace(f);
+}
+
+/// A closed 4 × 2.5 × 3 m room whose walls are `wall` (material 0), lit by an
+/// isotropic point source of 1000 cd at (1.3, 1.9, 1.1): all its light is
+/// absorbed in the end, so the area-mean irradiance of a room of one
+/// reflectance ρ is Φ / (A (1 − ρ)) exactly (the interreflection formula).
+inline Scene pointLitRoom(const Material &wall) {
+  const int walls[6] = {0, 0, 0, 0, 0, 0};
+  Scene scene = closedBox(1.0, walls);
+  for (Vec3 &p : scene.positions) p = Vec3{p.x * 4, p.y * 2.5, p.z * 3};
+  scene.materials.push_back(wall);
+  PointLight light;
+  light.name = "bulb";
+  light.position = Vec3{1.3, 1.9, 1.1};
+  light.candela = 1000;
+  scene.lights.push_back(light);
+  return scene;
+}
+
 /// The furnace: every wall emits `emission` and reflects `reflectance`
 /// (closed form: radiance E/(1−ρ) everywhere). Camera at the centre.
 inline Scene furnace(double emission, double reflectance) {

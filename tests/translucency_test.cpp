@@ -63,32 +63,18 @@ TEST(Translucency, TheBsdfScattersRhoPlusTauAndTransmitsTau) {
 /// The closed point-lit room of two_sided_test with a free-standing panel of
 /// reflectance 0.3 and diffuse transmittance 0.3: every surface scatters 0.6.
 Scene roomWithTranslucentPanel() {
-  const int walls[6] = {0, 0, 0, 0, 0, 0};
-  Scene scene = test::closedBox(1.0, walls);
-  for (Vec3 &p : scene.positions) p = Vec3{p.x * 4, p.y * 2.5, p.z * 3};
   Material wall;
   wall.name = "wall";
   wall.diffuse = Bands(0.6);
-  scene.materials.push_back(wall);
+  Scene scene = test::pointLitRoom(wall);
   Material panel;
   panel.name = "paper";
   panel.diffuse = Bands(0.3);
   panel.transmittance = Bands(0.3);
   panel.twoSided = true;
   scene.materials.push_back(panel);
-  const uint32_t first = uint32_t(scene.positions.size());
-  scene.positions.insert(scene.positions.end(), {{2.6, 0.4, 0.6}, {2.6, 2.2, 0.6}, {2.6, 2.2, 2.2}, {2.6, 0.4, 2.2}});
-  Face f;
-  f.vertexCount = 4;
-  for (uint32_t k = 0; k < 4; ++k) f.vertices[k] = first + k;
-  f.material = 1;
-  scene.addFace(f);
+  test::addQuad(scene, {{2.6, 0.4, 0.6}, {2.6, 2.2, 0.6}, {2.6, 2.2, 2.2}, {2.6, 0.4, 2.2}}, 1);
   scene.addBackFaces();
-  PointLight light;
-  light.name = "bulb";
-  light.position = Vec3{1.3, 1.9, 1.1};
-  light.candela = 1000;
-  scene.lights.push_back(light);
   return scene;
 }
 

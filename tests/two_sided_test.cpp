@@ -99,35 +99,21 @@ TEST(TwoSided, FacesAlreadyBackToBackArePairedNotDoubled) {
   }
 }
 
-/// The closed 4 × 3 × 2.5 m room of point_light_test (one reflectance ρ, an
+/// test::pointLitRoom (walls of one reflectance ρ, an
 /// isotropic point source) with a free-standing panel in it, 1.6 × 1.8 m,
 /// its front facing away from the lamp.
 Scene roomWithPanel(double rho, bool twoSidedPanel) {
-  const int walls[6] = {0, 0, 0, 0, 0, 0};
-  Scene scene = test::closedBox(1.0, walls);
-  for (Vec3 &p : scene.positions) p = Vec3{p.x * 4, p.y * 2.5, p.z * 3};
   Material wall;
   wall.name = "wall";
   wall.diffuse = Bands(rho);
-  scene.materials.push_back(wall);
+  Scene scene = test::pointLitRoom(wall);
   Material panel = wall;
   panel.name = "panel";
   panel.twoSided = twoSidedPanel;
   scene.materials.push_back(panel);
-  const uint32_t first = uint32_t(scene.positions.size());
   // x = 2.6, front +x (the lamp is at x = 1.3).
-  scene.positions.insert(scene.positions.end(), {{2.6, 0.4, 0.6}, {2.6, 2.2, 0.6}, {2.6, 2.2, 2.2}, {2.6, 0.4, 2.2}});
-  Face f;
-  f.vertexCount = 4;
-  for (uint32_t k = 0; k < 4; ++k) f.vertices[k] = first + k;
-  f.material = 1;
-  scene.addFace(f);
+  test::addQuad(scene, {{2.6, 0.4, 0.6}, {2.6, 2.2, 0.6}, {2.6, 2.2, 2.2}, {2.6, 0.4, 2.2}}, 1);
   scene.addBackFaces();
-  PointLight light;
-  light.name = "bulb";
-  light.position = Vec3{1.3, 1.9, 1.1};
-  light.candela = 1000;
-  scene.lights.push_back(light);
   return scene;
 }
 
