@@ -81,10 +81,8 @@ std::string describe(const Case &c) {
 // Outside at normal and grazing incidence, inside below and beyond the
 // critical angle (sin θ = 0.77 > 1/1.5: the smooth surface reflects all).
 const Case kCases[kChiSquareTests] = {
-    {normalize(Vec3{0.3, -0.2, 0.9}), 0.3, 1.5},
-    {normalize(Vec3{0.9, 0.0, 0.2}), 0.6, 1.5},
-    {normalize(Vec3{0.1, 0.2, -0.95}), 0.2, 1.33},
-    {normalize(Vec3{0.6, 0.1, -0.5}), 0.4, 1.5},
+    {normalize(Vec3{0.3, -0.2, 0.9}), 0.3, 1.5},   {normalize(Vec3{0.9, 0.0, 0.2}), 0.6, 1.5},
+    {normalize(Vec3{0.1, 0.2, -0.95}), 0.2, 1.33}, {normalize(Vec3{0.6, 0.1, -0.5}), 0.4, 1.5},
     {normalize(Vec3{-0.5, 0.4, 0.6}), 1.0, 2.4},
 };
 
@@ -115,8 +113,7 @@ TEST(RoughGlass, SamplingMatchesPdfOnBothSides) {
       EXPECT_EQ(s.isTransmission, (s.wi.z < 0) != (c.wo.z < 0));
       const Bands expected = bsdf.evaluate(s.wi) * (std::abs(s.wi.z) / bsdf.pdf(s.wi));
       for (int i = 0; i < kBandCount; ++i)
-        if (!std::isfinite(s.weight[i]) || std::abs(s.weight[i] - expected[i]) > 1e-9 * (1 + expected[i]))
-          ++badWeights;
+        if (!std::isfinite(s.weight[i]) || std::abs(s.weight[i] - expected[i]) > 1e-9 * (1 + expected[i])) ++badWeights;
     }
     EXPECT_EQ(badWeights, 0);
     EXPECT_GT(transmitted, kSamples / 20) << "both sides are tested";
@@ -131,7 +128,7 @@ TEST(RoughGlass, SamplingMatchesPdfOnBothSides) {
 }
 
 struct WeightMean {
-  double radiance = 0, power = 0;        ///< means of the weight, and of the weight with (η_far/η_near)² undone
+  double radiance = 0, power = 0;            ///< means of the weight, and of the weight with (η_far/η_near)² undone
   double radianceError = 0, powerError = 0;  ///< their standard errors
 };
 
@@ -211,7 +208,8 @@ TEST(RoughGlass, Reciprocity) {
 /// and BSDF sampling weighed by MIS, against a midpoint quadrature of
 /// evaluate() over the emitter's area.
 void expectPathMatchesQuadrature(double alpha, double ior, bool frontUp, const Vec3 &eye, const Vec3 &target) {
-  SCOPED_TRACE("α " + std::to_string(alpha) + ", ior " + std::to_string(ior) + (frontUp ? ", seen from outside" : ", seen from inside"));
+  SCOPED_TRACE("α " + std::to_string(alpha) + ", ior " + std::to_string(ior) +
+               (frontUp ? ", seen from outside" : ", seen from inside"));
   Scene scene;
   Material black;
   black.name = "lamp";
@@ -265,8 +263,8 @@ void expectPathMatchesQuadrature(double alpha, double ior, bool frontUp, const V
   EXPECT_GT(expected, 0.01);
   EXPECT_GT(error, 0.0) << "no variance: the test could not fail";
   EXPECT_NEAR(mean, expected, 5 * error) << "quadrature " << expected << ", path " << mean << " ± " << error;
-  std::cout << "[ rough pane ] α " << alpha << " ior " << ior << (frontUp ? " outside" : " inside") << ": path "
-            << mean << " ± " << error << ", quadrature " << expected << "\n";
+  std::cout << "[ rough pane ] α " << alpha << " ior " << ior << (frontUp ? " outside" : " inside") << ": path " << mean
+            << " ± " << error << ", quadrature " << expected << "\n";
 }
 
 TEST(RoughGlass, PathTracerThroughAPaneMatchesTheIntegralOfF) {
@@ -314,8 +312,11 @@ TEST(RoughGlass, JsonRoughness) {
   EXPECT_EQ(glass.transmissionRoughness, 0.25);
   EXPECT_FALSE(glass.isDelta());
   Scene smooth = parseSceneJson(jsonScene(R"({"type": "dielectric"})"), "s.json");
-  for (const Material &m : smooth.materials)
-    if (m.kind == MaterialKind::Dielectric) EXPECT_TRUE(m.isDelta());
+  for (const Material &m : smooth.materials) {
+    if (m.kind == MaterialKind::Dielectric) {
+      EXPECT_TRUE(m.isDelta());
+    }
+  }
   for (const char *bad : {"-0.1", "1.5"}) {
     try {
       parseSceneJson(jsonScene(std::string(R"({"type": "dielectric", "roughness": )") + bad + "}"), "s.json");
@@ -330,8 +331,9 @@ TEST(RoughGlass, JsonRoughness) {
 TEST(RoughGlass, MgfTsRoughness) {
   const std::string square = "v a =\n p 0 0 0\nv b =\n p 1 0 0\nv c =\n p 1 1 0\nv d =\n p 0 1 0\n";
   const Scene scene = loadScene(temporaryFile(
-      "glass.mgf", square + "m rough =\n ir 1.5 0\n ts 0.9 0.2\nf a b c d\nm fine =\n ir 1.5 0\n ts 0.9 0.001\nf a b c d\n"
-                            "m sheet =\n ts 0.9 0.2\nf a b c d\n"));
+      "glass.mgf", square +
+                       "m rough =\n ir 1.5 0\n ts 0.9 0.2\nf a b c d\nm fine =\n ir 1.5 0\n ts 0.9 0.001\nf a b c d\n"
+                       "m sheet =\n ts 0.9 0.2\nf a b c d\n"));
   ASSERT_EQ(scene.materials.size(), 3u);
   EXPECT_EQ(scene.materials[0].transmissionRoughness, 0.2);
   EXPECT_FALSE(scene.materials[0].isDelta());
