@@ -228,7 +228,7 @@ BakedMesh bakeSolution(const Scene &scene, const Solution &solution, const Displ
   const VertexLight dark{};
   for (const Triangle &t : scene.triangles) {
     const Material &material = scene.materials[t.material];
-    if (!material.isDelta() || (t.face < mesh.patchOfFace.size() && mesh.patchOfFace[t.face] >= 0)) continue;
+    if (!material.isSpecular() || (t.face < mesh.patchOfFace.size() && mesh.patchOfFace[t.face] >= 0)) continue;
     BakedPrimitive &p = builder.primitive(t.material);
     const Vec3 normal = scene.triangleNormal(t);
     for (uint32_t k : t.v) p.indices.push_back(builder.addVertex(p, scene.positions[k], normal, t.face, dark));

@@ -142,7 +142,10 @@ tinygltf::Material gltfMaterial(tinygltf::Model &model, const Scene &scene, cons
   const Bands &base = m.kind == MaterialKind::Lambertian || m.kind == MaterialKind::Glossy ? m.diffuse : m.specular;
   pbr.baseColorFactor = {base[0], base[1], base[2], 1.0};
   pbr.metallicFactor = m.kind == MaterialKind::Mirror ? 1.0 : 0.0;
-  pbr.roughnessFactor = m.kind == MaterialKind::Glossy ? std::sqrt(m.roughness) : m.isDelta() ? 0.0 : 1.0;
+  pbr.roughnessFactor = m.kind == MaterialKind::Glossy       ? std::sqrt(m.roughness)
+                        : m.kind == MaterialKind::Dielectric ? std::sqrt(m.transmissionRoughness)
+                        : m.isDelta()                        ? 0.0
+                                                             : 1.0;
   if (m.diffuseTextureIndex >= 0) pbr.baseColorTexture.index = addTexture(model, scene, m);
   if (m.kind == MaterialKind::Dielectric) {
     out.extensions["KHR_materials_transmission"] = Value(Value::Object{{"transmissionFactor", number(1.0)}});
@@ -160,13 +163,15 @@ tinygltf::Material gltfMaterial(tinygltf::Model &model, const Scene &scene, cons
   // Khronos validator reports as a possible conflict: a viewer shows such an emitter as a bright emissive surface.
   if (!out.extensions.count("KHR_materials_emissive_strength"))
     out.extensions["KHR_materials_unlit"] = Value(Value::Object{});
-  out.extras =
-      Value(Value::Object{{"radiant", Value(Value::Object{{"kind", Value(std::string(materialKindName(m.kind)))},
-                                                          {"diffuse", triple(m.diffuse)},
-                                                          {"specular", triple(m.specular)},
-                                                          {"ior", number(m.ior)},
-                                                          {"roughness", number(m.roughness)},
-                                                          {"emission", triple(m.emission)}})}});
+  Value::Object radiant{{"kind", Value(std::string(materialKindName(m.kind)))},
+                        {"diffuse", triple(m.diffuse)},
+                        {"specular", triple(m.specular)},
+                        {"ior", number(m.ior)},
+                        {"roughness", number(m.roughness)},
+                        {"emission", triple(m.emission)}};
+  // Rough glass only, so the extras of every other material stay as they were.
+  if (m.transmissionRoughness > 0) radiant["transmission_roughness"] = number(m.transmissionRoughness);
+  out.extras = Value(Value::Object{{"radiant", Value(std::move(radiant))}});
   return out;
 }
 

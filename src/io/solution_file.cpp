@@ -145,6 +145,8 @@ uint64_t sceneFingerprint(const Scene &scene) {
       else
         for (int b = 0; b < kBandCount; ++b) f.value(m.transmittance[b]);
     }
+    // Rough glass, like the glass's transmittance below (smooth glass: nothing added, old fingerprints hold).
+    if (m.transmissionRoughness > 0) f.value(uint8_t(4)), f.value(m.transmissionRoughness);
     if (spectral) {
       spectrum(m.spectra.diffuse, m.diffuse), spectrum(m.spectra.emission, m.emission);
       spectrum(m.spectra.specular, m.specular);

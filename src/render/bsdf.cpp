@@ -55,7 +55,50 @@ bool Bsdf::transmits(const Vec3 &wiWorld, Vec3 &wiLocal) const {
   return wiLocal.z < 0 && woLocal_.z > 0;
 }
 
+bool Bsdf::roughDielectric(const Vec3 &wiWorld, Bands &f, double &pdf) const {
+  // Walter, Marschner, Li & Torrance 2007 (eqs. 20–21, 38), in the form of
+  // pbrt-v4's DielectricBxDF rough branch: GGX D, separable Smith G, the
+  // facet normal wm from the (generalised) half vector. The frame's normal is
+  // on the side of wo, so wo.z > 0, and η = η_far / η_near.
+  f = Bands(0.0);
+  pdf = 0;
+  const Vec3 &wo = woLocal_;
+  const Vec3 wi = frame_.toLocal(wiWorld);
+  // Reflection or refraction by the geometric normal; the shading normal must agree.
+  const bool reflect = sameHemisphere(wiWorld);
+  if (wo.z <= 0 || wi.z == 0 || reflect != (wi.z > 0)) return false;
+  const double alpha = material_.transmissionRoughness, eta = etaAcross();
+  Vec3 wm = reflect ? wi + wo : wo + wi * eta;
+  const double length2 = dot(wm, wm);
+  if (!(length2 > 0)) return false;
+  wm = wm / std::sqrt(length2);
+  if (wm.z < 0) wm = -wm;
+  // Only facets that face both directions (Walter's χ⁺ factors).
+  const double cosOM = dot(wo, wm), cosIM = dot(wi, wm);
+  if (cosOM <= 0 || (reflect ? cosIM <= 0 : cosIM >= 0)) return false;
+  const double fresnel = fresnelDielectric(cosOM, eta);
+  const double d = ggxD(wm, alpha), g = ggxG1(wo, alpha) * ggxG1(wi, alpha);
+  const double facetPdf = d * wm.z;  // sampleGgxNormal draws wm with density D·cos θm
+  if (reflect) {
+    f = Bands(d * g * fresnel / (4 * wi.z * wo.z));
+    pdf = fresnel * facetPdf / (4 * cosOM);
+  } else {
+    // dwm/dwi = |wi·wm| / (wi·wm + wo·wm/η)²; the radiance leaving into the
+    // near medium is scaled by (η_near/η_far)² = 1/η², as in the smooth case.
+    const double denominator = sqr(cosIM + cosOM / eta);
+    f = material_.specular * ((1 - fresnel) * d * g * cosOM * -cosIM / (wo.z * -wi.z * denominator) / (eta * eta));
+    pdf = (1 - fresnel) * facetPdf * -cosIM / denominator;
+  }
+  return pdf > 0 && std::isfinite(pdf);
+}
+
 Bands Bsdf::evaluate(const Vec3 &wiWorld) const {
+  if (material_.isRoughDielectric()) {
+    Bands f;
+    double p;
+    roughDielectric(wiWorld, f, p);
+    return f;
+  }
   if (Vec3 through; transmits(wiWorld, through)) return material_.transmittance * kInvPi;
   if (material_.isDelta() || !sameHemisphere(wiWorld)) return Bands(0.0);
   Vec3 wi = frame_.toLocal(wiWorld);
@@ -72,6 +115,11 @@ Bands Bsdf::evaluate(const Vec3 &wiWorld) const {
 }
 
 double Bsdf::pdf(const Vec3 &wiWorld) const {
+  if (material_.isRoughDielectric()) {
+    Bands f;
+    double p;
+    return roughDielectric(wiWorld, f, p) ? p : 0.0;
+  }
   const double pTransmit = transmissionLobeProbability();
   if (Vec3 through; transmits(wiWorld, through)) return pTransmit * cosineHemispherePdf(-through.z);
   if (material_.isDelta() || !sameHemisphere(wiWorld)) return 0;
@@ -97,6 +145,34 @@ bool Bsdf::sample(double uLobe, double u1, double u2, BsdfSample &out) const {
       return sameHemisphere(out.wi);
     }
     case MaterialKind::Dielectric: {
+      if (material_.isRoughDielectric()) {
+        // A facet normal by D·cos θm, then reflection with probability
+        // F(wo·wm), refraction through that facet otherwise (total internal
+        // reflection: F = 1). f, pdf and the weight come from roughDielectric,
+        // so sample(), evaluate() and pdf() cannot disagree.
+        if (woLocal_.z <= 0) return false;
+        const double eta = etaAcross();
+        const Vec3 wm = sampleGgxNormal(u1, u2, material_.transmissionRoughness);
+        const double cosOM = dot(woLocal_, wm);
+        if (cosOM <= 0) return false;
+        const bool reflect = uLobe < fresnelDielectric(cosOM, eta);
+        Vec3 wi;
+        if (reflect) {
+          wi = wm * (2 * cosOM) - woLocal_;
+        } else {
+          const double sin2T = (1 - cosOM * cosOM) / (eta * eta);
+          if (sin2T >= 1) return false;
+          wi = -woLocal_ / eta + wm * (cosOM / eta - std::sqrt(1 - sin2T));
+        }
+        // Off a steep facet to the wrong side: lost (pdf() counts each side's own lobe only).
+        if (reflect ? wi.z <= 0 : wi.z >= 0) return false;
+        out.wi = frame_.toWorld(normalize(wi));
+        Bands f;
+        if (!roughDielectric(out.wi, f, out.pdf)) return false;
+        out.weight = f * (std::abs(dot(out.wi, frame_.normal)) / out.pdf);
+        out.isTransmission = !reflect;
+        return true;
+      }
       // Smooth glass (pbrt-v4 DielectricBxDF): reflect with probability F,
       // refract otherwise, so the weight is 1 apart from the colour filter and
       // the (η_i/η_t)² radiance scaling across the interface.

@@ -33,7 +33,7 @@ class Bsdf {
   /// Draws wi; false if the sample was absorbed or fell on the wrong side.
   bool sample(double uLobe, double u1, double u2, BsdfSample &out) const;
 
-  /// True if every lobe is a delta (mirror, glass): light sampling is pointless.
+  /// True if every lobe is a delta (mirror, smooth glass): light sampling is pointless.
   bool isDelta() const { return material_.isDelta(); }
 
  private:
@@ -44,6 +44,10 @@ class Bsdf {
   double transmissionLobeProbability() const;
   /// True when wi lies on the far side for diffuse transmission; its shading-frame direction in `wiLocal`.
   bool transmits(const Vec3 &wiWorld, Vec3 &wiLocal) const;
+  /// Rough glass: f(wo, wi) and sample()'s density at wi; false where both are 0.
+  bool roughDielectric(const Vec3 &wiWorld, Bands &f, double &pdf) const;
+  /// η on the far side over η on the side of wo.
+  double etaAcross() const { return entering_ ? material_.ior : 1.0 / material_.ior; }
 
   const Material &material_;
   Bands diffuse_;         ///< the Lambertian (or glossy base) reflectance at this point

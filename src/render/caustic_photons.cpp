@@ -66,7 +66,9 @@ CausticPhotonMap::CausticPhotonMap(const RayTracer &tracer, size_t emitted, uint
         const Vec3 wo = -ray.direction;
         if (!material.isDelta()) {
           // L S+ D: stored only after a specular bounce (otherwise it is direct light).
-          if (bounce > 0)
+          // Rough glass ends the photon unstored: the path tracer follows
+          // light through it itself (it is no delta bounce), and no one reads the map there.
+          if (bounce > 0 && !material.isSpecular())
             stored[c].push_back(
                 {hit.position, dot(wo, hit.geometricNormal) >= 0 ? hit.geometricNormal : -hit.geometricNormal, power});
           break;

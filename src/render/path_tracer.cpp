@@ -88,8 +88,9 @@ class PathTracer final : public Renderer {
       Vec3 wo = -ray.direction;
       // Irradiance: at the first surface that is not a mirror or glass, a white
       // Lambertian meter replaces the material, and π·(reflected radiance of
-      // ρ = 1) = ∫L cos dω is the irradiance; the surface's own emission is not light arriving.
-      const bool meterHere = irradiance_ && !metered && !material.isDelta();
+      // ρ = 1) = ∫L cos dω is the irradiance; the surface's own emission is not
+      // light arriving. Rough glass is looked through, as the two-pass methods do.
+      const bool meterHere = irradiance_ && !metered && !material.isSpecular();
 
       // Emission seen by this ray (front side only). With a caustic map, light
       // that left a non-specular vertex through specular bounces to reach an
@@ -107,11 +108,16 @@ class PathTracer final : public Renderer {
       }
       if (maxDepth_ > 0 && depth >= maxDepth_) break;  // max depth counts bounces
       if (!material.isDelta()) {
-        ++diffuseVertices, specularSinceDiffuse = 0;
+        // Rough glass ends a specular chain (the caustic map holds only chains
+        // of delta bounces) but is no vertex to read the solution at: it holds
+        // nothing there (ρ = 0).
+        specularSinceDiffuse = 0;
+        const bool readable = !material.isSpecular();
+        if (readable) ++diffuseVertices;
         const Vec3 facing = dot(wo, hit.geometricNormal) >= 0 ? hit.geometricNormal : -hit.geometricNormal;
         // Multipass's low-frequency passes: past readDepth non-specular bounces
         // the solution's reflected radiosity stands for the rest of the path (as rushmeier does at depth 1).
-        if (readDepth_ > 0 && diffuseVertices == readDepth_ + 1) {
+        if (readable && readDepth_ > 0 && diffuseVertices == readDepth_ + 1) {
           Bands read = L + throughput * readSolution(hit, wo, diffuse);
           if (caustics_) read += throughput * caustics_->reflectedRadiance(hit.position, facing, diffuse);
           if (!control) return read.isFinite() ? read : Bands(0.0);

@@ -18,7 +18,9 @@ bool findVisiblePoint(const RayTracer &tracer, const Solution &solution, Ray ray
     travelled += out.hit.distance;
     const Material &material = scene.materials[out.hit.material];
     out.wo = -ray.direction;
-    if (material.isDelta()) {
+    // Rough glass too: the solution holds nothing for it, so the view goes
+    // through (or off) it by a sampled direction, weighted f·cos/pdf.
+    if (material.isSpecular()) {
       Bsdf bsdf(material, out.hit.shadingNormal, out.hit.geometricNormal, out.wo);
       BsdfSample s;
       double uLobe = rng.next(), u1 = rng.next(), u2 = rng.next();

@@ -69,6 +69,7 @@ void readRadiantExtras(const JsonNode &radiant, Material &m) {
   m.specular = radiant.bands("specular", m.specular);
   m.ior = radiant.number("ior", m.ior);
   m.roughness = radiant.number("roughness", m.roughness);
+  m.transmissionRoughness = radiant.number("transmission_roughness", m.transmissionRoughness);
   m.emission = radiant.bands("emission", m.emission);
 }
 
@@ -159,6 +160,7 @@ Material convertMaterial(const GltfFile &file, const JsonNode &node, Scene &scen
     names.emission = "extras.radiant.emission";
     names.ior = "extras.radiant.ior";
     names.roughness = "extras.radiant.roughness";
+    names.transmissionRoughness = "extras.radiant.transmission_roughness";
   }
   if (textured) setTexture(file, pbr.child("baseColorTexture"), m, scene, textures);
   if (node.has("emissiveTexture")) {

@@ -36,6 +36,7 @@ struct MaterialFieldNames {
   /// reported at its own line rather than at newmtl's.
   std::map<std::string, int> lines;
   const char *transmittance = "diffuse_transmittance";
+  const char *transmissionRoughness = "roughness";  ///< a dielectric's GGX α
 };
 void checkMaterial(const Material &material, const InputLocation &where, const MaterialFieldNames &names = {});
 

@@ -111,7 +111,7 @@ Material parseMaterial(const JsonNode &node, const std::string &name, const fs::
                  {"type", "emission", "two_sided", "bump", "bump_scale", "normal_map", "texture_wrap", "texture_scale"},
                  {{"lambertian", {"reflectance", "diffuse_transmittance", "texture"}},
                   {"mirror", {"reflectance"}},
-                  {"dielectric", {"ior", "transmittance"}},
+                  {"dielectric", {"ior", "transmittance", "roughness"}},
                   {"glossy", {"reflectance", "specular", "roughness", "diffuse_transmittance", "texture"}}},
                  type, "material");
   Material m;
@@ -137,6 +137,8 @@ Material parseMaterial(const JsonNode &node, const std::string &name, const fs::
     m.ior = node.number("ior", 1.5);
     m.specular = value("transmittance", Bands(1.0), m.spectra.specular);
     names.specular = "transmittance";
+    // GGX α of rough glass; 0, the default, is smooth glass (checkMaterial: 0 or (0, 1]).
+    m.transmissionRoughness = node.number("roughness", 0.0);
   } else {
     m.kind = MaterialKind::Glossy;
     m.specular = value("specular", Bands(0.2), m.spectra.specular);

@@ -18,7 +18,8 @@ namespace radiant {
 enum class MaterialKind {
   Lambertian,  ///< ideal diffuse, reflectance `diffuse` (ρ, dimensionless, per band)
   Mirror,      ///< ideal specular reflection with reflectance `specular`
-  Dielectric,  ///< smooth glass: Fresnel reflection and refraction, index `ior`, transmittance `specular`
+  Dielectric,  ///< glass: Fresnel reflection and refraction, index `ior`, transmittance `specular`;
+               ///< smooth, or rough with `transmissionRoughness` > 0 (GGX microfacets, Walter et al. 2007)
   Glossy,      ///< `diffuse` Lambertian base plus a GGX microfacet lobe of reflectance `specular`, `roughness`
 };
 
@@ -43,6 +44,9 @@ struct Material {
   Bands specular{0.0};     ///< mirror / glossy reflectance or glass transmittance filter
   double ior = 1.5;        ///< index of refraction (Dielectric)
   double roughness = 0.2;  ///< GGX α (Glossy), in (0, 1]
+  /// GGX α of a Dielectric's microfacets, in (0, 1]; 0: smooth glass (the
+  /// default). Not `roughness`, whose default would make every glass rough.
+  double transmissionRoughness = 0;
   /// Emitted radiance, W·sr⁻¹·m⁻², uniform over the front hemisphere only.
   Bands emission{0.0};
   /// Both sides of each face reflect (and emit) alike (MGF `sides 2`, JSON
@@ -78,8 +82,17 @@ struct Material {
 
   bool isEmitter() const { return emission.max() > 0.0; }
   bool hasSurfaceDetail() const { return diffuseTextureIndex >= 0 || bumpTextureIndex >= 0 || normalTextureIndex >= 0; }
+  /// Glass with microfacets. An index of 1 (MGF's thin sheet) bends no ray
+  /// whatever the facets' slopes: that glass stays smooth (pbrt-v4 does the same).
+  bool isRoughDielectric() const { return kind == MaterialKind::Dielectric && transmissionRoughness > 0 && ior != 1; }
   /// True when the surface scatters only into a finite set of directions.
-  bool isDelta() const { return kind == MaterialKind::Mirror || kind == MaterialKind::Dielectric; }
+  bool isDelta() const {
+    return kind == MaterialKind::Mirror || (kind == MaterialKind::Dielectric && !isRoughDielectric());
+  }
+  /// Mirrors and glass, smooth or rough: surfaces the radiosity solution
+  /// holds no light for (their ρ is 0), which the renderers that read it
+  /// look past rather than shade (two-pass visible points, the irradiance meter).
+  bool isSpecular() const { return kind == MaterialKind::Mirror || kind == MaterialKind::Dielectric; }
 };
 
 }  // namespace radiant

@@ -165,10 +165,13 @@ Material mgfToMaterial(const MgfMaterial &mgf, const std::string &name, const In
     m.kind = MaterialKind::Dielectric;
     m.ior = mgf.iorReal > 0 ? mgf.iorReal : 1.0;
     m.specular = bands(mgf.ts, mgf.tsColour);
+    // ts's α, like rs's, is read as GGX's α: rough glass (Walter et al. 2007).
+    // With no ir (ior 1, a thin sheet) it changes nothing: an index of 1 bends no ray.
+    if (mgf.tsAlpha > 0) m.transmissionRoughness = std::clamp(mgf.tsAlpha, 0.01, 1.0);
     if (mgf.rd > 0 || mgf.rs > 0)
-      warnings.push_back(prefix + "specular transmittance (ts) makes it smooth glass (ior " + number(m.ior) +
+      warnings.push_back(prefix + "specular transmittance (ts) makes it " +
+                         (m.isRoughDielectric() ? "rough" : "smooth") + " glass (ior " + number(m.ior) +
                          "): its rd and rs are dropped, the glass reflects by Fresnel's law");
-    if (mgf.tsAlpha > 0) warnings.push_back(prefix + "the roughness of ts is dropped: the glass is smooth");
     m.diffuse = Bands(0.0);
   } else if (mgf.rs > 0) {
     m.specular = bands(mgf.rs, mgf.rsColour);
@@ -197,7 +200,7 @@ Material mgfToMaterial(const MgfMaterial &mgf, const std::string &name, const In
   if (mgf.sides == 2) {
     if (m.kind == MaterialKind::Dielectric)
       warnings.push_back(prefix +
-                         "'sides 2' is dropped: a transmitting (ts) material is smooth glass, the "
+                         "'sides 2' is dropped: a transmitting (ts) material is glass, the "
                          "interface between inside and outside, whose faces are one-sided");
     else
       m.twoSided = true;

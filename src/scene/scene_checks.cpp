@@ -96,6 +96,11 @@ void detail::checkMaterial(const Material &m, const InputLocation &where, const 
           fieldLocation(where, names.roughness, names),
           subject + names.roughness + " gives GGX α = " + formatNumber(m.roughness) + "; expected α in (0, 1]");
   }
+  if (m.kind == MaterialKind::Dielectric && m.transmissionRoughness != 0 &&
+      !(m.transmissionRoughness > 0 && m.transmissionRoughness <= 1))
+    throw InputError(fieldLocation(where, names.transmissionRoughness, names),
+                     subject + names.transmissionRoughness + " gives GGX α = " + formatNumber(m.transmissionRoughness) +
+                         "; expected 0 (smooth glass) or α in (0, 1]");
   if (!std::isfinite(m.ior) || !(m.ior > 0))
     throw InputError(fieldLocation(where, names.ior, names), subject + names.ior + " " + formatNumber(m.ior) +
                                                                  " is not a valid index of refraction; expected > 0");
