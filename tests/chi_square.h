@@ -3,10 +3,39 @@
 // density over each bin, pool sparse bins, compare).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <vector>
 
+#include "util/math.h"
+
 namespace radiant::test {
+
+/// Bins of equal solid angle over the whole sphere: 24 in cos θ ∈ [−1, 1] by 48 in φ ∈ [0, 2π).
+constexpr int kThetaBins = 24, kPhiBins = 48;
+inline int sphereBin(const Vec3 &w) {
+  int i = std::clamp(static_cast<int>((w.z + 1) / 2 * kThetaBins), 0, kThetaBins - 1);
+  double phi = std::atan2(w.y, w.x);
+  if (phi < 0) phi += 2 * kPi;
+  int j = std::clamp(static_cast<int>(phi / (2 * kPi) * kPhiBins), 0, kPhiBins - 1);
+  return i * kPhiBins + j;
+}
+
+/// ∫ pdf dω over each sphereBin, by the midpoint rule on a sub × sub grid per bin.
+inline std::vector<double> integratePdfOverSphereBins(const std::function<double(const Vec3 &)> &pdf, int sub) {
+  std::vector<double> integral(kThetaBins * kPhiBins, 0.0);
+  const double dz = 2.0 / (kThetaBins * sub), dphi = 2 * kPi / (kPhiBins * sub);
+  for (int a = 0; a < kThetaBins * sub; ++a) {
+    double z = -1 + (a + 0.5) * dz, r = std::sqrt(std::max(0.0, 1 - z * z));
+    for (int b = 0; b < kPhiBins * sub; ++b) {
+      double phi = (b + 0.5) * dphi;
+      Vec3 w{r * std::cos(phi), r * std::sin(phi), z};
+      integral[(a / sub) * kPhiBins + b / sub] += pdf(w) * dz * dphi;
+    }
+  }
+  return integral;
+}
 
 /// Regularised upper incomplete gamma Q(a, x) (Numerical Recipes §6.2).
 inline double gammaQ(double a, double x) {

@@ -336,15 +336,9 @@ TEST(PhotometryFile, DispatchesOnTheExtension) {
 
 // ---- Sampling ------------------------------------------------------------------------
 
-constexpr int kThetaBins = 24, kPhiBins = 48;
-
-int sphereBin(const Vec3 &w) {
-  int i = std::clamp(static_cast<int>((w.z + 1) / 2 * kThetaBins), 0, kThetaBins - 1);
-  double phi = std::atan2(w.y, w.x);
-  if (phi < 0) phi += 2 * kPi;
-  int j = std::clamp(static_cast<int>(phi / (2 * kPi) * kPhiBins), 0, kPhiBins - 1);
-  return i * kPhiBins + j;
-}
+using test::kPhiBins;
+using test::kThetaBins;
+using test::sphereBin;
 
 void expectSamplingFollowsPdf(const PhotometricDistribution &d) {
   constexpr int kSamples = 200000, kSub = 8;

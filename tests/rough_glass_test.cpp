@@ -28,7 +28,9 @@
 namespace radiant {
 namespace {
 
-constexpr int kThetaBins = 24, kPhiBins = 48;
+using test::kPhiBins;
+using test::kThetaBins;
+using test::sphereBin;
 constexpr int kChiSquareTests = 5;
 
 Material roughGlass(double alpha, double ior, const Bands &transmittance = Bands(1.0)) {
@@ -40,31 +42,6 @@ Material roughGlass(double alpha, double ior, const Bands &transmittance = Bands
   m.ior = ior;
   m.transmissionRoughness = alpha;
   return m;
-}
-
-/// Bins of equal solid angle over the whole sphere: cos θ in [−1, 1], φ in [0, 2π).
-int sphereBin(const Vec3 &w) {
-  int i = std::clamp(static_cast<int>((w.z + 1) / 2 * kThetaBins), 0, kThetaBins - 1);
-  double phi = std::atan2(w.y, w.x);
-  if (phi < 0) phi += 2 * kPi;
-  int j = std::clamp(static_cast<int>(phi / (2 * kPi) * kPhiBins), 0, kPhiBins - 1);
-  return i * kPhiBins + j;
-}
-
-/// ∫ pdf dω over each bin, midpoint rule on a 16 × 16 sub-grid per bin.
-std::vector<double> integratePdfOverBins(const std::function<double(const Vec3 &)> &pdf) {
-  constexpr int kSub = 16;
-  std::vector<double> integral(kThetaBins * kPhiBins, 0.0);
-  const double dz = 2.0 / (kThetaBins * kSub), dphi = 2 * kPi / (kPhiBins * kSub);
-  for (int a = 0; a < kThetaBins * kSub; ++a) {
-    double z = -1 + (a + 0.5) * dz, r = std::sqrt(std::max(0.0, 1 - z * z));
-    for (int b = 0; b < kPhiBins * kSub; ++b) {
-      double phi = (b + 0.5) * dphi;
-      Vec3 w{r * std::cos(phi), r * std::sin(phi), z};
-      integral[(a / kSub) * kPhiBins + b / kSub] += pdf(w) * dz * dphi;
-    }
-  }
-  return integral;
 }
 
 struct Case {
@@ -117,7 +94,7 @@ TEST(RoughGlass, SamplingMatchesPdfOnBothSides) {
     }
     EXPECT_EQ(badWeights, 0);
     EXPECT_GT(transmitted, kSamples / 20) << "both sides are tested";
-    std::vector<double> expected = integratePdfOverBins([&](const Vec3 &w) { return bsdf.pdf(w); });
+    std::vector<double> expected = test::integratePdfOverSphereBins([&](const Vec3 &w) { return bsdf.pdf(w); }, 16);
     double total = 0;
     for (double &e : expected) total += e, e *= kSamples;
     expected.push_back(std::max(0.0, 1 - total) * kSamples);

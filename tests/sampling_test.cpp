@@ -13,33 +13,10 @@
 namespace radiant {
 namespace {
 
-constexpr int kThetaBins = 24, kPhiBins = 48;
+using test::kPhiBins;
+using test::kThetaBins;
+using test::sphereBin;
 constexpr int kTestsInThisFile = 9;
-
-/// Bins of equal solid angle over the sphere: cos θ in [−1, 1], φ in [0, 2π).
-int sphereBin(const Vec3 &w) {
-  int i = std::clamp(static_cast<int>((w.z + 1) / 2 * kThetaBins), 0, kThetaBins - 1);
-  double phi = std::atan2(w.y, w.x);
-  if (phi < 0) phi += 2 * kPi;
-  int j = std::clamp(static_cast<int>(phi / (2 * kPi) * kPhiBins), 0, kPhiBins - 1);
-  return i * kPhiBins + j;
-}
-
-/// ∫ pdf dω over each bin, by the midpoint rule on a fine sub-grid.
-std::vector<double> integratePdfOverBins(const std::function<double(const Vec3 &)> &pdf) {
-  constexpr int kSub = 12;
-  std::vector<double> integral(kThetaBins * kPhiBins, 0.0);
-  const double dz = 2.0 / (kThetaBins * kSub), dphi = 2 * kPi / (kPhiBins * kSub);
-  for (int a = 0; a < kThetaBins * kSub; ++a) {
-    double z = -1 + (a + 0.5) * dz, r = std::sqrt(std::max(0.0, 1 - z * z));
-    for (int b = 0; b < kPhiBins * kSub; ++b) {
-      double phi = (b + 0.5) * dphi;
-      Vec3 w{r * std::cos(phi), r * std::sin(phi), z};
-      integral[(a / kSub) * kPhiBins + b / kSub] += pdf(w) * dz * dphi;
-    }
-  }
-  return integral;
-}
 
 /// Draws `n` directions (nullopt when the sampler rejects) and tests them against `pdf`;
 /// rejections form one more bin whose expected share is 1 − ∫pdf.
@@ -54,7 +31,7 @@ void expectDirectionsFollowPdf(const std::function<bool(Pcg32 &, Vec3 &)> &sampl
     else
       observed.back() += 1;
   }
-  std::vector<double> expected = integratePdfOverBins(pdf);
+  std::vector<double> expected = test::integratePdfOverSphereBins(pdf, 12);
   double total = 0;
   for (double &e : expected) {
     total += e;
@@ -229,7 +206,8 @@ TEST(Sampling, ChiSquareTestRejectsAWrongDensity) {
     double z = rng.next(), phi = 2 * kPi * rng.next(), r = std::sqrt(1 - z * z);
     observed[sphereBin({r * std::cos(phi), r * std::sin(phi), z})] += 1;
   }
-  std::vector<double> expected = integratePdfOverBins([](const Vec3 &w) { return cosineHemispherePdf(w.z); });
+  std::vector<double> expected =
+      test::integratePdfOverSphereBins([](const Vec3 &w) { return cosineHemispherePdf(w.z); }, 12);
   for (double &e : expected) e *= n;
   expected.push_back(0);
   EXPECT_LT(test::chiSquare(observed, expected).pValue, 1e-6);

@@ -68,29 +68,29 @@ bool Scene::addFace(const Face &face) {
   return true;
 }
 
+std::vector<std::array<double, 3>> Scene::cornerKey(const Face &f, bool reversed) const {
+  std::vector<std::array<double, 3>> key;
+  for (int k = 0; k < f.vertexCount; ++k) {
+    const Vec3 &p = positions[f.vertices[reversed ? (f.vertexCount - k) % f.vertexCount : k]];
+    key.push_back({p.x, p.y, p.z});
+  }
+  std::rotate(key.begin(), std::min_element(key.begin(), key.end()), key.end());
+  return key;
+}
+
 void Scene::addBackFaces() {
   // Faces already back to back (the same corners in the reverse cyclic order,
   // as a modeller makes a sheet with two sides) are paired as they are.
-  using Key = std::vector<std::array<double, 3>>;
-  auto keyOf = [&](const Face &f, bool reversed) {
-    Key key;
-    for (int k = 0; k < f.vertexCount; ++k) {
-      const Vec3 &p = positions[f.vertices[reversed ? (f.vertexCount - k) % f.vertexCount : k]];
-      key.push_back({p.x, p.y, p.z});
-    }
-    std::rotate(key.begin(), std::min_element(key.begin(), key.end()), key.end());
-    return key;
-  };
-  std::map<Key, uint32_t> unpaired;
+  std::map<std::vector<std::array<double, 3>>, uint32_t> unpaired;
   for (uint32_t f = 0; f < faces.size(); ++f) {
     if (faces[f].twin >= 0) continue;
-    if (auto it = unpaired.find(keyOf(faces[f], true)); it != unpaired.end()) {
+    if (auto it = unpaired.find(cornerKey(faces[f], true)); it != unpaired.end()) {
       faces[it->second].twin = int32_t(f);
       faces[f].twin = int32_t(it->second);
       faces[f].back = true;
       unpaired.erase(it);
     } else {
-      unpaired.emplace(keyOf(faces[f], false), f);
+      unpaired.emplace(cornerKey(faces[f]), f);
     }
   }
   const size_t count = faces.size();

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -147,6 +148,10 @@ struct Scene {
   /// Adds a face, and its triangles; returns false (and counts it) when the face
   /// is degenerate (zero area or non-finite).
   bool addFace(const Face &face);
+  /// A face's corners as positions, rotated to start at the smallest, in
+  /// winding order or (`reversed`) the other way: two faces with equal keys
+  /// are one surface facing the same way, or with a reversed key back to back.
+  std::vector<std::array<double, 3>> cornerKey(const Face &f, bool reversed = false) const;
   /// Pairs the faces that are already back to back (the same corners in the
   /// reverse order: the later one becomes the back), then gives every other
   /// face of a two-sided material a back (Face::twin, Face::back) after all

@@ -179,27 +179,16 @@ void addUvSphere(Scene &scene, const Vec3 &center, double radius, int segments, 
 }
 
 void dropRepeatedFaces(Scene &scene) {
-  // A face's corners as positions, rotated to start at the smallest: two faces
-  // with the same key have the same corners in the same cyclic order, so they
-  // are the same surface facing the same way. (The reverse order is the other
-  // side of a thin sheet, which is a surface of its own and stays.)
-  using Key = std::vector<std::array<double, 3>>;
-  auto keyOf = [&](const Face &f) {
-    Key key;
-    for (int k = 0; k < f.vertexCount; ++k) {
-      const Vec3 &p = scene.positions[f.vertices[k]];
-      key.push_back({p.x, p.y, p.z});
-    }
-    std::rotate(key.begin(), std::min_element(key.begin(), key.end()), key.end());
-    return key;
-  };
-  std::map<Key, uint32_t> firstWithKey;
+  // Two faces with the same corner key are the same surface facing the same
+  // way. (The reverse order is the other side of a thin sheet, which is a
+  // surface of its own and stays: Scene::addBackFaces pairs the two.)
+  std::map<std::vector<std::array<double, 3>>, uint32_t> firstWithKey;
   std::vector<int64_t> newIndex(scene.faces.size(), -1);
   std::vector<Face> kept;
   size_t repeated = 0;
   std::string example;
   for (size_t i = 0; i < scene.faces.size(); ++i) {
-    auto [at, inserted] = firstWithKey.emplace(keyOf(scene.faces[i]), uint32_t(kept.size()));
+    auto [at, inserted] = firstWithKey.emplace(scene.cornerKey(scene.faces[i]), uint32_t(kept.size()));
     if (!inserted) {
       if (repeated++ == 0) {
         const Face &first = kept[at->second];
