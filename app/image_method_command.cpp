@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include "cluster/cluster.h"
 #include "display_options.h"
 #include "io/image.h"
 #include "util/atomic_file.h"
@@ -22,7 +23,8 @@ void runImageMethod(const RendererInfo &method, const Parameters &parameters, Im
   std::vector<float> coverage;  // the emitters in view: the same camera for every pass
   job.output = [&](int pass, const std::string &summary, const Image &mean, const Image &variance) {
     // A pass cut short by Ctrl-C is not an image of its pass: the last complete one stands.
-    if (interruptRequested()) return;
+    // With several MPI ranks rank 0 writes (every rank has the whole image: render/driver.h).
+    if (interruptRequested() || !cluster::isRoot()) return;
     std::vector<std::string> passPaths, paths;
     for (const std::string &path : command.outputs) passPaths.push_back(passOutputPath(path, pass));
     Image image = mean;

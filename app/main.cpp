@@ -1,11 +1,15 @@
 // radiant — command-line entry point. Catches the one error type (InputError)
-// once, prints it and exits non-zero.
+// once, prints it and exits non-zero. Under mpirun every rank runs this
+// (cluster/cluster.h); an error on any rank ends the whole job, since the
+// others may be waiting for it in a collective.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
+#include <string>
 
+#include "cluster/cluster.h"
 #include "commands.h"
 #include "interrupt_handler.h"
 #include "scene/json_reader.h"
@@ -33,11 +37,29 @@ void suggestFlags(CLI::App &app, CLI::App &command) {
   }
 }
 
+/// Prints an error (rank 0; another rank names itself) and, with several
+/// ranks, ends the whole job: the others may wait for this one forever.
+int fail(int status, const std::string &message) {
+  namespace cluster = radiant::cluster;
+  if (cluster::isRoot())
+    fmt::print(stderr, "radiant: error: {}\n", message);
+  else
+    fmt::print(stderr, "radiant ({}): error: {}\n", cluster::rankLabel(), message);
+  if (cluster::distributed()) {
+    std::fflush(stderr);
+    cluster::abortAll(status);
+  }
+  return status;
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
+  // Joins the MPI job when started by mpirun or srun (docs/cluster.md).
+  radiant::cluster::Session cluster(argc, argv);
   CLI::App app{"Radiant — a global-illumination renderer built around radiosity (Cohen & Wallace, ch. 9)", "radiant"};
-  app.set_version_flag("--version", std::string("radiant ") + RADIANT_VERSION);
+  app.set_version_flag("--version", std::string("radiant ") + RADIANT_VERSION +
+                                        (radiant::cluster::builtWithMpi() ? " (MPI)" : " (no MPI)"));
   app.require_subcommand(1);
   CLI::App *render = app.add_subcommand("render", "Render a scene (JSON or OBJ) to EXR/PFM/PNG images");
   CLI::App *solve = app.add_subcommand("solve", "Compute a scene's radiosity solution, report it, save it for render");
@@ -77,19 +99,17 @@ int main(int argc, char **argv) {
     if (exportCommand->parsed()) return runExport();
     if (serve->parsed()) return runServe();
   } catch (const radiant::Interrupted &) {
-    fmt::print(stderr, "radiant: interrupted before anything was complete; nothing written\n");
+    if (radiant::cluster::isRoot())
+      fmt::print(stderr, "radiant: interrupted before anything was complete; nothing written\n");
+    if (radiant::cluster::distributed()) radiant::cluster::abortAll(radiant::interruptedExitStatus());
     return radiant::interruptedExitStatus();
   } catch (const radiant::InputError &e) {
     // The library names a parameter ("mesh-size"); here it is a flag.
     const radiant::InputLocation &where = e.location();
-    if (where.file.empty() && !where.parameter.empty())
-      fmt::print(stderr, "radiant: error: --{}: {}\n", where.parameter, e.message());
-    else
-      fmt::print(stderr, "radiant: error: {}\n", e.what());
-    return 2;
+    if (where.file.empty() && !where.parameter.empty()) return fail(2, "--" + where.parameter + ": " + e.message());
+    return fail(2, e.what());
   } catch (const std::exception &e) {
-    fmt::print(stderr, "radiant: error: {}\n", e.what());
-    return 1;
+    return fail(1, e.what());
   }
   return 0;
 }

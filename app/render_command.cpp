@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 #include <sstream>
 
+#include "cluster/cluster.h"
 #include "colour_options.h"
 #include "commands.h"
 #include "display_options.h"
@@ -52,6 +54,9 @@ struct RenderCommandOptions {
   DisplayCommandOptions display;  ///< the PNG outputs' display mapping
   ColourCommandOptions colour;    ///< spectral scenes
   std::string quantity = "radiance";
+  std::string checkpointPath;
+  double checkpointInterval = 10;
+  bool resume = false;
 };
 
 InputLocation flag(const std::string &name) {
@@ -92,6 +97,36 @@ void writeSelectiveMap(const Film &film, const std::string &channelName, const s
                most);
   else
     fmt::print(stderr, "radiant: selective map {}: {:.1f}% of the image re-evaluated\n", path, 100 * mean);
+}
+
+/// FNV-1a of a file's bytes ("" when it cannot be read: then the path alone tells the job).
+std::string fileFingerprint(const std::string &path) {
+  if (path.empty()) return "";
+  std::ifstream in(path, std::ios::binary);
+  uint64_t hash = 0xcbf29ce484222325ULL;
+  char buffer[1 << 16];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    for (std::streamsize i = 0; i < in.gcount(); ++i) hash = (hash ^ uint8_t(buffer[i])) * 0x100000001b3ULL;
+    if (!in) break;
+  }
+  return fmt::format("{:016x}", hash);
+}
+
+/// What a checkpoint must belong to (render/checkpoint.h): the scene file's and
+/// solution's bytes and every setting that changes the pixels. Not the
+/// models, textures or photometric files the scene names: those are the
+/// user's to keep.
+std::string checkpointJob(const RenderCommandOptions &o, const Scene &scene, const ParameterValues &given) {
+  const RenderSettings &r = scene.render;
+  const CameraSettings &c = scene.camera;
+  std::string job = fmt::format(
+      "radiant render {}\nscene {} {}\nsolution {}\nmethod {}\nimage {}x{}\nspp {} time {} seed {}\nquantity {}\n"
+      "camera {} {} {} {} {} {} {} {} {} {}\n",
+      RADIANT_VERSION, o.scenePath, fileFingerprint(o.scenePath), fileFingerprint(o.solutionPath), o.method, r.width,
+      r.height, r.samplesPerPixel, r.timeBudgetSeconds, r.seed, o.quantity, c.eye.x, c.eye.y, c.eye.z, c.target.x,
+      c.target.y, c.target.z, c.up.x, c.up.y, c.up.z, c.verticalFovDegrees);
+  for (const auto &[name, value] : given.all()) job += fmt::format("--{} {}\n", name, value.text);
+  return job;
 }
 
 }  // namespace
@@ -138,8 +173,19 @@ CommandRunner addRenderCommand(CLI::App &app) {
   o->methodParameters.add(app, groups);
   addDisplayOptions(app, o->display);
   addColourOptions(app, o->colour);
+  app.add_option("--checkpoint", o->checkpointPath,
+                 "Save the render's state to this file every --checkpoint-interval seconds and when stopped "
+                 "(Ctrl-C, SIGTERM), so that --resume carries on with the same pixels (docs/cluster.md)");
+  app.add_option("--checkpoint-interval", o->checkpointInterval, "Seconds between checkpoints")
+      ->default_val(10)
+      ->check(CLI::Range(0.0, 1e6));
+  app.add_flag("--resume", o->resume,
+               "Carry on from the --checkpoint file when it exists (else start); the same command and scene as "
+               "the run that saved it");
 
   return [o, &app]() {
+    // With several MPI ranks (cluster/cluster.h) rank 0 prints and writes; every rank renders its share.
+    const bool quiet = o->quiet || !cluster::isRoot();
     {
       const RendererInfo &method = findRenderer(o->method);
       bool solving = method.needsSolution && o->solutionPath.empty();
@@ -162,6 +208,14 @@ CommandRunner addRenderCommand(CLI::App &app) {
         throw InputError(flag("--selective-map"), "needs --selective");
       if (!o->selectiveMapPath.empty() && std::filesystem::path(o->selectiveMapPath).extension() != ".png")
         throw InputError(flag("--selective-map"), "'" + o->selectiveMapPath + "': expected a .png file");
+      if (o->resume && o->checkpointPath.empty()) throw InputError(flag("--resume"), "needs --checkpoint FILE");
+      if (!o->checkpointPath.empty() && method.render)
+        throw InputError(flag("--checkpoint"), "--method " + o->method +
+                                                   " writes an image per pass: its last pass's files are what "
+                                                   "a stopped run keeps; --checkpoint is for the per-pixel methods");
+      if (!o->checkpointPath.empty() && !o->resume && std::filesystem::exists(o->checkpointPath))
+        throw InputError(flag("--checkpoint"),
+                         "'" + o->checkpointPath + "' exists: add --resume to carry on from it, or remove it");
     }
     // Every output checked before any work: a long render must not end in "cannot write".
     std::vector<std::string> outputs = o->outputs;
@@ -181,6 +235,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
       for (const std::string &path : outputs) files.push_back({path, flag("--output")});
       if (!o->variancePath.empty()) files.push_back({o->variancePath, flag("--variance")});
       if (!o->selectiveMapPath.empty()) files.push_back({o->selectiveMapPath, flag("--selective-map")});
+      if (!o->checkpointPath.empty()) files.push_back({o->checkpointPath, flag("--checkpoint")});
       checkOutputFiles(files, {o->scenePath, o->solutionPath});
     }
     // Ctrl-C: the image so far is written (with its sample count), then exit 130.
@@ -218,7 +273,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
       driver.onlyPixelY = y;
     }
 
-    if (!o->quiet)
+    if (!quiet)
       for (const std::string &warning : scene.warnings) fmt::print(stderr, "radiant: warning: {}\n", warning);
 
     const RendererInfo &method = findRenderer(o->method);
@@ -234,12 +289,20 @@ CommandRunner addRenderCommand(CLI::App &app) {
       given.set("max-depth", std::to_string(r.maxDepth), where);
     }
     const Parameters parameters = methodParameters(method, given);
+    if (!o->checkpointPath.empty()) {
+      if (scene.spectral.enabled())
+        throw InputError(flag("--checkpoint"), "not for spectral scenes yet (a film per pass): use --colour rgb");
+      driver.checkpointPath = o->checkpointPath;
+      driver.checkpointIntervalSeconds = o->checkpointInterval;
+      driver.resume = o->resume;
+      driver.checkpointJob = checkpointJob(*o, scene, given);
+    }
     if (method.render) {  // a method that owns its loop: passes, each written as it completes
       if (scene.spectral.enabled())
         throw InputError(flag("--method"), o->method + " does not run spectral scenes yet: use --colour rgb");
       if (!o->solutionPath.empty())
         throw InputError(flag("--solution"), o->method + " solves itself: a progressive preview, then --solver");
-      ImageMethodCommand command{outputs, display, app.count("--tonemap") > 0, o->variancePath, o->quiet};
+      ImageMethodCommand command{outputs, display, app.count("--tonemap") > 0, o->variancePath, quiet};
       ImageJob job{tracer, camera, r.width, r.height};
       job.pixelAngle = pixelAngle(scene.camera, r.height);
       job.samplesPerPixel = r.samplesPerPixel;
@@ -250,7 +313,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
         if (maxShots > 0) return solvePreview(scene, tracer, o->radiosity, maxShots, r.seed, o->threads);
         RadiosityCommandOptions radiosity = o->radiosity;
         radiosity.solver = multipassSolverName(radiosity.solver, r.timeBudgetSeconds);
-        return solveScene(scene, tracer, radiosity, r.seed, o->threads, o->quiet);
+        return solveScene(scene, tracer, radiosity, r.seed, o->threads, quiet);
       };
       runImageMethod(method, parameters, job, command);
       return interruptRequested() ? interruptedExitStatus() : 0;
@@ -273,8 +336,8 @@ CommandRunner addRenderCommand(CLI::App &app) {
       Solution solved;
       if (method.needsSolution) {
         if (solutions.empty()) {
-          if (!o->quiet && spectral) fmt::print(stderr, "radiant: solving at {}\n", passWavelengthLabel(scene, pass));
-          solved = solveScene(scene, tracer, o->radiosity, r.seed, o->threads, o->quiet);
+          if (!quiet && spectral) fmt::print(stderr, "radiant: solving at {}\n", passWavelengthLabel(scene, pass));
+          solved = solveScene(scene, tracer, o->radiosity, r.seed, o->threads, quiet);
         }
         context.solution = solutions.empty() ? &solved : &solutions[pass];
       }
@@ -288,12 +351,14 @@ CommandRunner addRenderCommand(CLI::App &app) {
       DriverOptions passDriver = driver;
       passDriver.timeBudgetSeconds = driver.timeBudgetSeconds / passes;  // --time covers all passes
       RenderStats passStats =
-          renderImage(camera, *renderer, passDriver, film, o->quiet ? ProgressCallback{} : makeConsoleProgress(label));
+          renderImage(camera, *renderer, passDriver, film, quiet ? ProgressCallback{} : makeConsoleProgress(label));
       stats.samplesPerPixel = std::max(stats.samplesPerPixel, passStats.samplesPerPixel);
       stats.seconds += passStats.seconds;
       stats.cameraSamples += passStats.cameraSamples;
       stats.interrupted = stats.interrupted || passStats.interrupted;
-      if (!mapChannel.empty()) {
+      if (passStats.resumedFromSamples >= 0 && !quiet)
+        fmt::print(stderr, "radiant: resumed from {} ({} spp done)\n", o->checkpointPath, passStats.resumedFromSamples);
+      if (!mapChannel.empty() && cluster::isRoot()) {
         writeSelectiveMap(film, mapChannel, o->selectiveMapPath);
         selectiveMapWritten = true;
       }
@@ -307,15 +372,18 @@ CommandRunner addRenderCommand(CLI::App &app) {
     image.interrupted = stats.interrupted;
     rendered.variance.samplesPerPixel = stats.samplesPerPixel;
     rendered.variance.interrupted = stats.interrupted;
-    if (driver.onlyPixelX >= 0 && !o->quiet) {
+    if (driver.onlyPixelX >= 0 && !quiet) {
       const float *v = image.pixel(driver.onlyPixelX, driver.onlyPixelY);
       fmt::print(stderr, "pixel {},{}: {} {:.6g} {:.6g} {:.6g} {}{}\n", driver.onlyPixelX, driver.onlyPixelY,
                  o->quantity, v[0], v[1], v[2], o->quantity == "radiance" ? "W/(sr·m²)" : "W/m²",
                  spectral ? " (linear sRGB from the spectrum)" : "");
     }
-    writeRenderOutputs(image, outputs, display, app.count("--tonemap") > 0, tracer, camera, o->quiet);
+    if (!cluster::isRoot()) return stats.interrupted ? interruptedExitStatus() : 0;
+    writeRenderOutputs(image, outputs, display, app.count("--tonemap") > 0, tracer, camera, quiet);
     if (!o->variancePath.empty()) writeImage(rendered.variance, o->variancePath);
-    if (!o->quiet) {
+    // A finished render's checkpoint has served; a stopped one's is what --resume reads.
+    if (!o->checkpointPath.empty() && !stats.interrupted) std::filesystem::remove(o->checkpointPath);
+    if (!quiet) {
       // Converged pixels may have stopped early (render/driver.h): say what the mean pixel took.
       const double pixelsTaken = double(r.width) * r.height * (spectral ? passes : 1);
       const double mean = driver.onlyPixelX >= 0 ? stats.samplesPerPixel : stats.cameraSamples / pixelsTaken;

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <filesystem>
 
+#include "cluster/cluster.h"
 #include "colour_options.h"
 #include "commands.h"
 #include "display/grid_plan.h"
@@ -80,6 +81,9 @@ CommandRunner addSolveCommand(CLI::App &app) {
   app.add_flag("-q,--quiet", o->quiet, "No progress or summary on stderr");
 
   return [o, &app]() {
+    // With several MPI ranks (cluster/cluster.h) rank 0 prints and writes; every rank solves (the stochastic
+    // solver splits its rays among them).
+    const bool quiet = o->quiet || !cluster::isRoot();
     checkRadiosityOptions(o->radiosity, true, "");
     std::vector<OutputFile> outputs;
     if (!o->outputPath.empty()) outputs.push_back({o->outputPath, InputLocation{"--output"}});
@@ -102,9 +106,9 @@ CommandRunner addSolveCommand(CLI::App &app) {
       for (const std::string &path : gridImages) outputs.push_back({path, InputLocation{"--grid-image"}});
       checkOutputFiles(outputs, {o->scenePath});
     }
-    if (!o->quiet)
+    if (!quiet)
       for (const std::string &warning : scene.warnings) fmt::print(stderr, "radiant: warning: {}\n", warning);
-    if (!o->quiet)
+    if (!quiet)
       for (const PointLight &light : scene.lights) fmt::print(stderr, "radiant: light {}\n", describeLight(light));
     RayTracer tracer(scene);
     // One solution for an RGB scene, one per pass of three wavelengths for a spectral one.
@@ -113,14 +117,14 @@ CommandRunner addSolveCommand(CLI::App &app) {
     for (int pass = 0; pass < passes; ++pass) {
       if (scene.spectral.enabled()) {
         applySpectralPass(scene, pass);
-        if (!o->quiet)
+        if (!quiet)
           fmt::print(stderr, "radiant: solving at {} ({}/{})\n", passWavelengthLabel(scene, pass), pass + 1, passes);
       }
-      solutions.push_back(solveScene(scene, tracer, o->radiosity, o->seed, o->threads, o->quiet));
+      solutions.push_back(solveScene(scene, tracer, o->radiosity, o->seed, o->threads, quiet));
     }
     if (interruptRequested()) throw Interrupted();  // between the solve's last report and here
     std::vector<GridIlluminance> grids;
-    if (gridsWanted) {
+    if (gridsWanted && cluster::isRoot()) {  // rank 0 alone writes them
       GridOptions gridOptions;
       gridOptions.maxSamples = o->gridSamples;
       gridOptions.minSamples = std::min(gridOptions.minSamples, o->gridSamples);
@@ -129,29 +133,30 @@ CommandRunner addSolveCommand(CLI::App &app) {
       grids = computeGridIlluminance(scene, tracer, solutions, gridOptions);
     }
     if (scene.spectral.enabled()) applySpectralColour(scene, balance);
+    if (!cluster::isRoot()) return 0;
     if (!o->outputPath.empty()) {
       writeSolutionPasses(solutions, scene, o->outputPath);
-      if (!o->quiet) fmt::print(stderr, "radiant: wrote {}\n", o->outputPath);
+      if (!quiet) fmt::print(stderr, "radiant: wrote {}\n", o->outputPath);
     }
     if (!o->reportPath.empty()) {
       writeSurfaceReport(solutions, scene, o->reportPath, balance);
-      if (!o->quiet) fmt::print(stderr, "radiant: wrote {}\n", o->reportPath);
+      if (!quiet) fmt::print(stderr, "radiant: wrote {}\n", o->reportPath);
     }
-    if (gridsWanted && !o->quiet)
+    if (gridsWanted && !quiet)
       for (const GridIlluminance &g : grids)
         fmt::print(stderr,
                    "radiant: grid {}: E_min {:.4g} lx, E_avg {:.4g} lx, E_max {:.4g} lx, U0 {:.3f}, Ud {:.3f}\n",
                    g.grid.name, g.minimumLux, g.averageLux, g.maximumLux, g.uniformity(), g.diversity());
     if (!o->gridReportPath.empty()) {
       writeGridReport(grids, scene.metresPerUnit, o->gridReportPath, scene.lights);
-      if (!o->quiet) fmt::print(stderr, "radiant: wrote {}\n", o->gridReportPath);
+      if (!quiet) fmt::print(stderr, "radiant: wrote {}\n", o->gridReportPath);
     }
     for (size_t g = 0; g < gridImages.size(); ++g) {
       std::vector<double> lux;
       for (const GridPointIlluminance &p : grids[g].points) lux.push_back(p.illuminanceLux);
       const GridPlan plan = gridPlan(lux, grids[g].grid.nu, grids[g].grid.nv);
       writePngBytes(plan.rgb, plan.width, plan.height, gridImages[g]);
-      if (!o->quiet) fmt::print(stderr, "radiant: wrote {}\n", gridImages[g]);
+      if (!quiet) fmt::print(stderr, "radiant: wrote {}\n", gridImages[g]);
     }
     return 0;
   };

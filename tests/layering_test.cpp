@@ -15,8 +15,8 @@
 namespace {
 
 // In include order, as README.md's layout table lists them.
-const std::vector<std::string> kStages = {"util",      "colour", "texture", "scene",   "raytrace", "mesh",
-                                          "radiosity", "io",     "render",  "display", "export"};
+const std::vector<std::string> kStages = {"util", "cluster",   "colour", "texture", "scene",   "raytrace",
+                                          "mesh", "radiosity", "io",     "render",  "display", "export"};
 
 int stageIndex(const std::string &folder) {
   auto it = std::find(kStages.begin(), kStages.end(), folder);

@@ -17,13 +17,22 @@
 // about 1/√k. `raysPerElement` sets the first iteration's N as a multiple of
 // the element count. The first iteration shoots emission only, so `direct`
 // is kept apart from `indirect` as in the progressive solver. Deterministic:
-// rays are drawn in fixed chunks with their own generators and merged in
-// chunk order, whatever the thread count.
+// rays are drawn in fixed chunks with their own generators, whatever the
+// thread count.
+//
+// Several MPI ranks (cluster/cluster.h) split each iteration's chunks, rank
+// r taking every chunk c with c mod N = r, and sum the power that arrived
+// at each element. That sum is kept in fixed point (kArrivalScale units of
+// the iteration's unshot power): integer addition does not depend on the
+// order, so the solution is bit for bit the same for any number of ranks
+// and threads. The rest of an iteration (O(n)) runs on every rank alike.
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <chrono>
+#include <cmath>
 
+#include "cluster/cluster.h"
 #include "radiosity/backprojection.h"
 #include "radiosity/solver.h"
 #include "radiosity/transmission.h"
@@ -37,6 +46,12 @@ struct Deposit {
   uint32_t element;
   Bands power;  ///< W per band arriving at the element's front
 };
+
+/// Fixed-point units per watt of an iteration's unshot power: 2^60. A band
+/// of one ray carries at most kBandCount × its share, so all the iteration's
+/// rays together stay below 2^62 units (int64); one unit is 2^−60 of the
+/// shot power, far below one ray's share of it.
+constexpr double kArrivalScale = 0x1.0p60 / kBandCount;
 
 }  // namespace
 
@@ -100,15 +115,21 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
     // Chunks run in parallel a batch at a time and are merged in order: the
     // sum is deterministic and the deposits held at once stay bounded.
     constexpr size_t kBatch = 64;
-    std::vector<Bands> arrived(n, Bands(0.0));
+    // This rank's chunks (all of them with one rank).
+    const size_t ranks = size_t(cluster::size());
+    std::vector<size_t> ownChunks;
+    for (size_t c = size_t(cluster::rank()); c < chunks; c += ranks) ownChunks.push_back(c);
+    const double unitsPerWatt = kArrivalScale / total;
+    std::vector<int64_t> arrived(n * kBandCount, 0);  // fixed point, kArrivalScale per `total`
     std::vector<std::vector<Deposit>> deposits(kBatch);
-    for (size_t batchStart = 0; batchStart < chunks; batchStart += kBatch) {
-      const size_t batchEnd = std::min(chunks, batchStart + kBatch);
+    for (size_t batchStart = 0; batchStart < ownChunks.size(); batchStart += kBatch) {
+      const size_t batchEnd = std::min(ownChunks.size(), batchStart + kBatch);
       arena.execute([&] {
-        tbb::parallel_for(batchStart, batchEnd, [&](size_t c) {
+        tbb::parallel_for(batchStart, batchEnd, [&](size_t i) {
+          const size_t c = ownChunks[i];
           Pcg32 rng = sampleGenerator(options.seed, c, uint64_t(iteration) << 20 | 0x5a);
           const size_t begin = c * kChunk, end = std::min(rays, begin + kChunk);
-          std::vector<Deposit> &out = deposits[c - batchStart];
+          std::vector<Deposit> &out = deposits[i - batchStart];
           out.clear();
           out.reserve(end - begin);
           for (size_t r = begin; r < end; ++r) {
@@ -150,9 +171,12 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
           }
         });
       });
-      for (size_t c = batchStart; c < batchEnd; ++c)
-        for (const Deposit &d : deposits[c - batchStart]) arrived[d.element] += d.power;
+      for (size_t i = batchStart; i < batchEnd; ++i)
+        for (const Deposit &d : deposits[i - batchStart])
+          for (int b = 0; b < kBandCount; ++b)
+            arrived[size_t(d.element) * kBandCount + b] += std::llround(d.power[b] * unitsPerWatt);
     }
+    cluster::sumOnAllRanks(arrived.data(), arrived.size());
 
     // The first iteration shoots all the unshot radiosity there is, the
     // emission, so what it deposits is the direct part; later ones, reflections.
@@ -164,8 +188,10 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
       s.unshot[e] += gain;
     };
     for (size_t e = 0; e < n; ++e) {
-      if (arrived[e].max() <= 0) continue;
-      Bands irradiance = arrived[e] / s.mesh.elements[e].area;
+      Bands power;
+      for (int b = 0; b < kBandCount; ++b) power[b] = double(arrived[e * kBandCount + b]) / unitsPerWatt;
+      if (power.max() <= 0) continue;
+      Bands irradiance = power / s.mesh.elements[e].area;
       s.irradiance[e] += irradiance;
       gainAt(e, s.reflectance[e] * irradiance);
       transmission.pass(e, irradiance, gainAt);

@@ -12,8 +12,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <mutex>
 
+#include "cluster/cluster.h"
+#include "render/checkpoint.h"
+#include "util/error.h"
 #include "util/interrupt.h"
 
 namespace radiant {
@@ -30,14 +34,55 @@ struct Tile {
   int x0, y0, x1, y1;
 };
 
+/// Every per-pixel array of the film: `bands(vector<Bands>&)`, `counts(vector<uint32_t>&)`.
+template <typename BandsArray, typename CountArray>
+void forEachFilmArray(Film &film, const BandsArray &bands, const CountArray &counts) {
+  bands(film.sum);
+  bands(film.sumSquares);
+  counts(film.samples);
+  for (FilmChannel &c : film.channels)
+    for (auto *v : {&c.sum, &c.sumSquares, &c.sumDifference, &c.sumDifferenceSquares, &c.sumProducts}) bands(*v);
+}
+
+/// Zeroes the pixels another rank owns (their values came from the last
+/// round's sum), so that the sum over the ranks counts each pixel once.
+void keepOwnPixels(Film &film, const std::vector<uint8_t> &own) {
+  forEachFilmArray(
+      film,
+      [&](std::vector<Bands> &v) {
+        for (size_t p = 0; p < v.size(); ++p)
+          if (!own[p]) v[p] = Bands(0.0);
+      },
+      [&](std::vector<uint32_t> &v) {
+        for (size_t p = 0; p < v.size(); ++p)
+          if (!own[p]) v[p] = 0;
+      });
+}
+
+/// The whole film on every rank (root only: on rank 0), from each rank's own pixels.
+void sumFilmOverRanks(Film &film, const std::vector<uint8_t> &own, bool everyRank) {
+  keepOwnPixels(film, own);
+  forEachFilmArray(
+      film,
+      [&](std::vector<Bands> &v) {
+        double *values = reinterpret_cast<double *>(v.data());
+        everyRank ? cluster::sumOnAllRanks(values, v.size() * kBandCount)
+                  : cluster::sumOnRoot(values, v.size() * kBandCount);
+      },
+      [&](std::vector<uint32_t> &v) {
+        everyRank ? cluster::sumOnAllRanks(v.data(), v.size()) : cluster::sumOnRoot(v.data(), v.size());
+      });
+}
+
 /// The driver for either film: `shade(pixel, ray, rng)` takes one camera
 /// sample. `stopConverged`, when given, clears between rounds the flags of
 /// the active pixels that may stop (from kMinimumSamples on).
 template <typename Shade>
-RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, int width, int height, const Shade &shade,
+RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, Film &film, const Shade &shade,
                   const ProgressCallback &progress,
                   const std::function<void(std::vector<uint8_t> &active)> &stopConverged = {}) {
   const auto start = Clock::now();
+  const int width = film.width, height = film.height;
   std::vector<Tile> tiles;
   if (options.onlyPixelX >= 0) {
     tiles.push_back({options.onlyPixelX, options.onlyPixelY, options.onlyPixelX + 1, options.onlyPixelY + 1});
@@ -46,12 +91,23 @@ RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, int
       for (int x = 0; x < width; x += options.tileSize)
         tiles.push_back({x, y, std::min(x + options.tileSize, width), std::min(y + options.tileSize, height)});
   }
+  // This rank's tiles: every N-th, so that each rank has a share of every part of the image.
+  const size_t ranks = size_t(cluster::size()), me = size_t(cluster::rank());
+  std::vector<uint8_t> ownPixel;
+  if (ranks > 1) {
+    ownPixel.assign(size_t(width) * height, 0);
+    for (size_t t = me; t < tiles.size(); t += ranks)
+      for (int y = tiles[t].y0; y < tiles[t].y1; ++y)
+        for (int x = tiles[t].x0; x < tiles[t].x1; ++x) ownPixel[size_t(y) * width + x] = 1;
+  }
 
   const int target = options.samplesPerPixel;
   const double budget = options.timeBudgetSeconds;
   int done = 0;
   std::mutex progressMutex;
   auto lastReport = Clock::now() - std::chrono::seconds(1);
+  double elapsedBefore = 0;  // in the run a checkpoint came from
+  auto elapsedSeconds = [&] { return elapsedBefore + secondsSince(start); };
 
   auto report = [&](int samplesDone, double roundFraction, int roundSamples, bool force) {
     if (!progress) return;
@@ -62,7 +118,7 @@ RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, int
     p.samplesDone = samplesDone;
     p.samplesTarget = target;
     p.timeBudgetSeconds = budget;
-    p.elapsedSeconds = secondsSince(start);
+    p.elapsedSeconds = elapsedSeconds();
     double sampleFraction = (samplesDone + roundFraction * roundSamples) / target;
     p.fraction = budget > 0 ? std::max(sampleFraction, std::min(1.0, p.elapsedSeconds / budget)) : sampleFraction;
     p.fraction = force ? 1.0 : std::min(1.0, p.fraction);
@@ -73,62 +129,143 @@ RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, int
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   const size_t pixels = options.onlyPixelX >= 0 ? 1 : size_t(width) * height;
   std::vector<uint8_t> active(size_t(width) * height, 1);
+  std::vector<uint8_t> tileDone(tiles.size(), 0);  // in the round in progress
   size_t activeCount = pixels;
   uint64_t pixelSamples = 0;  // camera samples taken so far, over all pixels
   bool interrupted = false;
-  while (done < target && activeCount > 0) {
-    double elapsed = secondsSince(start);
-    if (budget > 0 && done > 0 && elapsed >= budget) break;
+  RenderStats stats;
+
+  // A checkpoint to carry on from: the film, the converged pixels, and the round it was in.
+  const bool checkpointing = !options.checkpointPath.empty();
+  int resumedRoundEnd = 0;
+  if (checkpointing && options.resume && std::filesystem::exists(options.checkpointPath)) {
+    RenderCheckpoint saved;
+    readRenderCheckpoint(options.checkpointPath, options.checkpointJob, saved, film);
+    if (saved.tileSize != options.tileSize || saved.tileDone.size() != tiles.size())
+      throw InputError(InputLocation{options.checkpointPath},
+                       "not a usable render checkpoint: its tiles are not this render's");
+    done = saved.samplesDone;
+    resumedRoundEnd = saved.roundEnd;
+    tileDone = saved.tileDone;
+    active = saved.active;
+    elapsedBefore = saved.elapsedSeconds;
+    pixelSamples = saved.cameraSamples;
+    activeCount = options.onlyPixelX >= 0 ? 1 : size_t(std::count(active.begin(), active.end(), uint8_t(1)));
+    stats.resumedFromSamples = done;
+  }
+  auto lastCheckpoint = Clock::now();
+  // Collective with several ranks: each rank's complete tiles summed on rank 0, which writes.
+  auto saveCheckpoint = [&](int roundEnd) {
+    RenderCheckpoint state;
+    state.job = options.checkpointJob;
+    state.tileSize = options.tileSize;
+    state.samplesDone = done;
+    state.roundEnd = roundEnd;
+    state.elapsedSeconds = elapsedSeconds();
+    state.cameraSamples = pixelSamples;
+    state.tileDone = tileDone;
+    state.active = active;
+    if (ranks > 1) {
+      Film whole = film;
+      sumFilmOverRanks(whole, ownPixel, false);
+      // Other ranks' flags are 0 here: each tile is marked by its owner only.
+      for (size_t t = 0; t < tiles.size(); ++t)
+        if (t % ranks != me) state.tileDone[t] = 0;
+      cluster::sumOnRoot(state.tileDone.data(), state.tileDone.size());
+      if (cluster::isRoot()) writeRenderCheckpoint(options.checkpointPath, state, whole);
+    } else {
+      writeRenderCheckpoint(options.checkpointPath, state, film);
+    }
+    lastCheckpoint = Clock::now();
+    ++stats.checkpointsWritten;
+  };
+
+  while (true) {
     // Rounds double in size so early images are quick and the per-round
     // overhead vanishes; under a time budget a round is cut to what the
-    // measured speed says fits in the time left.
-    int roundSamples = std::min(target - done, std::max(1, done));
-    if (budget > 0 && done > 0) {
-      double perPixelSample = elapsed / double(pixelSamples);
-      int fits = static_cast<int>((budget - elapsed) / (perPixelSample * double(activeCount)));
-      if (fits < 1) break;
-      roundSamples = std::min(roundSamples, fits);
+    // measured speed says fits in the time left. A resumed round keeps the
+    // size it was saved with.
+    int roundSamples = 0;
+    if (resumedRoundEnd > done) {
+      roundSamples = resumedRoundEnd - done;
+    } else if (done < target && activeCount > 0) {
+      std::fill(tileDone.begin(), tileDone.end(), uint8_t(0));
+      const double elapsed = elapsedSeconds();
+      roundSamples = std::min(target - done, std::max(1, done));
+      if (budget > 0 && done > 0) {
+        if (elapsed >= budget) roundSamples = 0;
+        const double perPixelSample = elapsed / double(std::max<uint64_t>(1, pixelSamples));
+        const int fits = static_cast<int>((budget - elapsed) / (perPixelSample * double(activeCount)));
+        roundSamples = std::min(roundSamples, std::max(0, fits));
+      }
+      // Rank 0's clock decides a budgeted round, for every rank.
+      if (budget > 0) roundSamples = static_cast<int>(cluster::fromRoot(int64_t(roundSamples)));
     }
-    std::atomic<size_t> tilesDone{0};
+    resumedRoundEnd = 0;
+    if (roundSamples <= 0) break;
+
     const int first = done, last = done + roundSamples;
-    arena.execute([&] {
-      tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const tbb::blocked_range<size_t> &range) {
-        for (size_t t = range.begin(); t != range.end(); ++t) {
-          // Ctrl-C (util/interrupt.h): the tiles in flight finish, the rest
-          // of the round is skipped; each pixel's mean stays its own samples'.
-          if (interruptRequested()) continue;
-          const Tile &tile = tiles[t];
-          for (int y = tile.y0; y < tile.y1; ++y)
-            for (int x = tile.x0; x < tile.x1; ++x) {
-              size_t pixel = size_t(y) * width + x;
-              if (!active[pixel]) continue;
-              const Sampler::PixelOffsets offsets = Sampler::pixelOffsets(options.seed, pixel);
-              for (int s = first; s < last; ++s) {
-                Sampler rng(offsets, options.seed, pixel, s);  // the first two numbers place the sample in its pixel
-                double jitterX = rng.next(), jitterY = rng.next();
-                shade(pixel, camera.generateRay(x + jitterX, y + jitterY), rng);
+    std::vector<size_t> pending;  // this rank's tiles of the round still to do
+    size_t ownTiles = 0;
+    for (size_t t = me; t < tiles.size(); t += ranks, ++ownTiles)
+      if (!tileDone[t]) pending.push_back(t);
+    std::atomic<size_t> ownTilesDone{ownTiles - pending.size()};
+    // Checkpointing takes the tiles in waves, with a save possible between
+    // two; otherwise one wave holds them all. Every rank has as many waves
+    // (some maybe empty): the save is collective.
+    const size_t waves = checkpointing ? std::clamp<size_t>(tiles.size() / (ranks * 16), 1, 32) : 1;
+    for (size_t wave = 0; wave < waves && !interrupted; ++wave) {
+      const size_t waveStart = pending.size() * wave / waves, waveEnd = pending.size() * (wave + 1) / waves;
+      arena.execute([&] {
+        tbb::parallel_for(
+            tbb::blocked_range<size_t>(waveStart, waveEnd, 1), [&](const tbb::blocked_range<size_t> &range) {
+              for (size_t i = range.begin(); i != range.end(); ++i) {
+                // Ctrl-C (util/interrupt.h): the tiles in flight finish, the rest
+                // of the round is skipped; each pixel's mean stays its own samples'.
+                if (interruptRequested()) continue;
+                const Tile &tile = tiles[pending[i]];
+                for (int y = tile.y0; y < tile.y1; ++y)
+                  for (int x = tile.x0; x < tile.x1; ++x) {
+                    size_t pixel = size_t(y) * width + x;
+                    if (!active[pixel]) continue;
+                    const Sampler::PixelOffsets offsets = Sampler::pixelOffsets(options.seed, pixel);
+                    for (int s = first; s < last; ++s) {
+                      // The first two numbers place the sample in its pixel.
+                      Sampler rng(offsets, options.seed, pixel, s);
+                      double jitterX = rng.next(), jitterY = rng.next();
+                      shade(pixel, camera.generateRay(x + jitterX, y + jitterY), rng);
+                    }
+                  }
+                tileDone[pending[i]] = 1;
+                const size_t finished = ++ownTilesDone;
+                report(first, double(finished) / double(std::max<size_t>(1, ownTiles)), roundSamples, false);
               }
-            }
-          size_t finished = ++tilesDone;
-          report(first, double(finished) / tiles.size(), roundSamples, false);
-        }
+            });
       });
-    });
-    if (interruptRequested()) {
-      interrupted = true;
-      pixelSamples += uint64_t(activeCount) * roundSamples * tilesDone / std::max<size_t>(1, tiles.size());
+      // Every rank learns of an interrupt on any (a node's SIGTERM) and stops at the same wave.
+      interrupted = cluster::anyRank(interruptRequested());
+      if (checkpointing) {
+        const bool due = secondsSince(lastCheckpoint) >= options.checkpointIntervalSeconds;
+        if (interrupted || cluster::fromRoot(int64_t(due ? 1 : 0)) != 0) saveCheckpoint(last);
+      }
+    }
+    if (interrupted) {
+      pixelSamples += uint64_t(double(activeCount) * roundSamples * double(ownTilesDone.load()) /
+                               double(std::max<size_t>(1, ownTiles)));
       break;
     }
     done = last;
     pixelSamples += uint64_t(activeCount) * roundSamples;
+    if (ranks > 1) sumFilmOverRanks(film, ownPixel, true);
     if (stopConverged && done >= kMinimumSamples && options.onlyPixelX < 0) {
       stopConverged(active);
       activeCount = size_t(std::count(active.begin(), active.end(), uint8_t(1)));
     }
   }
+  // The image so far, whole on rank 0 (every rank: the film is the same on all).
+  if (interrupted && ranks > 1) sumFilmOverRanks(film, ownPixel, true);
   report(done, 0, 0, true);
 
-  RenderStats stats;
   stats.samplesPerPixel = done;
   stats.seconds = secondsSince(start);
   stats.cameraSamples = pixelSamples;
@@ -160,7 +297,7 @@ RenderStats renderImage(const PinholeCamera &camera, const Renderer &renderer, c
     };
   if (film.channels.empty())
     return drive(
-        camera, options, film.width, film.height,
+        camera, options, film,
         [&](size_t pixel, const Ray &ray, Sampler &rng) { film.add(pixel, renderer.radiance(ray, rng)); }, progress,
         stopConverged);
   // The film's channels, found among the renderer's by name.
@@ -175,7 +312,7 @@ RenderStats renderImage(const PinholeCamera &camera, const Renderer &renderer, c
     source.push_back(size_t(it - offered.begin()));
   }
   return drive(
-      camera, options, film.width, film.height,
+      camera, options, film,
       [&](size_t pixel, const Ray &ray, Sampler &rng) {
         std::array<Bands, kMaxChannels> values, picked;
         const Bands L = renderer.sample(ray, rng, values.data());

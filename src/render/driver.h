@@ -16,6 +16,18 @@
 // edges, whose antialiasing is then what the image's error is made of.
 // Which pixels stop is decided between rounds from the film alone, so it
 // too is the same for every thread count.
+//
+// Several processes (MPI, cluster/cluster.h): rank r takes every tile t with
+// t mod N = r, and after each round the ranks sum their films, so every rank
+// holds the whole film before deciding which pixels have converged. A pixel
+// is one rank's alone and x + 0 = x, so the summed film is bit for bit the
+// one process's film, whatever N. Under a time budget rank 0's clock decides
+// the rounds.
+//
+// Checkpoints (render/checkpoint.h): with a checkpoint path, a round's tiles
+// are taken in waves, and between waves, every checkpoint interval, the
+// state is saved (by rank 0, the ranks' tiles summed on it); once more when
+// interrupted. Resuming redoes the unfinished tiles of the saved round.
 #pragma once
 
 #include <functional>
@@ -37,6 +49,13 @@ struct DriverOptions {
   int onlyPixelX = -1, onlyPixelY = -1;
   /// Let converged pixels stop (only for a renderer that varies only across the pixel).
   bool stopConvergedPixels = true;
+  /// Save a checkpoint here (render/checkpoint.h) every checkpointIntervalSeconds; empty: never.
+  std::string checkpointPath;
+  double checkpointIntervalSeconds = 10;
+  /// Carry on from checkpointPath's checkpoint when the file exists.
+  bool resume = false;
+  /// The job's fingerprint, written into the checkpoint and required of one resumed.
+  std::string checkpointJob;
 };
 
 constexpr int kMinimumSamples = 8;
@@ -56,6 +75,9 @@ struct RenderStats {
   /// after an interrupt, the complete rounds (some pixels have more).
   int samplesPerPixel = 0;
   bool interrupted = false;  ///< stopped early by Ctrl-C (util/interrupt.h)
+  /// Carried on from a checkpoint that had this many complete samples per pixel (−1: started afresh).
+  int resumedFromSamples = -1;
+  int checkpointsWritten = 0;
   double seconds = 0;
   uint64_t cameraSamples = 0;
 };

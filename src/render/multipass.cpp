@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "cluster/cluster.h"
 #include "render/bump_gather.h"
 #include "render/caustic_photons.h"
 #include "render/control_variate.h"
@@ -23,8 +24,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+/// Seconds since `start` by rank 0's clock (cluster/cluster.h): with several
+/// ranks every decision a budget makes is the same on all, so they render
+/// the same passes. A collective: called at the same points on every rank.
 double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
+  return cluster::fromRoot(std::chrono::duration<double>(Clock::now() - start).count());
 }
 
 /// Shots of the progressive solution before the preview: the first image
@@ -80,7 +84,11 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
   const Clock::time_point start = Clock::now();
   const bool budgeted = options.timeBudgetSeconds > 0;
   // Ctrl-C (util/interrupt.h) ends the passes: the last complete one's image stands.
-  auto spent = [&] { return interruptRequested() || (budgeted && secondsSince(start) >= options.timeBudgetSeconds); };
+  // Both collectives on every call, whatever the answer.
+  auto spent = [&] {
+    const double seconds = secondsSince(start);
+    return cluster::anyRank(interruptRequested()) || (budgeted && seconds >= options.timeBudgetSeconds);
+  };
 
   auto driverFor = [&](const MultipassPass &pass, int spp, int chunk) {
     DriverOptions driver;

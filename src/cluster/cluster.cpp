@@ -1,0 +1,165 @@
+#include "cluster/cluster.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <climits>
+#include <cstdlib>
+
+#ifdef RADIANT_HAVE_MPI
+#include <mpi.h>
+#endif
+
+namespace radiant::cluster {
+
+namespace {
+
+int worldRank = 0, worldSize = 1;
+#ifdef RADIANT_HAVE_MPI
+bool joined = false;
+#endif
+
+/// Set by every launcher we know of: Open MPI's mpirun, PMIx (Slurm's srun
+/// --mpi=pmix, prterun), PMI-1/2 (MPICH's hydra, srun --mpi=pmi2).
+bool launchedByMpi() {
+  for (const char *name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
+    if (std::getenv(name)) return true;
+  return false;
+}
+
+#ifdef RADIANT_HAVE_MPI
+/// MPI counts are ints: long arrays go in pieces of at most 2^30 elements.
+template <typename T, typename Operation>
+void inPieces(T *values, size_t count, const Operation &operation) {
+  constexpr size_t kPiece = size_t(1) << 30;
+  for (size_t begin = 0; begin < count; begin += kPiece)
+    operation(values + begin, static_cast<int>(std::min(kPiece, count - begin)));
+}
+
+template <typename T>
+void allSum(T *values, size_t count, MPI_Datatype type) {
+  if (!joined || worldSize == 1) return;
+  inPieces(values, count,
+           [&](T *piece, int n) { MPI_Allreduce(MPI_IN_PLACE, piece, n, type, MPI_SUM, MPI_COMM_WORLD); });
+}
+
+template <typename T>
+void rootSum(T *values, size_t count, MPI_Datatype type) {
+  if (!joined || worldSize == 1) return;
+  inPieces(values, count, [&](T *piece, int n) {
+    if (worldRank == 0)
+      MPI_Reduce(MPI_IN_PLACE, piece, n, type, MPI_SUM, 0, MPI_COMM_WORLD);
+    else
+      MPI_Reduce(piece, nullptr, n, type, MPI_SUM, 0, MPI_COMM_WORLD);
+  });
+}
+#endif
+
+}  // namespace
+
+Session::Session(int &argc, char **&argv) {
+#ifdef RADIANT_HAVE_MPI
+  if (!launchedByMpi()) return;
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  MPI_Comm_rank(MPI_COMM_WORLD, &worldRank);
+  MPI_Comm_size(MPI_COMM_WORLD, &worldSize);
+  joined = true;
+#else
+  (void)argc, (void)argv;
+  if (launchedByMpi() && std::getenv("OMPI_COMM_WORLD_RANK") && std::string(std::getenv("OMPI_COMM_WORLD_RANK")) == "0")
+    fmt::print(stderr,
+               "radiant: warning: started by an MPI launcher, but this radiant was built without MPI: every "
+               "process renders the whole job alone\n");
+#endif
+}
+
+Session::~Session() {
+#ifdef RADIANT_HAVE_MPI
+  if (joined) MPI_Finalize();
+  joined = false;
+  worldRank = 0, worldSize = 1;
+#endif
+}
+
+int rank() {
+  return worldRank;
+}
+int size() {
+  return worldSize;
+}
+
+bool builtWithMpi() {
+#ifdef RADIANT_HAVE_MPI
+  return true;
+#else
+  return false;
+#endif
+}
+
+#ifdef RADIANT_HAVE_MPI
+void sumOnAllRanks(double *values, size_t count) {
+  allSum(values, count, MPI_DOUBLE);
+}
+void sumOnAllRanks(int64_t *values, size_t count) {
+  allSum(values, count, MPI_INT64_T);
+}
+void sumOnAllRanks(uint32_t *values, size_t count) {
+  allSum(values, count, MPI_UINT32_T);
+}
+void sumOnAllRanks(uint8_t *values, size_t count) {
+  allSum(values, count, MPI_UINT8_T);
+}
+void sumOnRoot(double *values, size_t count) {
+  rootSum(values, count, MPI_DOUBLE);
+}
+void sumOnRoot(uint32_t *values, size_t count) {
+  rootSum(values, count, MPI_UINT32_T);
+}
+void sumOnRoot(uint8_t *values, size_t count) {
+  rootSum(values, count, MPI_UINT8_T);
+}
+int64_t fromRoot(int64_t value) {
+  if (joined && worldSize > 1) MPI_Bcast(&value, 1, MPI_INT64_T, 0, MPI_COMM_WORLD);
+  return value;
+}
+double fromRoot(double value) {
+  if (joined && worldSize > 1) MPI_Bcast(&value, 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  return value;
+}
+bool anyRank(bool value) {
+  int v = value ? 1 : 0;
+  if (joined && worldSize > 1) MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
+  return v != 0;
+}
+void abortAll(int exitStatus) {
+  if (joined && worldSize > 1) MPI_Abort(MPI_COMM_WORLD, exitStatus);
+  std::exit(exitStatus);
+}
+#else
+void sumOnAllRanks(double *, size_t) {}
+void sumOnAllRanks(int64_t *, size_t) {}
+void sumOnAllRanks(uint32_t *, size_t) {}
+void sumOnAllRanks(uint8_t *, size_t) {}
+void sumOnRoot(double *, size_t) {}
+void sumOnRoot(uint32_t *, size_t) {}
+void sumOnRoot(uint8_t *, size_t) {}
+int64_t fromRoot(int64_t value) {
+  return value;
+}
+double fromRoot(double value) {
+  return value;
+}
+bool anyRank(bool value) {
+  return value;
+}
+void abortAll(int exitStatus) {
+  std::exit(exitStatus);
+}
+#endif
+
+std::string rankLabel() {
+  return worldSize > 1 ? fmt::format("rank {} of {}", worldRank, worldSize) : std::string();
+}
+
+}  // namespace radiant::cluster

@@ -1,0 +1,72 @@
+// Running on several machines: the processes of one MPI job (Open MPI,
+// `mpirun -np N radiant …`) and the few collective operations Radiant needs.
+//
+// Every rank runs the same command on the same inputs and does the same
+// deterministic work, except where a stage splits it: the render driver
+// gives each rank its share of the image's tiles (render/driver.h), the
+// stochastic solver each rank its share of every iteration's rays
+// (radiosity/stochastic_jacobi.cpp). Their results are summed across ranks
+// with the functions below, and rank 0 writes the outputs. Built without MPI,
+// or run without mpirun, there is one rank and every function is a no-op,
+// so single-process runs neither need nor pay for an MPI library.
+//
+// Only the main thread calls these (MPI_THREAD_FUNNELED): the threads inside
+// a rank (oneTBB) never communicate.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace radiant::cluster {
+
+/// Joins the MPI job when the process was started by an MPI launcher
+/// (mpirun, mpiexec, srun: they set OMPI_COMM_WORLD_SIZE, PMIX_RANK or
+/// PMI_RANK), and leaves it when destroyed. One per process, in main().
+class Session {
+ public:
+  Session(int &argc, char **&argv);
+  ~Session();
+  Session(const Session &) = delete;
+  Session &operator=(const Session &) = delete;
+};
+
+/// This process's rank, 0 … size() − 1; 0 without MPI.
+int rank();
+/// The number of ranks; 1 without MPI.
+int size();
+/// More than one rank: work is split and summed.
+inline bool distributed() {
+  return size() > 1;
+}
+/// Rank 0: the one that prints progress and writes files.
+inline bool isRoot() {
+  return rank() == 0;
+}
+/// Whether this radiant was built with MPI (radiant --version says).
+bool builtWithMpi();
+
+/// Element-wise sums over all ranks, the result on every rank (MPI_Allreduce).
+void sumOnAllRanks(double *values, size_t count);
+void sumOnAllRanks(int64_t *values, size_t count);
+void sumOnAllRanks(uint32_t *values, size_t count);
+void sumOnAllRanks(uint8_t *values, size_t count);
+/// Element-wise sums over all ranks, the result on rank 0 only (MPI_Reduce;
+/// other ranks' arrays are left as they were).
+void sumOnRoot(double *values, size_t count);
+void sumOnRoot(uint32_t *values, size_t count);
+void sumOnRoot(uint8_t *values, size_t count);
+/// Rank 0's value, on every rank (MPI_Bcast).
+int64_t fromRoot(int64_t value);
+double fromRoot(double value);
+/// True on every rank when it is true on any (an interrupt on one node).
+bool anyRank(bool value);
+
+/// Ends the whole job at once (an error on one rank, which the others,
+/// waiting in a collective, would never hear of); never returns.
+[[noreturn]] void abortAll(int exitStatus);
+
+/// "rank 2 of 4" for messages, empty with one rank.
+std::string rankLabel();
+
+}  // namespace radiant::cluster

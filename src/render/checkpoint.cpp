@@ -1,0 +1,151 @@
+#include "render/checkpoint.h"
+
+#include <fmt/format.h>
+
+#include <cstring>
+#include <fstream>
+
+#include "util/atomic_file.h"
+#include "util/error.h"
+
+namespace radiant {
+
+namespace {
+
+constexpr char kMagic[] = "RADIANT-CHECKPOINT";
+constexpr uint32_t kVersion = 1;
+constexpr uint32_t kMaxString = 1 << 20;
+
+static_assert(sizeof(Bands) == kBandCount * sizeof(double), "a film's Bands are written as kBandCount doubles");
+
+/// Every per-pixel array of the film, in file order.
+template <typename Film, typename BandsArray, typename CountArray>
+void forEachFilmArray(Film &film, const BandsArray &bands, const CountArray &counts) {
+  bands(film.sum);
+  bands(film.sumSquares);
+  counts(film.samples);
+  for (auto &c : film.channels)
+    for (auto *v : {&c.sum, &c.sumSquares, &c.sumDifference, &c.sumDifferenceSquares, &c.sumProducts}) bands(*v);
+}
+
+class Writer {
+ public:
+  explicit Writer(std::ofstream &out) : out_(out) {}
+  template <typename T>
+  void value(const T &v) {
+    out_.write(reinterpret_cast<const char *>(&v), sizeof v);
+  }
+  void bytes(const void *data, size_t size) { out_.write(static_cast<const char *>(data), std::streamsize(size)); }
+  void text(const std::string &s) {
+    value(uint32_t(s.size()));
+    bytes(s.data(), s.size());
+  }
+
+ private:
+  std::ofstream &out_;
+};
+
+class Reader {
+ public:
+  Reader(std::ifstream &in, const std::string &path) : in_(in), path_(path) {}
+  template <typename T>
+  T value(const char *what) {
+    T v{};
+    bytes(&v, sizeof v, what);
+    return v;
+  }
+  void bytes(void *data, size_t size, const char *what) {
+    if (!in_.read(static_cast<char *>(data), std::streamsize(size)))
+      fail(fmt::format("the file ends inside {} (truncated?)", what));
+  }
+  std::string text(const char *what) {
+    const uint32_t size = value<uint32_t>(what);
+    if (size > kMaxString) fail(fmt::format("{} is {} bytes long, more than a checkpoint holds", what, size));
+    std::string s(size, '\0');
+    bytes(s.data(), size, what);
+    return s;
+  }
+  [[noreturn]] void fail(const std::string &message) const {
+    throw InputError(InputLocation{path_}, "not a usable render checkpoint: " + message);
+  }
+
+ private:
+  std::ifstream &in_;
+  const std::string &path_;
+};
+
+}  // namespace
+
+void writeRenderCheckpoint(const std::string &path, const RenderCheckpoint &c, const Film &film) {
+  writeAtomically(path, [&](const std::string &temporary) {
+    std::ofstream out(temporary, std::ios::binary);
+    if (!out) throw std::runtime_error("cannot open the temporary file");
+    Writer w(out);
+    w.bytes(kMagic, sizeof kMagic - 1);
+    w.value(kVersion);
+    w.text(c.job);
+    w.value(int32_t(film.width)), w.value(int32_t(film.height)), w.value(int32_t(kBandCount));
+    w.value(int32_t(c.tileSize)), w.value(int32_t(c.samplesDone)), w.value(int32_t(c.roundEnd));
+    w.value(c.elapsedSeconds), w.value(c.cameraSamples);
+    w.value(uint32_t(c.tileDone.size()));
+    w.bytes(c.tileDone.data(), c.tileDone.size());
+    w.bytes(c.active.data(), c.active.size());
+    w.value(uint32_t(film.channels.size()));
+    for (const FilmChannel &channel : film.channels) w.text(channel.name);
+    forEachFilmArray(
+        film, [&](const std::vector<Bands> &v) { w.bytes(v.data(), v.size() * sizeof(Bands)); },
+        [&](const std::vector<uint32_t> &v) { w.bytes(v.data(), v.size() * sizeof(uint32_t)); });
+    out.flush();
+    if (!out) throw std::runtime_error("write failed (disk full?)");
+  });
+}
+
+void readRenderCheckpoint(const std::string &path, const std::string &job, RenderCheckpoint &c, Film &film) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(InputLocation{path}, "cannot open the checkpoint");
+  Reader r(in, path);
+  char magic[sizeof kMagic - 1];
+  r.bytes(magic, sizeof magic, "the header");
+  if (std::memcmp(magic, kMagic, sizeof magic) != 0) r.fail("it does not start with RADIANT-CHECKPOINT");
+  if (const uint32_t version = r.value<uint32_t>("the header"); version != kVersion)
+    r.fail(fmt::format("checkpoint version {}; this radiant reads version {}", version, kVersion));
+  c.job = r.text("the job description");
+  if (c.job != job)
+    r.fail(
+        "it belongs to another job (a different scene file, image size, method, samples, seed or option); "
+        "remove it to start afresh");
+  const int width = r.value<int32_t>("the header"), height = r.value<int32_t>("the header");
+  const int bands = r.value<int32_t>("the header");
+  if (width != film.width || height != film.height || bands != kBandCount)
+    r.fail(fmt::format("it holds a {}x{} image of {} bands, the render is {}x{} of {}", width, height, bands,
+                       film.width, film.height, kBandCount));
+  c.tileSize = r.value<int32_t>("the header");
+  c.samplesDone = r.value<int32_t>("the header");
+  c.roundEnd = r.value<int32_t>("the header");
+  c.elapsedSeconds = r.value<double>("the header");
+  c.cameraSamples = r.value<uint64_t>("the header");
+  if (c.tileSize < 1 || c.samplesDone < 0 || c.roundEnd < c.samplesDone || !(c.elapsedSeconds >= 0))
+    r.fail("its header holds impossible counts");
+  const uint32_t tiles = r.value<uint32_t>("the tile count");
+  const size_t expectedTiles =
+      size_t((width + c.tileSize - 1) / c.tileSize) * size_t((height + c.tileSize - 1) / c.tileSize);
+  if (tiles != expectedTiles && tiles != 1)
+    r.fail(fmt::format("it has {} tiles, a {}x{} image has {} of {} pixels", tiles, width, height, expectedTiles,
+                       c.tileSize));
+  c.tileDone.assign(tiles, 0);
+  r.bytes(c.tileDone.data(), tiles, "the tile flags");
+  c.active.assign(film.pixelCount(), 0);
+  r.bytes(c.active.data(), c.active.size(), "the converged-pixel flags");
+  const uint32_t channels = r.value<uint32_t>("the channel count");
+  if (channels != film.channels.size())
+    r.fail(fmt::format("it has {} film channels, the render {}", channels, film.channels.size()));
+  for (const FilmChannel &channel : film.channels)
+    if (const std::string name = r.text("a channel name"); name != channel.name)
+      r.fail(fmt::format("it has film channel '{}' where the render has '{}'", name, channel.name));
+  forEachFilmArray(
+      film, [&](std::vector<Bands> &v) { r.bytes(v.data(), v.size() * sizeof(Bands), "the film"); },
+      [&](std::vector<uint32_t> &v) { r.bytes(v.data(), v.size() * sizeof(uint32_t), "the film"); });
+  if (in.peek() != std::char_traits<char>::eof()) r.fail("it has bytes after the film");
+}
+
+}  // namespace radiant

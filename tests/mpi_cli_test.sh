@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# radiant under mpirun (docs/cluster.md): two and three ranks on one machine
+# write the very image and solution of one process, for the per-pixel methods
+# and the distributed stochastic solver; a render stopped under mpirun resumes
+# with another rank count; an error on the ranks ends the job. Skipped (77)
+# where radiant was built without MPI or mpirun is missing, unless
+# RADIANT_REQUIRE_MPI_TESTS=1 (CI). Usage: mpi_cli_test.sh path/to/radiant SOURCE_DIR
+source "$(dirname "$0")/cli_common.sh"
+
+if ! "$radiant" --version | grep -q "(MPI)" || ! command -v mpirun >/dev/null; then
+  echo "radiant built without MPI, or no mpirun: install libopenmpi-dev openmpi-bin and rebuild"
+  [ "${RADIANT_REQUIRE_MPI_TESTS:-0}" = 1 ] && exit 1
+  exit 77
+fi
+# CI runs as root; more ranks than cores; waiting ranks yield the core (two cores here).
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_mpi_yield_when_idle=1
+mpi() { timeout 300 mpirun --oversubscribe -np "$@"; }
+
+size=(--width 48 --height 48)
+# same_image NAME ARGS...: 1, 2 and 3 ranks, the same bytes.
+same_image() {
+  local name=$1
+  shift
+  "$radiant" render "$@" -q -o one.exr || { fail "$name: one process"; return; }
+  for n in 2 3; do
+    mpi "$n" "$radiant" render "$@" -q -o "ranks$n.exr" || { fail "$name: $n ranks"; continue; }
+    cmp -s one.exr "ranks$n.exr" && pass || fail "$name: $n ranks give another image than one process"
+  done
+}
+same_image path "$cornell" "${size[@]}" --spp 16
+same_image "interpolate (stochastic solve)" "$cornell" "${size[@]}" --spp 16 --method interpolate --solver stochastic
+same_image "rushmeier" "$cornell" "${size[@]}" --spp 8 --method rushmeier --solver stochastic
+same_image "kok" "$cornell" "${size[@]}" --spp 8 --method kok --solver stochastic
+same_image "path, a 1-pixel tile" "$cornell" "${size[@]}" --spp 4 --pixel 20,30
+same_image "multipass" "$specular" --width 32 --height 32 --spp 6 --method multipass --solver stochastic
+
+# The distributed stochastic solve: the same solution (its file differs only in the time it took: compare images of it).
+"$radiant" solve "$cornell" --solver stochastic -q -o one.rad || fail "solve: one process"
+mpi 3 "$radiant" solve "$cornell" --solver stochastic -q -o three.rad || fail "solve: 3 ranks"
+"$radiant" render "$cornell" "${size[@]}" --spp 4 --method flat --solution one.rad -q -o solved1.exr
+"$radiant" render "$cornell" "${size[@]}" --spp 4 --method flat --solution three.rad -q -o solved3.exr
+cmp -s solved1.exr solved3.exr && pass || fail "solve: 3 ranks give another solution than one process"
+
+# A render stopped under mpirun (SIGTERM, as a batch system's time limit sends) resumes with another rank count.
+"$radiant" render "$cornell" --width 96 --height 96 --spp 512 -q -o whole.exr
+mpi 2 "$radiant" render "$cornell" --width 96 --height 96 --spp 512 -q -o part.exr --checkpoint ck.bin \
+  --checkpoint-interval 0.2 2>/dev/null &
+pid=$!
+for _ in $(seq 600); do [ -f ck.bin ] && break; sleep 0.1; done
+sleep 0.5
+kill -TERM $pid
+wait $pid 2>/dev/null
+if [ -f ck.bin ]; then
+  mpi 3 "$radiant" render "$cornell" --width 96 --height 96 --spp 512 -o part.exr --checkpoint ck.bin --resume \
+    2>err.txt || fail "resume on 3 ranks"
+  grep -q "resumed from ck.bin" err.txt || fail "resume on 3 ranks: did not say it resumed"
+  cmp -s whole.exr part.exr && pass || fail "stopped on 2 ranks, resumed on 3: another image"
+else
+  fail "the 2-rank render finished before it was stopped, or saved no checkpoint"
+fi
+
+# An error ends the whole job (no rank left waiting), printed once by rank 0, exit non-zero.
+expect_error "missing scene under mpirun" "^radiant: error: .*nothing.json" mpi 3 "$radiant" render nothing.json -o x.exr
+[ "$(grep -c '^radiant: error' err.txt)" = 1 ] && pass || fail "the error printed more than once by rank 0"
+
+finish
