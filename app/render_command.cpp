@@ -18,6 +18,7 @@
 #include "io/output_files.h"
 #include "io/solution_file.h"
 #include "parameter_flags.h"
+#include "phase_console.h"
 #include "radiosity_options.h"
 #include "raytrace/ray_tracer.h"
 #include "render/driver.h"
@@ -240,6 +241,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
     }
     // Ctrl-C: the image so far is written (with its sample count), then exit 130.
     InterruptHandler interrupts;
+    const ConsolePhases phases(!quiet);  // loading, the BVH, cutting faces, meshing: util/phase.h
     Scene scene = loadScene(o->scenePath);
     const WhiteBalance balance = applyColourOptions(app, o->colour, scene);
     applyViewOptions(o->view, scene);

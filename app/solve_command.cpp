@@ -14,6 +14,7 @@
 #include "io/output_files.h"
 #include "io/solution_file.h"
 #include "parameter_flags.h"
+#include "phase_console.h"
 #include "radiosity/calculation_grid.h"
 #include "radiosity/report.h"
 #include "radiosity_options.h"
@@ -94,6 +95,7 @@ CommandRunner addSolveCommand(CLI::App &app) {
     checkOutputFiles(outputs, {o->scenePath});
     // Ctrl-C stops the solve at its next iteration and writes nothing.
     InterruptHandler interrupts;
+    const ConsolePhases phases(!quiet);  // loading, the BVH, cutting faces, meshing: util/phase.h
     Scene scene = loadScene(o->scenePath);
     const WhiteBalance balance = applyColourOptions(app, o->colour, scene);
     const bool gridsWanted = !o->gridReportPath.empty() || !o->gridImagePath.empty();

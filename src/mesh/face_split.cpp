@@ -3,9 +3,11 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "raytrace/face_tree.h"
+#include "util/phase.h"
 #include "util/random.h"
 
 namespace radiant {
@@ -68,40 +70,50 @@ bool clipSegmentToPolygon(const std::vector<Vec3> &polygon, const Vec3 &n, Vec3 
   return true;
 }
 
+/// A candidate face: its corners (at most four) and its normal, without allocating.
+struct CornerList {
+  std::array<Vec3, 4> corners;
+  size_t count = 0;
+  Vec3 normal;
+};
+
 /// Where face g meets the plane of face f inside f: crossing or touching it,
 /// or lying on it (parallel, within `gap`), outlining its part of f.
-void cutsOf(const PlanarFace &f, const PlanarFace &g, double onPlane, double gap, double tolerance,
+void cutsOf(const PlanarFace &f, const CornerList &g, double onPlane, double gap, double tolerance,
             std::vector<CutSegment> &out) {
-  std::vector<double> d;
-  double largest = 0;
-  for (const Vec3 &v : g.polygon) {
-    d.push_back(dot(v - f.polygon[0], f.normal));
-    largest = std::max(largest, std::abs(d.back()));
+  std::array<double, 4> d{};
+  double largest = 0, nearest = INFINITY;
+  const size_t n = g.count;
+  for (size_t k = 0; k < n; ++k) {
+    d[k] = dot(g.corners[k] - f.polygon[0], f.normal);
+    largest = std::max(largest, std::abs(d[k]));
+    nearest = std::min(nearest, d[k]);
   }
-  const size_t n = g.polygon.size();
-  const bool inFront = *std::min_element(d.begin(), d.end()) >= -onPlane;
+  const bool inFront = nearest >= -onPlane;
   if (largest <= gap && inFront && std::abs(dot(f.normal, g.normal)) > 0.9998) {
     // Lying on f: its outline, projected onto f's plane, cuts f.
     for (size_t k = 0; k < n; ++k) {
-      Vec3 a = g.polygon[k] - f.normal * d[k], b = g.polygon[(k + 1) % n] - f.normal * d[(k + 1) % n];
+      Vec3 a = g.corners[k] - f.normal * d[k], b = g.corners[(k + 1) % n] - f.normal * d[(k + 1) % n];
       if (clipSegmentToPolygon(f.polygon, f.normal, a, b, -tolerance) && length(b - a) > tolerance)
         out.push_back({a, b});
     }
     return;
   }
-  std::vector<Vec3> points;
+  // Each corner on the plane, and each edge crossing it, gives a point: at most 2n.
+  std::array<Vec3, 8> points;
+  size_t found = 0;
   for (size_t k = 0; k < n; ++k) {
     const size_t m = (k + 1) % n;
-    if (std::abs(d[k]) <= onPlane) points.push_back(g.polygon[k] - f.normal * d[k]);
+    if (std::abs(d[k]) <= onPlane) points[found++] = g.corners[k] - f.normal * d[k];
     if ((d[k] > onPlane && d[m] < -onPlane) || (d[k] < -onPlane && d[m] > onPlane))
-      points.push_back(g.polygon[k] + (g.polygon[m] - g.polygon[k]) * (d[k] / (d[k] - d[m])));
+      points[found++] = g.corners[k] + (g.corners[m] - g.corners[k]) * (d[k] / (d[k] - d[m]));
   }
-  if (points.size() < 2) return;
+  if (found < 2) return;
   // The two points farthest apart (a convex face meets a plane in one segment).
   Vec3 a = points[0], b = points[1];
   double best = -1;
-  for (size_t i = 0; i < points.size(); ++i)
-    for (size_t j = i + 1; j < points.size(); ++j)
+  for (size_t i = 0; i < found; ++i)
+    for (size_t j = i + 1; j < found; ++j)
       if (const double l = length(points[j] - points[i]); l > best) best = l, a = points[i], b = points[j];
   if (best <= tolerance) return;
   if (clipSegmentToPolygon(f.polygon, f.normal, a, b, -tolerance) && length(b - a) > tolerance) out.push_back({a, b});
@@ -213,21 +225,41 @@ std::vector<std::vector<Vec3>> convexToPatches(const std::vector<Vec3> &polygon)
 }
 
 std::vector<FaceSplit> splitFaces(const Scene &scene, const RayTracer &tracer, const FaceSplitOptions &options) {
+  Phase phase("cutting faces where surfaces meet", scene.faces.size());
   const FaceTree tree(scene);
   const Box3 &bounds = tree.sceneBounds();
   const double extent =
       std::max({bounds.hi.x - bounds.lo.x, bounds.hi.y - bounds.lo.y, bounds.hi.z - bounds.lo.z, 1e-9});
   const double tolerance = 1e-7 * extent, onPlane = 1e-7 * extent, gap = options.coplanarGap * extent;
   std::vector<FaceSplit> splits(scene.faces.size());
+  // Every face's normal once: each is a candidate for a dozen of its neighbours.
+  std::vector<Vec3> normals(scene.faces.size());
+  tbb::parallel_for(size_t(0), scene.faces.size(), [&](size_t f) { normals[f] = scene.faceNormal(scene.faces[f]); });
   tbb::parallel_for(size_t(0), scene.faces.size(), [&](size_t f) {
+    phase.advance();
     const PlanarFace face = planarFace(scene, uint32_t(f));
+    // The faces that may cut this one: those crossing or touching it, and
+    // those lying within `gap` of its plane over it. Both are inside its
+    // bounds widened by gap along its normal only (gap·|n| per axis): a
+    // margin of gap in every direction took in every face of a finely
+    // tessellated model within millimetres (about 450 candidates per face of
+    // a 10⁶-triangle sphere instead of its dozen neighbours).
     Box3 box = tree.faceBounds(uint32_t(f));
+    const Vec3 widen{gap * std::abs(face.normal.x), gap * std::abs(face.normal.y), gap * std::abs(face.normal.z)};
+    box.lo = box.lo - widen;
+    box.hi = box.hi + widen;
     std::vector<uint32_t> near;
-    tree.facesOverlapping(box, gap, near);
+    tree.facesOverlapping(box, tolerance, near);
     std::vector<CutSegment> cuts;
-    for (uint32_t g : near)
-      if (g != f && g != scene.geometricFace(uint32_t(f)) && int64_t(g) != scene.faces[f].twin)
-        cutsOf(face, planarFace(scene, g), onPlane, gap, tolerance, cuts);
+    for (uint32_t g : near) {
+      if (g == f || g == scene.geometricFace(uint32_t(f)) || int64_t(g) == scene.faces[f].twin) continue;
+      const Face &other = scene.faces[g];
+      CornerList corners;
+      corners.count = size_t(other.vertexCount);
+      for (size_t k = 0; k < corners.count; ++k) corners.corners[k] = scene.positions[other.vertices[k]];
+      corners.normal = normals[g];
+      cutsOf(face, corners, onPlane, gap, tolerance, cuts);
+    }
     if (cuts.empty()) return;
     std::vector<std::vector<Vec3>> pieces{face.polygon};
     for (const CutSegment &cut : cuts) splitPieces(pieces, cut, face.normal, tolerance);

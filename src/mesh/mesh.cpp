@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "util/error.h"
+#include "util/phase.h"
 
 namespace radiant {
 
@@ -344,6 +345,7 @@ std::array<double, 4> RadiosityMesh::nodeWeights(const MeshLocation &l) const {
 }
 
 RadiosityMesh buildMesh(const Scene &scene, const MeshOptions &options) {
+  Phase phase("meshing", scene.faces.size());
   RadiosityMesh mesh;
   double edge = options.maxEdgeLength;
   if (!(edge > 0)) {
@@ -415,7 +417,7 @@ RadiosityMesh buildMesh(const Scene &scene, const MeshOptions &options) {
     for (size_t f = 0; f < scene.faces.size(); ++f) mesh.faceCuts[f] = (*splits)[f].cuts;
   }
   mesh.elements.reserve(totalElements);
-  for (size_t f = 0; f < scene.faces.size(); ++f)
+  for (size_t f = 0; f < scene.faces.size(); ++f, phase.advance())
     for (size_t piece = 0; piece < polygons[f].size(); ++piece) {
       const Face &face = scene.faces[f];
       const std::vector<Vec3> &poly = polygons[f][piece];

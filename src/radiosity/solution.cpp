@@ -1,7 +1,8 @@
 #include "radiosity/solution.h"
 
+#include <algorithm>
 #include <cmath>
-#include <unordered_map>
+#include <tuple>
 
 #include "radiosity/transmission.h"
 #include "raytrace/surface_detail.h"
@@ -60,44 +61,53 @@ void Solution::shareNodesAcrossPatches(std::vector<Bands> &sums, std::vector<dou
   for (const Vec3 &p : mesh.nodes) extent = std::max({extent, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
   if (extent <= 0) return;
   const double cell = extent * 1e-6;
-  struct Key {
+  // Nodes by grid cell, then by index: a sort, not a hash map of lists (one
+  // allocation per node: seconds at the 2·10⁶ nodes of a 10⁶-triangle model).
+  struct Keyed {
     int64_t x, y, z;
-    bool operator==(const Key &o) const { return x == o.x && y == o.y && z == o.z; }
+    uint32_t node;
+    bool sameCell(const Keyed &o) const { return x == o.x && y == o.y && z == o.z; }
+    bool operator<(const Keyed &o) const { return std::tie(x, y, z, node) < std::tie(o.x, o.y, o.z, o.node); }
   };
-  struct KeyHash {
-    size_t operator()(const Key &k) const {
-      return std::hash<int64_t>()(k.x * 73856093 ^ k.y * 19349663 ^ k.z * 83492791);
-    }
-  };
-  std::unordered_map<Key, std::vector<uint32_t>, KeyHash> at;
+  std::vector<Keyed> keyed;
+  keyed.reserve(mesh.nodes.size());
   for (uint32_t v = 0; v < mesh.nodes.size(); ++v) {
     // A node on a cut (the foot of a wall standing there) keeps its own patch's value.
     if (!mesh.nodeOnCut.empty() && mesh.nodeOnCut[v]) continue;
     const Vec3 &p = mesh.nodes[v];
-    at[{std::llround(p.x / cell), std::llround(p.y / cell), std::llround(p.z / cell)}].push_back(v);
+    keyed.push_back({std::llround(p.x / cell), std::llround(p.y / cell), std::llround(p.z / cell), v});
   }
+  std::sort(keyed.begin(), keyed.end());
   constexpr double kCos2Degrees = 0.99939;
-  for (auto &[key, nodes] : at) {
-    if (nodes.size() < 2) continue;
-    // Group the nodes that may pool: same material and nearly the same normal as the first of a group.
-    std::vector<bool> used(nodes.size(), false);
-    for (size_t a = 0; a < nodes.size(); ++a) {
-      if (used[a]) continue;
-      const Patch &pa = mesh.patches[mesh.nodePatch[nodes[a]]];
-      std::vector<uint32_t> group{nodes[a]};
-      for (size_t b = a + 1; b < nodes.size(); ++b) {
-        const Patch &pb = mesh.patches[mesh.nodePatch[nodes[b]]];
-        if (!used[b] && pb.material == pa.material && dot(pa.normal, pb.normal) > kCos2Degrees) {
-          used[b] = true;
-          group.push_back(nodes[b]);
+  std::vector<uint32_t> nodes, group;
+  std::vector<bool> used;
+  for (size_t start = 0; start < keyed.size();) {
+    size_t end = start + 1;
+    while (end < keyed.size() && keyed[end].sameCell(keyed[start])) ++end;
+    if (end - start >= 2) {
+      nodes.clear();
+      for (size_t i = start; i < end; ++i) nodes.push_back(keyed[i].node);
+      // Group the nodes that may pool: same material and nearly the same normal as the first of a group.
+      used.assign(nodes.size(), false);
+      for (size_t a = 0; a < nodes.size(); ++a) {
+        if (used[a]) continue;
+        const Patch &pa = mesh.patches[mesh.nodePatch[nodes[a]]];
+        group.assign(1, nodes[a]);
+        for (size_t b = a + 1; b < nodes.size(); ++b) {
+          const Patch &pb = mesh.patches[mesh.nodePatch[nodes[b]]];
+          if (!used[b] && pb.material == pa.material && dot(pa.normal, pb.normal) > kCos2Degrees) {
+            used[b] = true;
+            group.push_back(nodes[b]);
+          }
         }
+        if (group.size() < 2) continue;
+        Bands sum(0.0);
+        double w = 0;
+        for (uint32_t v : group) sum += sums[v], w += weight[v];
+        for (uint32_t v : group) sums[v] = sum, weight[v] = w;
       }
-      if (group.size() < 2) continue;
-      Bands sum(0.0);
-      double w = 0;
-      for (uint32_t v : group) sum += sums[v], w += weight[v];
-      for (uint32_t v : group) sums[v] = sum, weight[v] = w;
     }
+    start = end;
   }
 }
 

@@ -65,6 +65,19 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
   constexpr size_t kChunk = 4096;
 
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  // Where a ray lands: a face meshed as one element is that element, found
+  // without reading its patch (4 bytes a face instead of a patch record and
+  // its corners: most of a 10⁶-triangle model's faces).
+  constexpr int32_t kNotMeshed = -2, kLocate = -1;
+  std::vector<int32_t> wholeFaceElement(s.mesh.patchOfFace.size(), kNotMeshed);
+  for (size_t f = 0; f < wholeFaceElement.size(); ++f) {
+    const int32_t first = s.mesh.patchOfFace[f];
+    if (first < 0) continue;
+    const uint32_t patches = s.mesh.facePatchCount.empty() ? 1 : s.mesh.facePatchCount[f];
+    const Patch &patch = s.mesh.patches[size_t(first)];
+    wholeFaceElement[f] =
+        patches <= 1 && patch.treeRoot < 0 && patch.elementCount == 1 ? int32_t(patch.firstElement) : kLocate;
+  }
   const int maxIterations = options.maxIterations > 0 ? options.maxIterations : 1000;
 
   // Point lights shoot first, exactly (backprojection.h): ρH is direct light
@@ -132,10 +145,17 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
           std::vector<Deposit> &out = deposits[i - batchStart];
           out.clear();
           out.reserve(end - begin);
+          size_t source = 0;
           for (size_t r = begin; r < end; ++r) {
             // Stratify the source choice across all rays of the iteration.
+            // u grows with r, so the chunk's sources come in CDF order: one
+            // binary search for its first ray, then a walk forward (rays of
+            // one source follow each other: its element stays in cache).
             double u = (double(r) + rng.next()) / double(rays) * total;
-            size_t source = std::min(n - 1, size_t(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin()));
+            if (r == begin)
+              source = std::min(n - 1, size_t(std::upper_bound(cdf.begin(), cdf.end(), u) - cdf.begin()));
+            else
+              while (source + 1 < n && cdf[source] <= u) ++source;
             const Element &element = s.mesh.elements[source];
             const Vec3 &normal = s.mesh.normalOf(static_cast<uint32_t>(source));
             double a = rng.next(), b = rng.next(), d1 = rng.next(), d2 = rng.next();
@@ -162,12 +182,13 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
             }
             Vec3 direction = Frame::fromNormal(normal).toWorld(sampleCosineHemisphere(d1, d2));
             Hit hit;
-            if (!tracer.intersect(tracer.spawnRay(origin, normal, direction), hit)) continue;  // escaped
+            if (!tracer.intersectPosition(tracer.spawnRay(origin, normal, direction), hit)) continue;  // escaped
             if (dot(hit.geometricNormal, direction) >= 0) continue;  // a back side: not in the solution
-            int32_t patch = s.mesh.patchOfFace[hit.face];
-            if (patch < 0) continue;
+            const int32_t whole = wholeFaceElement[hit.face];
+            if (whole == kNotMeshed) continue;
+            const uint32_t receiver = whole >= 0 ? uint32_t(whole) : s.mesh.locate(hit.face, hit.position).element;
             const Bands &colour = s.unshot[source];
-            out.push_back({s.mesh.locate(hit.face, hit.position).element, colour * (powerPerRay / colour.average())});
+            out.push_back({receiver, colour * (powerPerRay / colour.average())});
           }
         });
       });

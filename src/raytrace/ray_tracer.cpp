@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "util/phase.h"
+
 namespace radiant {
 
 static void reportEmbreeError(void *, RTCError code, const char *message) {
@@ -16,6 +18,7 @@ static void reportEmbreeError(void *, RTCError code, const char *message) {
 }
 
 RayTracer::RayTracer(const Scene &scene) : scene_(scene) {
+  Phase phase("building the ray tracer's BVH");
   device_ = rtcNewDevice(nullptr);  // BVH builds run on TBB's workers, like the rest of Radiant
   if (!device_) throw std::runtime_error("Embree: cannot create a device (unsupported CPU?)");
   rtcSetDeviceErrorFunction(device_, reportEmbreeError, nullptr);
@@ -167,6 +170,28 @@ bool RayTracer::intersect(const Ray &ray, Hit &hit, double tMax) const {
   uint32_t triangle;
   resolveHit(ray, rh.hit.primID, rh.hit.u, rh.hit.v, triangle);
   completeHit(ray, rh.ray.tfar, triangle, rh.hit.u, rh.hit.v, hit);
+  return true;
+}
+
+bool RayTracer::intersectPosition(const Ray &ray, Hit &hit) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  setEmbreeRayHit(rh, ray, INFINITY);
+  rtcIntersect1(rtcScene_, &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  uint32_t triangle;
+  resolveHit(ray, rh.hit.primID, rh.hit.u, rh.hit.v, triangle);
+  const TriangleGeometry &g = geometry_[triangle];
+  hit.triangle = triangle;
+  hit.b1 = rh.hit.u;
+  hit.b2 = rh.hit.v;
+  hit.material = g.material;
+  hit.face = g.face;
+  hit.position = g.p0 + g.edge1 * hit.b1 + g.edge2 * hit.b2;
+  const double distance = dot(hit.position - ray.origin, ray.direction);
+  hit.distance = std::isfinite(distance) ? distance : static_cast<double>(rh.ray.tfar);
+  hit.geometricNormal = hit.shadingNormal = g.normal;
   return true;
 }
 

@@ -45,6 +45,10 @@ class RayTracer {
 
   /// Closest hit with distance in (tMin, tMax); false if none.
   bool intersect(const Ray &ray, Hit &hit, double tMax = INFINITY) const;
+  /// The closest hit's face, triangle and position only: no shading normal
+  /// (vertex normals are three more scattered reads per hit). For the
+  /// solvers that cast tens of millions of rays to find where light lands.
+  bool intersectPosition(const Ray &ray, Hit &hit) const;
   /// True if anything blocks the open segment (tMin, tMax) of the ray.
   bool occluded(const Ray &ray, double tMax) const;
   /// True if the two points see each other (both offset off their surfaces).

@@ -26,6 +26,7 @@
 #include "scene/load_detail.h"
 #include "scene/mgf_detail.h"
 #include "util/file_extension.h"
+#include "util/phase.h"
 
 namespace radiant {
 
@@ -527,6 +528,7 @@ Scene parseSceneJson(const std::string &text, const std::string &path) {
 }
 
 Scene loadScene(const std::string &path) {
+  Phase phase("loading " + fs::path(path).filename().string());
   const std::string extension = lowercaseExtension(path);
   if (extension == ".obj") {
     Scene scene;
