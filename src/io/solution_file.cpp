@@ -125,7 +125,8 @@ enum PassContent : uint32_t {
   kTransmittedStored = 1u << 7,      ///< τH′ per element, direct and indirect (else none)
   kNodeIrradianceStored = 1u << 8,   ///< the irradiance at the nodes, direct and indirect (else none)
   kNodesOnCutsStored = 1u << 9,      ///< the list of nodes on a cut (else RadiosityMesh::nodeOnCut is empty)
-  kKnownContent = (1u << 10) - 1,
+  kTreeRadiosityStored = 1u << 10,   ///< B per tree node (hierarchical solvers; else none)
+  kKnownContent = (1u << 11) - 1,
 };
 /// Bit of a compact patch record's shape byte (bits 0–2 hold the vertex count).
 constexpr uint8_t kPatchCornersStored = 8;
@@ -180,6 +181,8 @@ void putSolution(Writer &w, const Solution &s, const Scene &scene) {
   if (s.hasTransmitted()) content |= kTransmittedStored;
   if (s.hasNodeIrradiance()) content |= kNodeIrradianceStored;
   if (!m.nodeOnCut.empty()) content |= kNodesOnCutsStored;
+  // Adaptive rounds of the other solvers refine trees but keep no B per tree node.
+  if (!m.tree.empty() && s.treeRadiosity.size() == m.tree.size()) content |= kTreeRadiosityStored;
 
   for (size_t count :
        {m.patches.size(), n, m.nodes.size(), m.patchOfFace.size(), m.tree.size(), m.tVertices.size(), s.links.size()})
@@ -237,7 +240,7 @@ void putSolution(Writer &w, const Solution &s, const Scene &scene) {
   if (content & kUnshotStored) w.putSingle(s.unshot);
   if (content & kTransmittanceStored) w.putSingle(transmittance);
   if (content & kTransmittedStored) w.putSingle(s.transmittedDirect), w.putSingle(s.transmittedIndirect);
-  for (size_t t = 0; t < m.tree.size(); ++t) w.putSingle(t < s.treeRadiosity.size() ? s.treeRadiosity[t] : Bands(0.0));
+  if (content & kTreeRadiosityStored) w.putSingle(s.treeRadiosity);
   for (const RadiosityMesh::TVertex &t : m.tVertices) w.put(t.node), w.put(t.edgeStart), w.put(t.edgeEnd), w.put(t.t);
   for (const Link &l : s.links) {
     w.put(l.receiver), w.put(l.source), w.put(l.formFactor), w.put(l.visibleFraction);
@@ -425,7 +428,7 @@ Solution getSolution(Reader &r, const Scene &scene) {
       for (const Bands &b : *v)
         if (!b.isFinite() || b.min() < 0) r.fail("an element's transmitted radiosity is negative or not finite");
   }
-  s.treeRadiosity = r.singleBands(treeNodes, "tree radiosities");
+  if (content & kTreeRadiosityStored) s.treeRadiosity = r.singleBands(treeNodes, "tree radiosities");
   m.tVertices.resize(r.count(tVertices, 4 * 4, "T-vertices"));
   for (RadiosityMesh::TVertex &t : m.tVertices) {
     t.node = r.get<uint32_t>(), t.edgeStart = r.get<uint32_t>(), t.edgeEnd = r.get<uint32_t>();
