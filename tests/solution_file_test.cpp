@@ -10,11 +10,13 @@
 #include <filesystem>
 #include <fstream>
 
+#include "fuzz_inputs.h"
 #include "radiosity/solver.h"
 #include "raytrace/ray_tracer.h"
 #include "sanitizer.h"
 #include "scene/load_scene.h"
 #include "solution_file_checks.h"
+#include "util/error.h"
 
 namespace radiant {
 namespace {
@@ -98,6 +100,49 @@ TEST(SolutionFile, StoresWhatItCannotDerive) {
   // The node values were computed from the original ρ; those read back from the new one.
   s.updateNodesAndErrors();
   test::expectSolutionReadBack(s, back);
+}
+
+TEST(SolutionFile, EveryCorruptByteIsRefusedOrRead) {
+  // A small fuzzing campaign over the new format's every field: each byte of
+  // each seed (fuzz/corpus/solution_file, the furnace solved by progressive,
+  // hierarchical and hierarchical-exact) set to 0, 0xFF, 0x7F and its value
+  // + 1, then every truncation, through the fuzz target's own feed (which reads
+  // the file and then asks of it what a renderer asks). Each must be read or
+  // refused with an InputError; a crash, a sanitizer report or another
+  // exception fails. The fingerprint bytes are patched back by the feed.
+  const fuzz::ScratchFolder folder("solution-file-bytes");
+  const std::filesystem::path seeds = std::filesystem::path(RADIANT_SOURCE_DIR) / "fuzz/corpus/solution_file";
+  size_t read = 0, refused = 0;
+  for (const char *name : {"progressive.rad", "hierarchical.rad", "hierarchical-exact.rad"}) {
+    SCOPED_TRACE(name);
+    const std::vector<uint8_t> seed = fuzz::readFileBytes((seeds / name).string());
+    ASSERT_GT(seed.size(), 100u);
+    auto feed = [&](std::span<const uint8_t> bytes, const std::string &what) {
+      try {
+        fuzz::feedSolutionFile(bytes, folder.path());
+        ++read;
+      } catch (const InputError &) {
+        ++refused;
+      } catch (const std::exception &e) {
+        ADD_FAILURE() << what << ": not an InputError: " << e.what();
+      }
+    };
+#if defined(__SANITIZE_ADDRESS__)
+    const size_t stride = 7;  // every field still, at a seventh of the time
+#else
+    const size_t stride = 1;
+#endif
+    for (size_t at = 0; at < seed.size(); at += stride)
+      for (int value : {0x00, 0xFF, 0x7F, (seed[at] + 1) & 0xFF}) {
+        std::vector<uint8_t> bytes = seed;
+        bytes[at] = uint8_t(value);
+        feed(bytes, "byte " + std::to_string(at) + " = " + std::to_string(value));
+      }
+    for (size_t length = 0; length < seed.size(); length += stride)
+      feed(std::span<const uint8_t>(seed.data(), length), "the first " + std::to_string(length) + " bytes");
+  }
+  EXPECT_GT(refused, 0u);
+  EXPECT_GT(read, 0u);  // values changed within range read back
 }
 
 }  // namespace

@@ -13,42 +13,44 @@ namespace radiant {
 
 namespace {
 
-bool same(double a, double b) {
+bool identicalBits(double a, double b) {
   return std::bit_cast<uint64_t>(a) == std::bit_cast<uint64_t>(b);
 }
-bool same(const Vec3 &a, const Vec3 &b) {
-  return same(a.x, b.x) && same(a.y, b.y) && same(a.z, b.z);
+bool identicalBits(const Vec3 &a, const Vec3 &b) {
+  return identicalBits(a.x, b.x) && identicalBits(a.y, b.y) && identicalBits(a.z, b.z);
 }
 template <size_t N>
-bool same(const std::array<Vec3, N> &a, const std::array<Vec3, N> &b) {
+bool identicalBits(const std::array<Vec3, N> &a, const std::array<Vec3, N> &b) {
   for (size_t k = 0; k < N; ++k)
-    if (!same(a[k], b[k])) return false;
+    if (!identicalBits(a[k], b[k])) return false;
   return true;
 }
 
+// (Names of their own: a unity build puts mesh.cpp and tree_mesh.cpp, whose
+// helpers these mirror, into one translation unit with this file.)
 // The arithmetic below is the mesh builders' (src/mesh/mesh.cpp, tree_mesh.cpp),
 // expression for expression: the writer checks the result bit for bit and
 // stores the geometry whenever it differs, so a change there costs file size,
 // never correctness.
 
 /// buildMesh's bilinear point P(u, v) of a quad.
-Vec3 bilinear(const std::array<Vec3, 4> &q, double u, double v) {
+Vec3 bilinearPoint(const std::array<Vec3, 4> &q, double u, double v) {
   return q[0] * ((1 - u) * (1 - v)) + q[1] * (u * (1 - v)) + q[2] * (u * v) + q[3] * ((1 - u) * v);
 }
 
 /// buildMesh's patch area and splitTreeNode's node area.
-double polygonArea(const std::array<Vec3, 4> &c, int count) {
+double areaOfPolygon(const std::array<Vec3, 4> &c, int count) {
   double area = 0;
   for (int k = 1; k + 1 < count; ++k) area += 0.5 * length(cross(c[k] - c[0], c[k + 1] - c[0]));
   return area;
 }
 
 /// rebuildElementsFromTrees' key: equal corners have equal bits.
-struct PositionKey {
+struct CornerBits {
   uint64_t x, y, z;
-  bool operator<(const PositionKey &o) const { return std::tie(x, y, z) < std::tie(o.x, o.y, o.z); }
+  bool operator<(const CornerBits &o) const { return std::tie(x, y, z) < std::tie(o.x, o.y, o.z); }
 };
-PositionKey keyOf(const Vec3 &p) {
+CornerBits cornerBitsOf(const Vec3 &p) {
   return {std::bit_cast<uint64_t>(p.x), std::bit_cast<uint64_t>(p.y), std::bit_cast<uint64_t>(p.z)};
 }
 
@@ -82,7 +84,7 @@ std::string deriveMeshGeometry(const Scene &scene, const std::vector<CompactPatc
     patch.normal = scene.faceNormal(face);
     if (c.cornersStored) {
       for (int k = 0; k < c.vertexCount; ++k) patch.corners[k] = c.corners[k];
-      patch.area = polygonArea(patch.corners, patch.vertexCount);
+      patch.area = areaOfPolygon(patch.corners, patch.vertexCount);
     } else {
       for (int k = 0; k < c.vertexCount; ++k) patch.corners[k] = scene.positions[face.vertices[k]];
       patch.area = scene.faceArea(face);
@@ -121,7 +123,7 @@ std::string deriveMeshGeometry(const Scene &scene, const std::vector<CompactPatc
       child.patch = mesh.tree[n].patch;
       child.vertexCount = mesh.tree[n].vertexCount;
       child.corners = corners[k];
-      child.area = polygonArea(child.corners, child.vertexCount);
+      child.area = areaOfPolygon(child.corners, child.vertexCount);
     }
   }
   // Elements and nodes, patch by patch.
@@ -153,7 +155,7 @@ std::string deriveMeshGeometry(const Scene &scene, const std::vector<CompactPatc
       if (patch.vertexCount == 4) {
         const int u = patch.divisionsU, v = patch.divisionsV;
         for (int j = 0; j <= v; ++j)
-          for (int i = 0; i <= u; ++i) mesh.nodes.push_back(bilinear(patch.corners, double(i) / u, double(j) / v));
+          for (int i = 0; i <= u; ++i) mesh.nodes.push_back(bilinearPoint(patch.corners, double(i) / u, double(j) / v));
         auto node = [&](int i, int j) { return patch.firstNode + uint32_t(j * (u + 1) + i); };
         for (int j = 0; j < v; ++j)
           for (int i = 0; i < u; ++i) addElement(4, {node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)});
@@ -171,7 +173,7 @@ std::string deriveMeshGeometry(const Scene &scene, const std::vector<CompactPatc
       }
     } else {
       // rebuildElementsFromTrees: leaves depth first, children 0 to 3; a node per distinct corner.
-      std::map<PositionKey, uint32_t> nodeAt;
+      std::map<CornerBits, uint32_t> nodeAt;
       std::vector<uint32_t> stack{uint32_t(patch.treeRoot)};
       while (!stack.empty()) {
         const uint32_t n = stack.back();
@@ -187,7 +189,7 @@ std::string deriveMeshGeometry(const Scene &scene, const std::vector<CompactPatc
         e.vertexCount = leaf.vertexCount;
         Vec3 centre;
         for (int k = 0; k < leaf.vertexCount; ++k) {
-          auto [it, inserted] = nodeAt.try_emplace(keyOf(leaf.corners[k]), uint32_t(mesh.nodes.size()));
+          auto [it, inserted] = nodeAt.try_emplace(cornerBitsOf(leaf.corners[k]), uint32_t(mesh.nodes.size()));
           if (inserted) {
             if (mesh.nodes.size() >= nodes) return tooMany;
             mesh.nodes.push_back(leaf.corners[k]);
@@ -220,9 +222,9 @@ std::vector<CompactPatch> compactPatches(const Scene &scene, const RadiosityMesh
     c.face = patch.face;
     c.vertexCount = patch.vertexCount;
     c.divisionsU = patch.divisionsU, c.divisionsV = patch.divisionsV, c.treeRoot = patch.treeRoot;
-    bool whole = face.vertexCount == patch.vertexCount && same(patch.area, scene.faceArea(face));
+    bool whole = face.vertexCount == patch.vertexCount && identicalBits(patch.area, scene.faceArea(face));
     for (int k = 0; k < 4 && whole; ++k)
-      whole = same(patch.corners[k], k < face.vertexCount ? scene.positions[face.vertices[k]] : Vec3{});
+      whole = identicalBits(patch.corners[k], k < face.vertexCount ? scene.positions[face.vertices[k]] : Vec3{});
     c.cornersStored = !whole;
     if (c.cornersStored) c.corners = patch.corners;
   }
@@ -236,24 +238,24 @@ bool sameMeshGeometry(const RadiosityMesh &a, const RadiosityMesh &b) {
   for (size_t p = 0; p < a.patches.size(); ++p) {
     const Patch &x = a.patches[p], &y = b.patches[p];
     if (x.face != y.face || x.material != y.material || x.object != y.object || x.treeRoot != y.treeRoot ||
-        x.vertexCount != y.vertexCount || !same(x.corners, y.corners) || !same(x.normal, y.normal) ||
-        !same(x.area, y.area) || x.divisionsU != y.divisionsU || x.divisionsV != y.divisionsV ||
+        x.vertexCount != y.vertexCount || !identicalBits(x.corners, y.corners) || !identicalBits(x.normal, y.normal) ||
+        !identicalBits(x.area, y.area) || x.divisionsU != y.divisionsU || x.divisionsV != y.divisionsV ||
         x.firstElement != y.firstElement || x.elementCount != y.elementCount || x.firstNode != y.firstNode ||
         x.nodeCount != y.nodeCount)
       return false;
   }
   for (size_t e = 0; e < a.elements.size(); ++e) {
     const Element &x = a.elements[e], &y = b.elements[e];
-    if (x.patch != y.patch || x.vertexCount != y.vertexCount || x.nodes != y.nodes || !same(x.centre, y.centre) ||
-        !same(x.area, y.area))
+    if (x.patch != y.patch || x.vertexCount != y.vertexCount || x.nodes != y.nodes ||
+        !identicalBits(x.centre, y.centre) || !identicalBits(x.area, y.area))
       return false;
   }
   for (size_t v = 0; v < a.nodes.size(); ++v)
-    if (!same(a.nodes[v], b.nodes[v])) return false;
+    if (!identicalBits(a.nodes[v], b.nodes[v])) return false;
   for (size_t n = 0; n < a.tree.size(); ++n) {
     const MeshTreeNode &x = a.tree[n], &y = b.tree[n];
     if (x.children != y.children || x.element != y.element || x.patch != y.patch || x.vertexCount != y.vertexCount ||
-        !same(x.corners, y.corners) || !same(x.area, y.area))
+        !identicalBits(x.corners, y.corners) || !identicalBits(x.area, y.area))
       return false;
   }
   return true;
@@ -294,7 +296,7 @@ bool sameBits(const std::vector<Bands> &a, const std::vector<Bands> &b) {
   if (a.size() != b.size()) return false;
   for (size_t i = 0; i < a.size(); ++i)
     for (int k = 0; k < kBandCount; ++k)
-      if (!same(a[i][k], b[i][k])) return false;
+      if (!identicalBits(a[i][k], b[i][k])) return false;
   return true;
 }
 
