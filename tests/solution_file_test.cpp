@@ -71,6 +71,35 @@ TEST(SolutionFile, EverySolversMeshIsDerivedOnReading) {
   }
 }
 
+TEST(SolutionFile, TexturedAndTranslucentSolutionsReadBack) {
+  RADIANT_SKIP_UNDER_SANITIZER();  // three solves
+  // A texture's ρ̄ per element is derived too (averageDiffuse over the
+  // element, as initialSolution takes it); τ and the light through a
+  // translucent wall (hierarchical-exact's transmitted radiosity) are stored.
+  struct Case {
+    const char *scene, *solver;
+    uint32_t mustStore;
+  };
+  constexpr uint32_t kTransmittanceStored = 64, kTransmittedStored = 128;
+  for (const Case &c : {Case{"cornell-textured", "progressive", 0}, Case{"translucent-wall", "gauss-seidel", 64},
+                        Case{"translucent-wall", "hierarchical-exact", 64 | 128}}) {
+    SCOPED_TRACE(std::string(c.scene) + " " + c.solver);
+    const Scene scene = loadScene(std::string(RADIANT_SOURCE_DIR "/scenes/") + c.scene + "/scene.json");
+    const RayTracer tracer(scene);
+    MeshOptions mesh;
+    SolverOptions options;
+    options.solver = c.solver;
+    options.tolerance = 1e-2;
+    options.maxElements = 3000;
+    const Solution s = meshAndSolve(scene, tracer, mesh, options);
+    Solution back;
+    const uint32_t content = roundTrip(s, scene, back);
+    EXPECT_EQ(content & (kGeometryStored | kReflectanceStored | kEmissionStored), 0u) << std::hex << content;
+    EXPECT_EQ(content & (kTransmittanceStored | kTransmittedStored), c.mustStore) << std::hex << content;
+    test::expectSolutionReadBack(s, back);
+  }
+}
+
 TEST(SolutionFile, StoresWhatItCannotDerive) {
   // A mesh no builder made (one node moved by one ulp), a reflectance that is
   // not the material's, and faces without patch counts: each is stored, and

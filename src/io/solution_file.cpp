@@ -477,6 +477,9 @@ Solution getSolution(Reader &r, const Scene &scene) {
       if (e.patch >= m.patches.size() || e.vertexCount < 3 || e.vertexCount > 4 ||
           std::any_of(e.nodes.begin(), e.nodes.begin() + e.vertexCount, [&](uint32_t v) { return v >= nodes; }))
         r.fail("an element is inconsistent");
+    // A texture's mean over an element is taken at its nodes' positions.
+    for (const Vec3 &v : m.nodes)
+      if (!isFinite(v)) r.fail("a node's position is not finite");
     std::vector<Bands> reflectance, emission;
     deriveMaterialValues(scene, m, reflectance, emission);
     if (!(content & kReflectanceStored)) s.reflectance = std::move(reflectance);
