@@ -159,14 +159,15 @@ void putSolution(Writer &w, const Solution &s, const Scene &scene) {
     derivable = deriveMeshGeometry(scene, compact, firstChild, n, m.nodes.size(), derived).empty() &&
                 sameMeshGeometry(derived, m);
   }
-  RadiosityMesh faces;
-  faces.patches = m.patches;
-  deriveFacePatches(m.patchOfFace.size(), faces);
-  const bool facesDerived = faces.patchOfFace == m.patchOfFace && faces.facePatchCount == m.facePatchCount;
+  std::vector<int32_t> patchOfFace;
+  std::vector<uint32_t> facePatchCount;
+  deriveFacePatches(m.patchOfFace.size(), m.patches, patchOfFace, facePatchCount);
+  const bool facesDerived = patchOfFace == m.patchOfFace && facePatchCount == m.facePatchCount;
   bool materialsDerived = !scene.spectral.enabled() && m.patchOfFace.size() == scene.faces.size();
   std::vector<Bands> reflectance, emission;
   if (materialsDerived) {
-    for (const Patch &p : m.patches) materialsDerived = materialsDerived && p.material < scene.materials.size();
+    for (const Patch &p : m.patches)
+      materialsDerived = materialsDerived && p.material < scene.materials.size() && p.face < scene.faces.size();
     if (materialsDerived) deriveMaterialValues(scene, m, reflectance, emission);
   }
   std::vector<Bands> transmittance(n);
@@ -467,7 +468,7 @@ Solution getSolution(Reader &r, const Scene &scene) {
     const std::string inconsistent = deriveMeshGeometry(scene, compact, firstChild, elements, nodes, m);
     if (!inconsistent.empty()) r.fail(inconsistent);
   }
-  if (!(content & kFacesStored)) deriveFacePatches(faces, m);
+  if (!(content & kFacesStored)) deriveFacePatches(faces, m.patches, m.patchOfFace, m.facePatchCount);
   if (!(content & kReflectanceStored) || !(content & kEmissionStored)) {
     // The materials are looked up by patch: in a stored geometry those indices come from the file.
     for (const Patch &p : m.patches)

@@ -261,14 +261,15 @@ bool sameMeshGeometry(const RadiosityMesh &a, const RadiosityMesh &b) {
   return true;
 }
 
-void deriveFacePatches(size_t faceCount, RadiosityMesh &mesh) {
-  mesh.patchOfFace.assign(faceCount, -1);
-  mesh.facePatchCount.assign(faceCount, 0);
-  for (size_t p = 0; p < mesh.patches.size(); ++p) {
-    const uint32_t f = mesh.patches[p].face;
+void deriveFacePatches(size_t faceCount, const std::vector<Patch> &patches, std::vector<int32_t> &patchOfFace,
+                       std::vector<uint32_t> &facePatchCount) {
+  patchOfFace.assign(faceCount, -1);
+  facePatchCount.assign(faceCount, 0);
+  for (size_t p = 0; p < patches.size(); ++p) {
+    const uint32_t f = patches[p].face;
     if (f >= faceCount) continue;
-    if (mesh.patchOfFace[f] < 0) mesh.patchOfFace[f] = int32_t(p);
-    ++mesh.facePatchCount[f];
+    if (patchOfFace[f] < 0) patchOfFace[f] = int32_t(p);
+    ++facePatchCount[f];
   }
 }
 

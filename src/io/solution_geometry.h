@@ -50,7 +50,8 @@ bool sameMeshGeometry(const RadiosityMesh &a, const RadiosityMesh &b);
 
 /// patchOfFace (each face's first patch, −1 for none) and facePatchCount
 /// (how many patches it has) from the patches' faces.
-void deriveFacePatches(size_t faceCount, RadiosityMesh &mesh);
+void deriveFacePatches(size_t faceCount, const std::vector<Patch> &patches, std::vector<int32_t> &patchOfFace,
+                       std::vector<uint32_t> &facePatchCount);
 
 /// ρ and E per element, as initialSolution sets them from the materials (an
 /// RGB scene's; a spectral pass's bands are not the scene's).
