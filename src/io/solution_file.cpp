@@ -3,11 +3,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 
+#include "io/solution_geometry.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
 
@@ -16,19 +18,6 @@ namespace radiant {
 namespace {
 
 constexpr char kMagic[16] = {'R', 'A', 'D', 'I', 'A', 'N', 'T', '-', 'S', 'O', 'L', 'U', 'T', 'I', 'O', 'N'};
-
-/// FNV-1a, 64 bit.
-struct Fingerprint {
-  uint64_t h = 0xcbf29ce484222325ULL;
-  void bytes(const void *data, size_t n) {
-    auto *p = static_cast<const unsigned char *>(data);
-    for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 0x100000001b3ULL;
-  }
-  template <typename T>
-  void value(const T &v) {
-    bytes(&v, sizeof v);
-  }
-};
 
 class Writer {
  public:
@@ -44,6 +33,13 @@ class Writer {
   void put(const std::string &s) {
     put(uint32_t(s.size()));
     data_ += s;
+  }
+  /// Bands as f32 (version 7's values: 10⁻⁷ relative, far below any solver's error).
+  void putSingle(const Bands &b) {
+    for (int i = 0; i < kBandCount; ++i) put(float(b[i]));
+  }
+  void putSingle(const std::vector<Bands> &values) {
+    for (const Bands &b : values) putSingle(b);
   }
   const std::string &data() const { return data_; }
 
@@ -72,6 +68,17 @@ class Reader {
     Bands b;
     for (int i = 0; i < kBandCount; ++i) b[i] = get<double>();
     return b;
+  }
+  Bands singleBands() {
+    Bands b;
+    for (int i = 0; i < kBandCount; ++i) b[i] = double(get<float>());
+    return b;
+  }
+  /// `count` f32 band values, after checking that they fit in what is left.
+  std::vector<Bands> singleBands(size_t count, const char *what) {
+    std::vector<Bands> values(this->count(count, kBandCount * 4, what));
+    for (Bands &b : values) b = singleBands();
+    return values;
   }
   std::string string() {
     uint32_t n = get<uint32_t>();
@@ -104,98 +111,84 @@ class Reader {
 
 }  // namespace
 
-uint64_t sceneFingerprint(const Scene &scene) {
-  Fingerprint f;
-  f.value(uint64_t(scene.positions.size()));
-  for (const Vec3 &p : scene.positions) f.value(p.x), f.value(p.y), f.value(p.z);
-  f.value(uint64_t(scene.faces.size()));
-  for (const Face &face : scene.faces) {
-    f.value(face.vertexCount);
-    for (int k = 0; k < face.vertexCount; ++k) f.value(face.vertices[k]);
-    f.value(face.material);
-  }
-  f.value(uint64_t(scene.materials.size()));
-  // A spectral scene's bands change from pass to pass: its spectra identify it.
-  const bool spectral = scene.spectral.enabled();
-  f.value(uint64_t(scene.spectral.wavelengths.size()));
-  for (double nm : scene.spectral.wavelengths) f.value(nm);
-  // Tagged and counted, so that no two different material lists hash the same sequence.
-  auto spectrum = [&](const std::optional<SampledSpectrum> &s, const Bands &grey) {
-    f.value(uint8_t(s ? 1 : 0));
-    if (!s) return f.value(grey[0]);
-    f.value(uint64_t(s->values.size()));
-    for (size_t i = 0; i < s->values.size(); ++i) f.value(s->wavelengths[i]), f.value(s->values[i]);
-  };
-  for (const Material &m : scene.materials) {
-    f.value(int(m.kind));
-    // A texture changes ρ̄ (and so the solution): its texels, wrap and scale, and
-    // (below) the texture coordinates, identify it.
-    if (m.diffuseTextureIndex >= 0) {
-      const Texture &texture = scene.textures[m.diffuseTextureIndex];
-      f.value(uint8_t(2)), f.value(texture.width()), f.value(texture.height()), f.value(int(texture.wrap()));
-      const std::span<const float> texels = texture.finestTexels();
-      f.bytes(texels.data(), texels.size_bytes());
-      f.value(m.uvScale[0]), f.value(m.uvScale[1]);
-    }
-    // Translucency (a scene from before it existed: nothing added).
-    if (m.isTranslucent() || m.spectra.transmittance) {
-      f.value(uint8_t(3));
-      if (spectral)
-        spectrum(m.spectra.transmittance, m.transmittance);
-      else
-        for (int b = 0; b < kBandCount; ++b) f.value(m.transmittance[b]);
-    }
-    // Rough glass, like the glass's transmittance below (smooth glass: nothing added, old fingerprints hold).
-    if (m.transmissionRoughness > 0) f.value(uint8_t(4)), f.value(m.transmissionRoughness);
-    if (spectral) {
-      spectrum(m.spectra.diffuse, m.diffuse), spectrum(m.spectra.emission, m.emission);
-      spectrum(m.spectra.specular, m.specular);
-      continue;
-    }
-    for (int b = 0; b < kBandCount; ++b) f.value(m.diffuse[b]), f.value(m.emission[b]), f.value(m.specular[b]);
-  }
-  // Point lights (none: the fingerprint of a scene from before they existed).
-  if (!scene.lights.empty()) f.value(uint64_t(scene.lights.size()));
-  for (const PointLight &light : scene.lights) {
-    f.value(int(light.kind));
-    for (const Vec3 *v : {&light.position, &light.axis, &light.c0}) f.value(v->x), f.value(v->y), f.value(v->z);
-    f.value(light.candela), f.value(light.cosInner), f.value(light.cosOuter), f.value(light.multiplier);
-    f.value(light.halfLength), f.value(light.halfWidth), f.value(uint8_t(light.round)), f.value(light.lattice);
-    if (spectral)
-      spectrum(light.spectrum, light.wattsPerCandela);
-    else
-      for (int b = 0; b < kBandCount; ++b) f.value(light.wattsPerCandela[b]);
-    // A photometric web by its flux and its intensity on a fixed set of directions.
-    if (light.photometry) {
-      f.value(light.photometry->lumens());
-      for (int i = 0; i < 64; ++i) {
-        const double z = 1 - (i + 0.5) / 32, r = std::sqrt(std::max(0.0, 1 - z * z)), phi = 2.399963229728653 * i;
-        f.value(light.photometry->candela(Vec3{r * std::cos(phi), r * std::sin(phi), z}));
-      }
-    }
-  }
-  // Texture coordinates of textured faces (they decide each element's ρ̄).
-  for (const Face &face : scene.faces)
-    if (scene.materials[face.material].diffuseTextureIndex >= 0)
-      for (int k = 0; k < face.vertexCount; ++k) {
-        f.value(face.uvs[k]);
-        if (face.uvs[k] >= 0)
-          f.value(scene.uvs[2 * size_t(face.uvs[k])]), f.value(scene.uvs[2 * size_t(face.uvs[k]) + 1]);
-      }
-  return f.h;
-}
-
 namespace {
 
-void putSolution(Writer &w, const Solution &s) {
+/// Version 7's pass contents: which parts are stored (the others are derived or empty).
+enum PassContent : uint32_t {
+  kGeometryStored = 1u << 0,         ///< patches, elements, nodes and trees in full (else derived)
+  kFacesStored = 1u << 1,            ///< patchOfFace (else derived from the patches)
+  kFacePatchCountsStored = 1u << 2,  ///< facePatchCount, with kFacesStored
+  kReflectanceStored = 1u << 3,      ///< ρ per element (else from the materials)
+  kEmissionStored = 1u << 4,         ///< E per element (else from the materials)
+  kUnshotStored = 1u << 5,           ///< unshot radiosity per element (else 0)
+  kTransmittanceStored = 1u << 6,    ///< τ per element (else 0)
+  kTransmittedStored = 1u << 7,      ///< τH′ per element, direct and indirect (else none)
+  kNodeIrradianceStored = 1u << 8,   ///< the irradiance at the nodes, direct and indirect (else none)
+  kNodesOnCutsStored = 1u << 9,      ///< the list of nodes on a cut (else RadiosityMesh::nodeOnCut is empty)
+  kTreeRadiosityStored = 1u << 10,   ///< B per tree node (hierarchical solvers; else none)
+  kKnownContent = (1u << 11) - 1,
+};
+/// Bit of a compact patch record's shape byte (bits 0–2 hold the vertex count).
+constexpr uint8_t kPatchCornersStored = 8;
+
+/// Whether every band of every value is +0 (what a reload gives for a part not stored).
+bool allZero(const std::vector<Bands> &values) {
+  for (const Bands &b : values)
+    for (int k = 0; k < kBandCount; ++k)
+      if (std::bit_cast<uint64_t>(b[k]) != 0) return false;
+  return true;
+}
+
+void putSolution(Writer &w, const Solution &s, const Scene &scene) {
   const RadiosityMesh &m = s.mesh;
-  w.put(uint64_t(m.patches.size()));
-  w.put(uint64_t(m.elements.size()));
-  w.put(uint64_t(m.nodes.size()));
-  w.put(uint64_t(m.patchOfFace.size()));
-  w.put(uint64_t(m.tree.size()));
-  w.put(uint64_t(m.tVertices.size()));
-  w.put(uint64_t(s.links.size()));
+  const size_t n = m.elements.size();
+  for (size_t count :
+       {m.patches.size(), n, m.nodes.size(), m.patchOfFace.size(), m.tree.size(), m.tVertices.size(), s.links.size()})
+    if (count > UINT32_MAX) throw std::runtime_error("the solution is too large for the solution file's 32-bit counts");
+  // What can be derived on reading, checked here bit for bit by deriving it.
+  std::vector<CompactPatch> compact = compactPatches(scene, m);
+  std::vector<int32_t> firstChild(m.tree.size(), -1);
+  bool derivable = compact.size() == m.patches.size();
+  for (size_t t = 0; t < m.tree.size() && derivable; ++t) {
+    const auto &c = m.tree[t].children;
+    if (c[0] >= 0) firstChild[t] = c[0];
+    for (int k = 1; k < 4; ++k) derivable = derivable && c[k] == (c[0] < 0 ? -1 : c[0] + k);
+  }
+  if (derivable) {
+    RadiosityMesh derived;
+    derivable = deriveMeshGeometry(scene, compact, firstChild, n, m.nodes.size(), derived).empty() &&
+                sameMeshGeometry(derived, m);
+  }
+  std::vector<int32_t> patchOfFace;
+  std::vector<uint32_t> facePatchCount;
+  deriveFacePatches(m.patchOfFace.size(), m.patches, patchOfFace, facePatchCount);
+  const bool facesDerived = patchOfFace == m.patchOfFace && facePatchCount == m.facePatchCount;
+  bool materialsDerived = !scene.spectral.enabled() && m.patchOfFace.size() == scene.faces.size();
+  std::vector<Bands> reflectance, emission;
+  if (materialsDerived) {
+    for (const Patch &p : m.patches)
+      materialsDerived = materialsDerived && p.material < scene.materials.size() && p.face < scene.faces.size();
+    if (materialsDerived) deriveMaterialValues(scene, m, reflectance, emission);
+  }
+  std::vector<Bands> transmittance(n);
+  for (size_t e = 0; e < n; ++e) transmittance[e] = s.transmittanceOf(e);
+  uint32_t content = 0;
+  if (!derivable) content |= kGeometryStored;
+  if (!facesDerived) content |= kFacesStored | (m.facePatchCount.empty() ? 0u : uint32_t(kFacePatchCountsStored));
+  if (!materialsDerived || !sameBits(reflectance, s.reflectance)) content |= kReflectanceStored;
+  if (!materialsDerived || !sameBits(emission, s.emission)) content |= kEmissionStored;
+  if (!allZero(s.unshot)) content |= kUnshotStored;
+  if (!allZero(transmittance)) content |= kTransmittanceStored;
+  if (s.hasTransmitted()) content |= kTransmittedStored;
+  if (s.hasNodeIrradiance()) content |= kNodeIrradianceStored;
+  if (!m.nodeOnCut.empty()) content |= kNodesOnCutsStored;
+  // Adaptive rounds of the other solvers refine trees but keep no B per tree node.
+  if (!m.tree.empty() && s.treeRadiosity.size() == m.tree.size()) content |= kTreeRadiosityStored;
+
+  for (size_t count :
+       {m.patches.size(), n, m.nodes.size(), m.patchOfFace.size(), m.tree.size(), m.tVertices.size(), s.links.size()})
+    w.put(uint32_t(count));
+  w.put(content);
   w.put(s.stats.solver);
   w.put(int64_t(s.stats.iterations));
   w.put(s.stats.residual);
@@ -206,57 +199,62 @@ void putSolution(Writer &w, const Solution &s) {
   w.put(s.stats.escapedPower);
   w.put(s.ambient);
   w.put(s.indirectAmbient);
-  for (const Patch &p : m.patches) {
-    w.put(p.face), w.put(p.material), w.put(p.object), w.put(int32_t(p.vertexCount));
-    for (const Vec3 &c : p.corners) w.put(c);
-    w.put(p.normal), w.put(p.area), w.put(int32_t(p.divisionsU)), w.put(int32_t(p.divisionsV)), w.put(p.treeRoot);
-    w.put(p.firstElement), w.put(p.elementCount), w.put(p.firstNode), w.put(p.nodeCount);
+  if (derivable) {
+    for (const CompactPatch &p : compact) {
+      w.put(p.face), w.put(uint8_t(p.vertexCount | (p.cornersStored ? kPatchCornersStored : 0)));
+      w.put(uint32_t(p.divisionsU)), w.put(uint32_t(p.divisionsV)), w.put(p.treeRoot);
+    }
+    for (const CompactPatch &p : compact)
+      if (p.cornersStored)
+        for (int k = 0; k < p.vertexCount; ++k) w.put(p.corners[k]);
+    for (int32_t c : firstChild) w.put(c);
+  } else {
+    for (const Patch &p : m.patches) {
+      w.put(p.face), w.put(p.material), w.put(p.object), w.put(uint8_t(p.vertexCount));
+      for (const Vec3 &c : p.corners) w.put(c);
+      w.put(p.normal), w.put(p.area), w.put(uint32_t(p.divisionsU)), w.put(uint32_t(p.divisionsV)), w.put(p.treeRoot);
+      w.put(p.firstElement), w.put(p.elementCount), w.put(p.firstNode), w.put(p.nodeCount);
+    }
+    for (const Element &e : m.elements) {
+      w.put(e.patch), w.put(uint8_t(e.vertexCount));
+      for (uint32_t v : e.nodes) w.put(v);
+      w.put(e.centre), w.put(e.area);
+    }
+    for (size_t v = 0; v < m.nodes.size(); ++v) w.put(m.nodes[v]), w.put(m.nodePatch[v]);
+    for (const MeshTreeNode &t : m.tree) {
+      for (int32_t c : t.children) w.put(c);
+      w.put(t.element), w.put(t.patch), w.put(uint8_t(t.vertexCount));
+      for (const Vec3 &c : t.corners) w.put(c);
+      w.put(t.area);
+    }
   }
-  for (const Element &e : m.elements) {
-    w.put(e.patch), w.put(int32_t(e.vertexCount));
-    for (uint32_t v : e.nodes) w.put(v);
-    w.put(e.centre), w.put(e.area);
+  if (content & kFacesStored) {
+    for (int32_t p : m.patchOfFace) w.put(p);
+    for (uint32_t c : m.facePatchCount) w.put(c);
   }
-  for (size_t v = 0; v < m.nodes.size(); ++v) w.put(m.nodes[v]), w.put(m.nodePatch[v]);
-  for (int32_t p : m.patchOfFace) w.put(p);
-  for (size_t e = 0; e < m.elements.size(); ++e) {
-    w.put(s.reflectance[e]), w.put(s.emission[e]), w.put(s.radiosity[e]);
-    w.put(s.direct[e]), w.put(s.indirect[e]), w.put(s.unshot[e]), w.put(s.irradiance[e]), w.put(s.errorEstimate[e]);
-  }
-  for (const Bands &b : s.nodeRadiosity) w.put(b);
-  // Version 2: the hierarchy (subdivision trees, T-vertices, links, node radiosities).
-  for (size_t n = 0; n < m.tree.size(); ++n) {
-    const MeshTreeNode &t = m.tree[n];
-    for (int32_t c : t.children) w.put(c);
-    w.put(t.element), w.put(t.patch), w.put(int32_t(t.vertexCount));
-    for (const Vec3 &c : t.corners) w.put(c);
-    w.put(t.area), w.put(s.treeRadiosity[n]);
-  }
+  // Values as f32, one array after another. B is not stored: E + direct + indirect.
+  if (content & kReflectanceStored) w.putSingle(s.reflectance);
+  if (content & kEmissionStored) w.putSingle(s.emission);
+  w.putSingle(s.direct);
+  w.putSingle(s.indirect);
+  w.putSingle(s.irradiance);
+  if (content & kUnshotStored) w.putSingle(s.unshot);
+  if (content & kTransmittanceStored) w.putSingle(transmittance);
+  if (content & kTransmittedStored) w.putSingle(s.transmittedDirect), w.putSingle(s.transmittedIndirect);
+  if (content & kTreeRadiosityStored) w.putSingle(s.treeRadiosity);
   for (const RadiosityMesh::TVertex &t : m.tVertices) w.put(t.node), w.put(t.edgeStart), w.put(t.edgeEnd), w.put(t.t);
   for (const Link &l : s.links) {
     w.put(l.receiver), w.put(l.source), w.put(l.formFactor), w.put(l.visibleFraction);
     w.put(uint8_t(l.visibility)), w.put(l.carriedPower);
   }
-  // Version 5: the irradiance computed at the nodes, direct and indirect (hierarchical-exact; else none).
-  const bool atNodes = s.hasNodeIrradiance();
-  w.put(uint64_t(atNodes ? m.nodes.size() : 0));
-  if (atNodes)
-    for (size_t v = 0; v < m.nodes.size(); ++v) w.put(s.nodeDirectIrradiance[v]), w.put(s.nodeIndirectIrradiance[v]);
-  // Version 5: faces cut into several patches (mesh/face_split.h), and the nodes on the cuts.
-  w.put(uint8_t(m.facePatchCount.empty() ? 0 : 1));
-  for (uint32_t c : m.facePatchCount) w.put(c);
-  w.put(uint8_t(m.nodeOnCut.empty() ? 0 : 1));
-  for (uint8_t c : m.nodeOnCut) w.put(c);
-  // Version 6: translucent faces' τ per element (none when nothing is translucent), and the light
-  // through them per element, direct and indirect (hierarchical-exact; else none).
-  bool translucent = false;
-  for (size_t e = 0; e < m.elements.size(); ++e) translucent = translucent || s.transmittanceOf(e).max() > 0;
-  w.put(uint8_t(translucent ? 1 : 0));
-  if (translucent)
-    for (size_t e = 0; e < m.elements.size(); ++e) w.put(s.transmittanceOf(e));
-  w.put(uint8_t(s.hasTransmitted() ? 1 : 0));
-  if (s.hasTransmitted())
-    for (size_t e = 0; e < m.elements.size(); ++e) w.put(s.transmittedDirect[e]), w.put(s.transmittedIndirect[e]);
+  if (content & kNodeIrradianceStored) w.putSingle(s.nodeDirectIrradiance), w.putSingle(s.nodeIndirectIrradiance);
+  if (content & kNodesOnCutsStored) {
+    std::vector<uint32_t> onCut;
+    for (size_t v = 0; v < m.nodeOnCut.size(); ++v)
+      if (m.nodeOnCut[v]) onCut.push_back(uint32_t(v));
+    w.put(uint32_t(onCut.size()));
+    for (uint32_t v : onCut) w.put(v);
+  }
 }
 
 }  // namespace
@@ -270,7 +268,7 @@ void writeSolutionPasses(std::span<const Solution> passes, const Scene &scene, c
   w.put(uint32_t(kBandCount));
   w.put(sceneFingerprint(scene));
   w.put(uint32_t(passes.size()));
-  for (const Solution &s : passes) putSolution(w, s);
+  for (const Solution &s : passes) putSolution(w, s, scene);
 
   writeAtomically(path, [&](const std::string &temporary) {
     std::ofstream out(temporary, std::ios::binary);
@@ -328,9 +326,13 @@ namespace {
 Solution getSolution(Reader &r, const Scene &scene) {
   Solution s;
   RadiosityMesh &m = s.mesh;
-  uint64_t patches = r.get<uint64_t>(), elements = r.get<uint64_t>(), nodes = r.get<uint64_t>(),
-           faces = r.get<uint64_t>(), treeNodes = r.get<uint64_t>(), tVertices = r.get<uint64_t>(),
-           links = r.get<uint64_t>();
+  const uint32_t patches = r.get<uint32_t>(), elements = r.get<uint32_t>(), nodes = r.get<uint32_t>(),
+                 faces = r.get<uint32_t>(), treeNodes = r.get<uint32_t>(), tVertices = r.get<uint32_t>(),
+                 links = r.get<uint32_t>();
+  const uint32_t content = r.get<uint32_t>();
+  if (content & ~uint32_t(kKnownContent)) r.fail(fmt::format("unknown content flags {:#x} in a pass", content));
+  if ((content & kFacePatchCountsStored) && !(content & kFacesStored)) r.fail("face patch counts without their faces");
+  const bool geometryStored = content & kGeometryStored;
   s.stats.solver = r.string();
   s.stats.iterations = static_cast<int>(r.get<int64_t>());
   s.stats.residual = r.get<double>();
@@ -342,47 +344,92 @@ Solution getSolution(Reader &r, const Scene &scene) {
   s.ambient = r.bands();
   if (!s.ambient.isFinite()) r.fail("the ambient term is not finite");
   s.indirectAmbient = r.bands();
-  m.patches.resize(r.count(patches, 4 * 4 + 15 * 8 + 8 + 4 * 4 + 8 + 4, "patches"));
-  for (Patch &p : m.patches) {
-    p.face = r.get<uint32_t>(), p.material = r.get<uint32_t>(), p.object = r.get<uint32_t>();
-    p.vertexCount = r.get<int32_t>();
-    for (Vec3 &c : p.corners) c = r.vec3();
-    p.normal = r.vec3(), p.area = r.get<double>();
-    p.divisionsU = r.get<int32_t>(), p.divisionsV = r.get<int32_t>(), p.treeRoot = r.get<int32_t>();
-    p.firstElement = r.get<uint32_t>(), p.elementCount = r.get<uint32_t>();
-    p.firstNode = r.get<uint32_t>(), p.nodeCount = r.get<uint32_t>();
+  if (faces != scene.faces.size()) r.fail("the solution's face count differs from the scene's");
+
+  std::vector<CompactPatch> compact;
+  std::vector<int32_t> firstChild;
+  if (!geometryStored) {
+    compact.resize(r.count(patches, 4 + 1 + 4 + 4 + 4, "patches"));
+    for (CompactPatch &p : compact) {
+      p.face = r.get<uint32_t>();
+      const uint8_t shape = r.get<uint8_t>();
+      p.vertexCount = shape & 7, p.cornersStored = shape & kPatchCornersStored;
+      if (shape & ~uint8_t(7 | kPatchCornersStored)) r.fail("a patch's subdivision is inconsistent");
+      const uint32_t u = r.get<uint32_t>(), v = r.get<uint32_t>();
+      if (u > uint32_t(INT32_MAX) || v > uint32_t(INT32_MAX)) r.fail("a patch's subdivision is inconsistent");
+      p.divisionsU = int32_t(u), p.divisionsV = int32_t(v), p.treeRoot = r.get<int32_t>();
+    }
+    for (CompactPatch &p : compact)
+      if (p.cornersStored) {
+        if (p.vertexCount < 3 || p.vertexCount > 4) r.fail("a patch's subdivision is inconsistent");
+        for (int k = 0; k < p.vertexCount; ++k) p.corners[k] = r.vec3();
+        if (!std::all_of(p.corners.begin(), p.corners.end(), [](const Vec3 &c) { return isFinite(c); }))
+          r.fail("a patch's corners, normal or area are not finite");
+      }
+    firstChild.resize(r.count(treeNodes, 4, "tree nodes"));
+    for (int32_t &c : firstChild) c = r.get<int32_t>();
+  } else {
+    m.patches.resize(r.count(patches, 3 * 4 + 1 + 16 * 8 + 3 * 4 + 4 * 4, "patches"));
+    for (Patch &p : m.patches) {
+      p.face = r.get<uint32_t>(), p.material = r.get<uint32_t>(), p.object = r.get<uint32_t>();
+      p.vertexCount = r.get<uint8_t>();
+      for (Vec3 &c : p.corners) c = r.vec3();
+      p.normal = r.vec3(), p.area = r.get<double>();
+      const uint32_t u = r.get<uint32_t>(), v = r.get<uint32_t>();
+      if (u > uint32_t(INT32_MAX) || v > uint32_t(INT32_MAX)) r.fail("a patch's subdivision is inconsistent");
+      p.divisionsU = int32_t(u), p.divisionsV = int32_t(v), p.treeRoot = r.get<int32_t>();
+      p.firstElement = r.get<uint32_t>(), p.elementCount = r.get<uint32_t>();
+      p.firstNode = r.get<uint32_t>(), p.nodeCount = r.get<uint32_t>();
+    }
+    m.elements.resize(r.count(elements, 4 + 1 + 4 * 4 + 4 * 8, "elements"));
+    for (Element &e : m.elements) {
+      e.patch = r.get<uint32_t>(), e.vertexCount = r.get<uint8_t>();
+      for (uint32_t &v : e.nodes) v = r.get<uint32_t>();
+      e.centre = r.vec3(), e.area = r.get<double>();
+    }
+    m.nodes.resize(r.count(nodes, 3 * 8 + 4, "nodes"));
+    m.nodePatch.resize(m.nodes.size());
+    for (size_t v = 0; v < m.nodes.size(); ++v) m.nodes[v] = r.vec3(), m.nodePatch[v] = r.get<uint32_t>();
+    m.tree.resize(r.count(treeNodes, 6 * 4 + 1 + 13 * 8, "tree nodes"));
+    for (MeshTreeNode &t : m.tree) {
+      for (int32_t &c : t.children) c = r.get<int32_t>();
+      t.element = r.get<int32_t>(), t.patch = r.get<uint32_t>(), t.vertexCount = r.get<uint8_t>();
+      for (Vec3 &c : t.corners) c = r.vec3();
+      t.area = r.get<double>();
+    }
   }
-  m.elements.resize(r.count(elements, 6 * 4 + 4 * 8, "elements"));
-  for (Element &e : m.elements) {
-    e.patch = r.get<uint32_t>(), e.vertexCount = r.get<int32_t>();
-    for (uint32_t &v : e.nodes) v = r.get<uint32_t>();
-    e.centre = r.vec3(), e.area = r.get<double>();
+  if (content & kFacesStored) {
+    m.patchOfFace.resize(r.count(faces, 4, "faces"));
+    for (int32_t &p : m.patchOfFace) p = r.get<int32_t>();
+    if (content & kFacePatchCountsStored) {
+      m.facePatchCount.resize(r.count(faces, 4, "face patch counts"));
+      for (uint32_t &c : m.facePatchCount) c = r.get<uint32_t>();
+    }
   }
-  m.nodes.resize(r.count(nodes, 3 * 8 + 4, "nodes"));
-  m.nodePatch.resize(m.nodes.size());
-  for (size_t v = 0; v < m.nodes.size(); ++v) m.nodes[v] = r.vec3(), m.nodePatch[v] = r.get<uint32_t>();
-  m.patchOfFace.resize(r.count(faces, 4, "faces"));
-  for (int32_t &p : m.patchOfFace) p = r.get<int32_t>();
-  const size_t n = r.count(elements, (7 * kBandCount + 1) * 8, "element values");
-  for (auto *v : {&s.reflectance, &s.emission, &s.radiosity, &s.direct, &s.indirect, &s.unshot, &s.irradiance})
-    v->resize(n);
-  s.errorEstimate.resize(n);
-  for (size_t e = 0; e < n; ++e) {
-    s.reflectance[e] = r.bands(), s.emission[e] = r.bands(), s.radiosity[e] = r.bands();
-    s.direct[e] = r.bands(), s.indirect[e] = r.bands(), s.unshot[e] = r.bands(), s.irradiance[e] = r.bands();
-    s.errorEstimate[e] = r.get<double>();
+  // Element values: at least direct, indirect and irradiance follow, which bounds the element count.
+  r.count(elements, 3 * kBandCount * 4, "element values");
+  // Derived nodes are corners of elements, at most four each (a lattice has fewer).
+  if (!geometryStored && uint64_t(nodes) > 4 * uint64_t(elements))
+    r.fail(fmt::format("the file is truncated or corrupt: it claims {} nodes", nodes));
+  if (content & kReflectanceStored) s.reflectance = r.singleBands(elements, "element values");
+  if (content & kEmissionStored) s.emission = r.singleBands(elements, "element values");
+  s.direct = r.singleBands(elements, "element values");
+  s.indirect = r.singleBands(elements, "element values");
+  s.irradiance = r.singleBands(elements, "element values");
+  s.unshot =
+      (content & kUnshotStored) ? r.singleBands(elements, "element values") : std::vector<Bands>(elements, Bands(0.0));
+  s.transmittance = (content & kTransmittanceStored) ? r.singleBands(elements, "transmittances")
+                                                     : std::vector<Bands>(elements, Bands(0.0));
+  for (const Bands &t : s.transmittance)
+    if (!t.isFinite() || t.min() < 0 || t.max() >= 1) r.fail("an element's transmittance is not in [0, 1)");
+  if (content & kTransmittedStored) {
+    s.transmittedDirect = r.singleBands(elements, "transmitted radiosities");
+    s.transmittedIndirect = r.singleBands(elements, "transmitted radiosities");
+    for (const std::vector<Bands> *v : {&s.transmittedDirect, &s.transmittedIndirect})
+      for (const Bands &b : *v)
+        if (!b.isFinite() || b.min() < 0) r.fail("an element's transmitted radiosity is negative or not finite");
   }
-  s.nodeRadiosity.resize(r.count(nodes, kBandCount * 8, "node values"));
-  for (Bands &b : s.nodeRadiosity) b = r.bands();
-  m.tree.resize(r.count(treeNodes, 4 * 4 + 3 * 4 + 12 * 8 + 8 + kBandCount * 8, "tree nodes"));
-  s.treeRadiosity.resize(m.tree.size());
-  for (size_t n = 0; n < m.tree.size(); ++n) {
-    MeshTreeNode &t = m.tree[n];
-    for (int32_t &c : t.children) c = r.get<int32_t>();
-    t.element = r.get<int32_t>(), t.patch = r.get<uint32_t>(), t.vertexCount = r.get<int32_t>();
-    for (Vec3 &c : t.corners) c = r.vec3();
-    t.area = r.get<double>(), s.treeRadiosity[n] = r.bands();
-  }
+  if (content & kTreeRadiosityStored) s.treeRadiosity = r.singleBands(treeNodes, "tree radiosities");
   m.tVertices.resize(r.count(tVertices, 4 * 4, "T-vertices"));
   for (RadiosityMesh::TVertex &t : m.tVertices) {
     t.node = r.get<uint32_t>(), t.edgeStart = r.get<uint32_t>(), t.edgeEnd = r.get<uint32_t>();
@@ -398,40 +445,56 @@ Solution getSolution(Reader &r, const Scene &scene) {
     l.visibility = static_cast<LinkVisibility>(visibility);
     l.carriedPower = r.get<float>();
   }
-  const uint64_t irradianceNodes = r.get<uint64_t>();
-  if (irradianceNodes != 0 && irradianceNodes != nodes) r.fail("the nodes' irradiance does not match the nodes");
-  s.nodeDirectIrradiance.resize(r.count(irradianceNodes, 2 * kBandCount * 8, "node irradiances"));
-  s.nodeIndirectIrradiance.resize(s.nodeDirectIrradiance.size());
-  for (size_t v = 0; v < s.nodeDirectIrradiance.size(); ++v) {
-    s.nodeDirectIrradiance[v] = r.bands(), s.nodeIndirectIrradiance[v] = r.bands();
-    for (const Bands *b : {&s.nodeDirectIrradiance[v], &s.nodeIndirectIrradiance[v]})
-      if (!b->isFinite() || b->min() < 0) r.fail("a node's irradiance is negative or not finite");
+  if (content & kNodeIrradianceStored) {
+    s.nodeDirectIrradiance = r.singleBands(nodes, "node irradiances");
+    s.nodeIndirectIrradiance = r.singleBands(nodes, "node irradiances");
+    for (const std::vector<Bands> *v : {&s.nodeDirectIrradiance, &s.nodeIndirectIrradiance})
+      for (const Bands &b : *v)
+        if (!b.isFinite() || b.min() < 0) r.fail("a node's irradiance is negative or not finite");
   }
-  if (r.get<uint8_t>() != 0) {
-    m.facePatchCount.resize(r.count(faces, 4, "face patch counts"));
-    for (uint32_t &c : m.facePatchCount) c = r.get<uint32_t>();
-  }
-  if (r.get<uint8_t>() != 0) {
-    m.nodeOnCut.resize(r.count(nodes, 1, "node cut flags"));
-    for (uint8_t &c : m.nodeOnCut) c = r.get<uint8_t>();
-  }
-  s.transmittance.assign(m.elements.size(), Bands(0.0));
-  if (r.get<uint8_t>() != 0) {
-    r.count(elements, kBandCount * 8, "transmittances");
-    for (Bands &t : s.transmittance) {
-      t = r.bands();
-      if (!t.isFinite() || t.min() < 0 || t.max() >= 1) r.fail("an element's transmittance is not in [0, 1)");
+  if (content & kNodesOnCutsStored) {
+    const size_t onCut = r.count(r.get<uint32_t>(), 4, "nodes on cuts");
+    m.nodeOnCut.assign(nodes, 0);
+    int64_t previous = -1;
+    for (size_t i = 0; i < onCut; ++i) {
+      const uint32_t v = r.get<uint32_t>();
+      if (v >= nodes || int64_t(v) <= previous) r.fail("a node on a cut does not exist or is listed twice");
+      m.nodeOnCut[v] = 1, previous = v;
     }
   }
-  if (r.get<uint8_t>() != 0) {
-    s.transmittedDirect.resize(r.count(elements, 2 * kBandCount * 8, "transmitted radiosities"));
-    s.transmittedIndirect.resize(s.transmittedDirect.size());
-    for (size_t e = 0; e < s.transmittedDirect.size(); ++e) {
-      s.transmittedDirect[e] = r.bands(), s.transmittedIndirect[e] = r.bands();
-      for (const Bands *b : {&s.transmittedDirect[e], &s.transmittedIndirect[e]})
-        if (!b->isFinite() || b->min() < 0) r.fail("an element's transmitted radiosity is negative or not finite");
-    }
+
+  // What the file does not store: geometry, faces' patches, ρ and E, B.
+  if (!geometryStored) {
+    const std::string inconsistent = deriveMeshGeometry(scene, compact, firstChild, elements, nodes, m);
+    if (!inconsistent.empty()) r.fail(inconsistent);
   }
+  if (!(content & kFacesStored)) deriveFacePatches(faces, m.patches, m.patchOfFace, m.facePatchCount);
+  if (!(content & kReflectanceStored) || !(content & kEmissionStored)) {
+    // The materials are looked up by patch: in a stored geometry those indices come from the file.
+    for (const Patch &p : m.patches)
+      if (p.material >= scene.materials.size() || p.face >= scene.faces.size())
+        r.fail("a patch refers to a material or face that does not exist");
+    for (const Element &e : m.elements)
+      if (e.patch >= m.patches.size() || e.vertexCount < 3 || e.vertexCount > 4 ||
+          std::any_of(e.nodes.begin(), e.nodes.begin() + e.vertexCount, [&](uint32_t v) { return v >= nodes; }))
+        r.fail("an element is inconsistent");
+    // A texture's mean over an element is taken at its nodes' positions.
+    for (const Vec3 &v : m.nodes)
+      if (!isFinite(v)) r.fail("a node's position is not finite");
+    std::vector<Bands> reflectance, emission;
+    deriveMaterialValues(scene, m, reflectance, emission);
+    if (!(content & kReflectanceStored)) s.reflectance = std::move(reflectance);
+    if (!(content & kEmissionStored)) s.emission = std::move(emission);
+  }
+  s.radiosity.resize(elements);
+  for (size_t e = 0; e < elements; ++e) {
+    if (!s.direct[e].isFinite() || !s.indirect[e].isFinite())
+      r.fail(fmt::format("element {} has a negative or non-finite value", e));
+    // E + direct + indirect; the two parts are rounded apart, so a sum of 0 may come out a hair below.
+    s.radiosity[e] = s.emission[e] + s.direct[e] + s.indirect[e];
+    for (int k = 0; k < kBandCount; ++k) s.radiosity[e][k] = std::max(0.0, s.radiosity[e][k]);
+  }
+  const size_t n = elements;
 
   // Cross-references must stay inside their arrays: a corrupt file must not crash a renderer.
   if (m.patchOfFace.size() != scene.faces.size()) r.fail("the solution's face count differs from the scene's");
@@ -447,7 +510,7 @@ Solution getSolution(Reader &r, const Scene &scene) {
         uint64_t(p.firstNode) + p.nodeCount > m.nodes.size() || p.treeRoot < -1 ||
         p.treeRoot >= int32_t(m.tree.size()) ||
         (p.treeRoot < 0 &&
-         p.elementCount != uint32_t(p.vertexCount == 4 ? p.divisionsU * p.divisionsV : p.divisionsU * p.divisionsU)))
+         p.elementCount != uint64_t(p.divisionsU) * uint64_t(p.vertexCount == 4 ? p.divisionsV : p.divisionsU)))
       r.fail("a patch's subdivision is inconsistent");
   // Trees: children inside the array and after their parent (no cycles), leaves name elements,
   // no deeper than a solver subdivides (the renderers' walks assume it, and would name no file).
@@ -479,8 +542,6 @@ Solution getSolution(Reader &r, const Scene &scene) {
   for (size_t e = 0; e < n; ++e)
     for (const Bands *b : {&s.reflectance[e], &s.emission[e], &s.radiosity[e], &s.irradiance[e]})
       if (!b->isFinite() || b->min() < 0) r.fail(fmt::format("element {} has a negative or non-finite value", e));
-  for (const Bands &b : s.nodeRadiosity)
-    if (!b.isFinite()) r.fail("a node radiosity is not finite");
   for (const Element &e : m.elements) {
     if (e.patch >= m.patches.size() || e.vertexCount < 3 || e.vertexCount > 4) r.fail("an element is inconsistent");
     for (int k = 0; k < e.vertexCount; ++k)
@@ -502,7 +563,11 @@ Solution getSolution(Reader &r, const Scene &scene) {
   for (const Element &e : m.elements)
     if (!isFinite(e.centre) || !std::isfinite(e.area)) r.fail("an element's centre or area is not finite");
   m.buildPatchLookup();
-  s.nodeReflectance = s.nodeValues(s.reflectance);  // derived, not stored: only after the checks above
+  // Derived, not stored, and only after the checks above: the node values (ambient included) and
+  // the error estimates, as the solver's last step made them (solveRadiosity).
+  s.updateNodesAndErrors();
+  for (const Bands &b : s.nodeRadiosity)
+    if (!b.isFinite()) r.fail("a node radiosity is not finite");
   return s;
 }
 

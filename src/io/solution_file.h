@@ -13,7 +13,9 @@ namespace radiant {
 
 /// 4: a pass count, then one solution per spectral pass (one for RGB scenes).
 /// 6: the light through translucent faces per element (Solution::transmittedDirect).
-constexpr uint32_t kSolutionFormatVersion = 6;
+/// 7: compact, at most 100 bytes per element of a large mesh: values as f32, the
+/// geometry, ρ, E, B and the node values derived on reading (io/solution_geometry.h).
+constexpr uint32_t kSolutionFormatVersion = 7;
 
 /// A hash of what the solution depends on: geometry, faces and the
 /// radiometric material values. A solution is refused for a scene whose

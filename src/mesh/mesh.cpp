@@ -260,7 +260,9 @@ MeshLocation RadiosityMesh::locate(uint32_t face, const Vec3 &position) const {
     double u, v;
     inverseBilinear(patch, position, u, v);
     const int nU = patch.divisionsU, nV = patch.divisionsV;
-    double x = std::clamp(u, 0.0, 1.0) * nU, y = std::clamp(v, 0.0, 1.0) * nV;
+    // NaN (a degenerate patch, or a corrupt solution file's) goes to 0: std::clamp
+    // would pass it through, and int(NaN) indexes anywhere.
+    double x = (u >= 0 ? std::min(u, 1.0) : 0.0) * nU, y = (v >= 0 ? std::min(v, 1.0) : 0.0) * nV;
     int i = std::min(nU - 1, static_cast<int>(x)), j = std::min(nV - 1, static_cast<int>(y));
     location.element = patch.firstElement + uint32_t(j * nU + i);
     location.s = std::clamp(x - i, 0.0, 1.0);
@@ -273,8 +275,8 @@ MeshLocation RadiosityMesh::locate(uint32_t face, const Vec3 &position) const {
   double n2 = dot(n, n);
   double b1 = dot(cross(position - a, c - a), n) / n2;
   double b2 = dot(cross(b - a, position - a), n) / n2;
-  b1 = std::clamp(b1, 0.0, 1.0);
-  b2 = std::clamp(b2, 0.0, 1.0 - b1);
+  b1 = b1 >= 0 ? std::min(b1, 1.0) : 0.0;  // as std::clamp, but NaN to 0 (see above)
+  b2 = b2 >= 0 ? std::min(b2, 1.0 - b1) : 0.0;
   const int d = patch.divisionsU;
   double x = b1 * d, y = b2 * d;
   int i = std::min(d - 1, static_cast<int>(x)), j = std::min(d - 1 - i, static_cast<int>(y));
