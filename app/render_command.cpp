@@ -391,6 +391,9 @@ CommandRunner addRenderCommand(CLI::App &app) {
       const double mean = driver.onlyPixelX >= 0 ? stats.samplesPerPixel : stats.cameraSamples / pixelsTaken;
       const std::string converged =
           mean < stats.samplesPerPixel - 0.5 ? fmt::format(" (converged pixels stopped: {:.1f} on average)", mean) : "";
+      if (cluster::distributed())
+        fmt::print(stderr, "radiant: {} ranks; rank 0 summed {:.1f} MB with the others\n", cluster::size(),
+                   cluster::bytesSummed() * 1e-6);
       fmt::print(stderr, "radiant: {}{} spp{}{} in {:.2f} s ({:.3g} Msamples/s); wrote {}\n",
                  stats.interrupted ? "interrupted after " : "", stats.samplesPerPixel,
                  spectral ? fmt::format(" × {} passes", passes) : std::string(), converged, stats.seconds,

@@ -136,6 +136,9 @@ CommandRunner addSolveCommand(CLI::App &app) {
     }
     if (scene.spectral.enabled()) applySpectralColour(scene, balance);
     if (!cluster::isRoot()) return 0;
+    if (cluster::distributed() && !quiet)
+      fmt::print(stderr, "radiant: {} ranks; rank 0 summed {:.1f} MB with the others\n", cluster::size(),
+                 cluster::bytesSummed() * 1e-6);
     if (!o->outputPath.empty()) {
       writeSolutionPasses(solutions, scene, o->outputPath);
       if (!quiet) fmt::print(stderr, "radiant: wrote {}\n", o->outputPath);

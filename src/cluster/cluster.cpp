@@ -15,6 +15,7 @@ namespace radiant::cluster {
 namespace {
 
 int worldRank = 0, worldSize = 1;
+uint64_t summedBytes = 0;
 #ifdef RADIANT_HAVE_MPI
 bool joined = false;
 #endif
@@ -31,6 +32,7 @@ bool launchedByMpi() {
 /// MPI counts are ints: long arrays go in pieces of at most 2^30 elements.
 template <typename T, typename Operation>
 void inPieces(T *values, size_t count, const Operation &operation) {
+  summedBytes += count * sizeof(T);
   constexpr size_t kPiece = size_t(1) << 30;
   for (size_t begin = 0; begin < count; begin += kPiece)
     operation(values + begin, static_cast<int>(std::min(kPiece, count - begin)));
@@ -157,6 +159,10 @@ void abortAll(int exitStatus) {
   std::exit(exitStatus);
 }
 #endif
+
+uint64_t bytesSummed() {
+  return summedBytes;
+}
 
 std::string rankLabel() {
   return worldSize > 1 ? fmt::format("rank {} of {}", worldRank, worldSize) : std::string();

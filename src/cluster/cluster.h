@@ -66,6 +66,10 @@ bool anyRank(bool value);
 /// waiting in a collective, would never hear of); never returns.
 [[noreturn]] void abortAll(int exitStatus);
 
+/// Bytes this rank has handed to the sums so far (each array once): the
+/// communication volume of a run, for docs/PERFORMANCE.md's model.
+uint64_t bytesSummed();
+
 /// "rank 2 of 4" for messages, empty with one rank.
 std::string rankLabel();
 
