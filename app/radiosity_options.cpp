@@ -49,13 +49,14 @@ void checkRadiosityOptions(const RadiosityCommandOptions &options, bool solving,
 }
 
 Solution solveScene(const Scene &scene, const RayTracer &tracer, const RadiosityCommandOptions &o, uint64_t seed,
-                    int threads, bool quiet) {
+                    int threads, bool quiet, const SolveCheckpointOptions &checkpoint) {
   MeshOptions meshOptions;
   SolverOptions solverOptions;
   solverOptions.solver = o.solver;
   applySolverParameters(o.parameters.given(), scene, solverOptions, meshOptions);
   solverOptions.seed = seed;
   solverOptions.threads = threads;
+  solverOptions.checkpoint = checkpoint;
   if (solverOptions.importance) {
     // "auto" is settled by the patch count, one patch per face.
     const std::string resolved = resolveSolverName(o.solver, scene.faces.size(), true);
@@ -98,6 +99,9 @@ Solution solveScene(const Scene &scene, const RayTracer &tracer, const Radiosity
   Solution solution = meshAndSolve(scene, tracer, meshOptions, solverOptions, report);
   if (!quiet) {
     if (isatty(fileno(stderr))) fmt::print(stderr, "\n");
+    if (solution.stats.resumedFromIteration >= 0)
+      fmt::print(stderr, "radiant: resumed from {} after iteration {}\n", checkpoint.path,
+                 solution.stats.resumedFromIteration);
     printSolveSummary(solution);
   }
   return solution;

@@ -28,7 +28,7 @@ void checkRadiosityOptions(const RadiosityCommandOptions &options, bool solving,
 
 /// Meshes and solves the scene, printing progress and a summary unless quiet.
 Solution solveScene(const Scene &scene, const RayTracer &tracer, const RadiosityCommandOptions &options, uint64_t seed,
-                    int threads, bool quiet);
+                    int threads, bool quiet, const SolveCheckpointOptions &checkpoint = {});
 /// A progressive solution interrupted after `shots` shots, on the mesh the
 /// options' mesh-size and max-elements ask for (multipass's preview); quiet.
 Solution solvePreview(const Scene &scene, const RayTracer &tracer, const RadiosityCommandOptions &options, int shots,

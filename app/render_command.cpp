@@ -13,6 +13,7 @@
 #include "colour_options.h"
 #include "commands.h"
 #include "display_options.h"
+#include "file_fingerprint.h"
 #include "image_method_command.h"
 #include "interrupt_handler.h"
 #include "io/output_files.h"
@@ -98,19 +99,6 @@ void writeSelectiveMap(const Film &film, const std::string &channelName, const s
                most);
   else
     fmt::print(stderr, "radiant: selective map {}: {:.1f}% of the image re-evaluated\n", path, 100 * mean);
-}
-
-/// FNV-1a of a file's bytes ("" when it cannot be read: then the path alone tells the job).
-std::string fileFingerprint(const std::string &path) {
-  if (path.empty()) return "";
-  std::ifstream in(path, std::ios::binary);
-  uint64_t hash = 0xcbf29ce484222325ULL;
-  char buffer[1 << 16];
-  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
-    for (std::streamsize i = 0; i < in.gcount(); ++i) hash = (hash ^ uint8_t(buffer[i])) * 0x100000001b3ULL;
-    if (!in) break;
-  }
-  return fmt::format("{:016x}", hash);
 }
 
 /// What a checkpoint must belong to (render/checkpoint.h): the scene file's and

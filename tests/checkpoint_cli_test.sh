@@ -52,4 +52,16 @@ expect_error "another job's checkpoint" "other.bin.*belongs to another job" \
 expect_error "multipass" "--checkpoint: --method multipass writes an image per pass" \
   "$radiant" render "$specular" --method multipass --spp 4 --checkpoint m.bin -o m.exr
 
+# The stochastic solve's checkpoints (the stop and resume: SolveCheckpoint.* in the unit tests).
+"$radiant" solve "$cornell" --solver stochastic -q -o plain.rad || fail "solve without a checkpoint"
+"$radiant" solve "$cornell" --solver stochastic -q -o saved.rad --checkpoint solve.bin --checkpoint-interval 0 ||
+  fail "solve with a checkpoint"
+[ ! -f solve.bin ] && pass || fail "a finished solve left its checkpoint"
+"$radiant" render "$cornell" --width 32 --height 32 --spp 2 --method flat --solution plain.rad -q -o plain.exr
+"$radiant" render "$cornell" --width 32 --height 32 --spp 2 --method flat --solution saved.rad -q -o saved.exr
+cmp -s plain.exr saved.exr && pass || fail "checkpointing changed the solution"
+expect_error "solve --checkpoint with another solver" "only the stochastic solver saves its state" \
+  "$radiant" solve "$cornell" --solver gauss-seidel --checkpoint g.bin -o g.rad
+expect_error "solve --resume alone" "--resume: needs --checkpoint" "$radiant" solve "$cornell" --resume -o g.rad
+
 finish

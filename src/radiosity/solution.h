@@ -29,6 +29,8 @@ struct SolveStats {
   /// Hierarchical solvers: the links at the end, and how many of them have a
   /// cluster at one end (not kept in the solution file).
   size_t links = 0, clusterLinks = 0;
+  /// Carried on from a checkpoint after this many iterations (solve_checkpoint.h); −1: from the start.
+  int resumedFromIteration = -1;
 };
 
 /// How much of a hierarchical link's source its receiver sees (from shadow rays).

@@ -109,6 +109,8 @@ Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOpt
     solveRadiosity(tracer, s, options, progress);
     return s;
   }
+  if (!options.checkpoint.path.empty())
+    throw InputError(InputLocation{"--checkpoint"}, "not with adaptive rounds (a solve per round)");
   RadiosityMesh mesh = buildTreeMesh(scene, meshOptions);
   SolverOptions round = options;
   round.solver = resolveSolverName(options.solver, scene, options.importance);
@@ -163,6 +165,10 @@ void solveRadiosity(const RayTracer &tracer, Solution &solution, const SolverOpt
   if (!chosen)
     throw InputError(InputLocation::ofParameter("solver"),
                      fmt::format("unknown solver '{}'; known solvers: {}", options.solver, names));
+  if (!options.checkpoint.path.empty() && std::string(chosen->name) != "stochastic")
+    throw InputError(InputLocation{"--checkpoint"},
+                     fmt::format("only the stochastic solver saves its state yet; --solver {} runs {}", options.solver,
+                                 chosen->name));
   auto start = std::chrono::steady_clock::now();
   solution.stats.solver = chosen->name;
   // With every ρ < 1 and form factors that sum to at most 1, each iteration

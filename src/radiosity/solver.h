@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "radiosity/solution.h"
+#include "radiosity/solve_checkpoint.h"
 #include "raytrace/ray_tracer.h"
 #include "scene/camera.h"
 #include "util/parameters.h"
@@ -70,6 +71,9 @@ struct SolverOptions {
   double adaptiveThreshold = 0.1;  ///< hierarchical: refine, solve, re-refine with the new B, … (at most)
   uint64_t seed = 1;
   int threads = 0;  ///< 0: all cores; results do not depend on it
+  /// Stochastic: save the state after an iteration every so often, resume
+  /// from it (radiosity/solve_checkpoint.h); the other solvers refuse it.
+  SolveCheckpointOptions checkpoint;
 };
 
 struct SolverProgress {

@@ -31,11 +31,14 @@
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 
 #include "cluster/cluster.h"
 #include "radiosity/backprojection.h"
+#include "radiosity/solve_checkpoint.h"
 #include "radiosity/solver.h"
 #include "radiosity/transmission.h"
+#include "util/interrupt.h"
 #include "util/sampling.h"
 
 namespace radiant {
@@ -104,7 +107,37 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
   };
   if (!emissionFirst) shootLightGain();
 
-  for (int iteration = 1; iteration <= maxIterations; ++iteration) {
+  // A checkpoint (solve_checkpoint.h): the state after its iteration replaces
+  // all of the above, and the solve goes on from the next.
+  const SolveCheckpointOptions &checkpoint = options.checkpoint;
+  int firstIteration = 1;
+  if (!checkpoint.path.empty() && checkpoint.resume && std::filesystem::exists(checkpoint.path)) {
+    StochasticCheckpoint saved = readStochasticCheckpoint(checkpoint.path, checkpoint.job, n);
+    s.radiosity = std::move(saved.radiosity), s.direct = std::move(saved.direct);
+    s.indirect = std::move(saved.indirect), s.unshot = std::move(saved.unshot);
+    s.irradiance = std::move(saved.irradiance), lightGain = std::move(saved.lightGain);
+    emissionFirst = saved.emissionFirst;
+    s.stats.formFactorRays = saved.formFactorRays;
+    s.stats.iterations = saved.iteration;
+    s.stats.resumedFromIteration = saved.iteration;
+    firstIteration = saved.iteration + 1;
+  }
+  auto lastCheckpoint = std::chrono::steady_clock::now();
+  // Rank 0 writes (every rank holds the same state: cluster/cluster.h).
+  auto saveCheckpoint = [&](int iteration) {
+    if (!cluster::isRoot()) return;
+    StochasticCheckpoint state;
+    state.iteration = iteration;
+    state.emissionFirst = emissionFirst;
+    state.formFactorRays = s.stats.formFactorRays;
+    state.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    state.radiosity = s.radiosity, state.direct = s.direct, state.indirect = s.indirect;
+    state.unshot = s.unshot, state.irradiance = s.irradiance, state.lightGain = lightGain;
+    writeStochasticCheckpoint(checkpoint.path, checkpoint.job, state);
+    lastCheckpoint = std::chrono::steady_clock::now();
+  };
+
+  for (int iteration = firstIteration; iteration <= maxIterations; ++iteration) {
     // Sources: the CDF of unshot power (band average).
     std::vector<double> cdf(n);
     double total = 0;
@@ -220,6 +253,12 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
     if (!lightGain.empty()) shootLightGain();
     s.stats.formFactorRays += rays;
     s.stats.iterations = iteration;
+    // Saved before the progress report, where an interrupt stops the solve.
+    if (!checkpoint.path.empty() &&
+        (interruptRequested() ||
+         std::chrono::duration<double>(std::chrono::steady_clock::now() - lastCheckpoint).count() >=
+             checkpoint.intervalSeconds))
+      saveCheckpoint(iteration);
     if (progress)
       progress({iteration, s.stats.residual, options.tolerance,
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
