@@ -9,11 +9,11 @@
 #include <optional>
 #include <sstream>
 
+#include "checkpoint_options.h"
 #include "cluster/cluster.h"
 #include "colour_options.h"
 #include "commands.h"
 #include "display_options.h"
-#include "file_fingerprint.h"
 #include "image_method_command.h"
 #include "interrupt_handler.h"
 #include "io/output_files.h"
@@ -56,9 +56,7 @@ struct RenderCommandOptions {
   DisplayCommandOptions display;  ///< the PNG outputs' display mapping
   ColourCommandOptions colour;    ///< spectral scenes
   std::string quantity = "radiance";
-  std::string checkpointPath;
-  double checkpointInterval = 10;
-  bool resume = false;
+  CheckpointCommandOptions checkpoint;
 };
 
 InputLocation flag(const std::string &name) {
@@ -162,15 +160,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
   o->methodParameters.add(app, groups);
   addDisplayOptions(app, o->display);
   addColourOptions(app, o->colour);
-  app.add_option("--checkpoint", o->checkpointPath,
-                 "Save the render's state to this file every --checkpoint-interval seconds and when stopped "
-                 "(Ctrl-C, SIGTERM), so that --resume carries on with the same pixels (docs/cluster.md)");
-  app.add_option("--checkpoint-interval", o->checkpointInterval, "Seconds between checkpoints")
-      ->default_val(10)
-      ->check(CLI::Range(0.0, 1e6));
-  app.add_flag("--resume", o->resume,
-               "Carry on from the --checkpoint file when it exists (else start); the same command and scene as "
-               "the run that saved it");
+  addCheckpointOptions(app, o->checkpoint, "the render's state");
 
   return [o, &app]() {
     // With several MPI ranks (cluster/cluster.h) rank 0 prints and writes; every rank renders its share.
@@ -197,14 +187,11 @@ CommandRunner addRenderCommand(CLI::App &app) {
         throw InputError(flag("--selective-map"), "needs --selective");
       if (!o->selectiveMapPath.empty() && std::filesystem::path(o->selectiveMapPath).extension() != ".png")
         throw InputError(flag("--selective-map"), "'" + o->selectiveMapPath + "': expected a .png file");
-      if (o->resume && o->checkpointPath.empty()) throw InputError(flag("--resume"), "needs --checkpoint FILE");
-      if (!o->checkpointPath.empty() && method.render)
+      checkCheckpointOptions(o->checkpoint);
+      if (!o->checkpoint.path.empty() && method.render)
         throw InputError(flag("--checkpoint"), "--method " + o->method +
                                                    " writes an image per pass: its last pass's files are what "
                                                    "a stopped run keeps; --checkpoint is for the per-pixel methods");
-      if (!o->checkpointPath.empty() && !o->resume && std::filesystem::exists(o->checkpointPath))
-        throw InputError(flag("--checkpoint"),
-                         "'" + o->checkpointPath + "' exists: add --resume to carry on from it, or remove it");
     }
     // Every output checked before any work: a long render must not end in "cannot write".
     std::vector<std::string> outputs = o->outputs;
@@ -224,7 +211,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
       for (const std::string &path : outputs) files.push_back({path, flag("--output")});
       if (!o->variancePath.empty()) files.push_back({o->variancePath, flag("--variance")});
       if (!o->selectiveMapPath.empty()) files.push_back({o->selectiveMapPath, flag("--selective-map")});
-      if (!o->checkpointPath.empty()) files.push_back({o->checkpointPath, flag("--checkpoint")});
+      if (!o->checkpoint.path.empty()) files.push_back({o->checkpoint.path, flag("--checkpoint")});
       checkOutputFiles(files, {o->scenePath, o->solutionPath});
     }
     // Ctrl-C: the image so far is written (with its sample count), then exit 130.
@@ -279,12 +266,12 @@ CommandRunner addRenderCommand(CLI::App &app) {
       given.set("max-depth", std::to_string(r.maxDepth), where);
     }
     const Parameters parameters = methodParameters(method, given);
-    if (!o->checkpointPath.empty()) {
+    if (!o->checkpoint.path.empty()) {
       if (scene.spectral.enabled())
         throw InputError(flag("--checkpoint"), "not for spectral scenes yet (a film per pass): use --colour rgb");
-      driver.checkpointPath = o->checkpointPath;
-      driver.checkpointIntervalSeconds = o->checkpointInterval;
-      driver.resume = o->resume;
+      driver.checkpointPath = o->checkpoint.path;
+      driver.checkpointIntervalSeconds = o->checkpoint.intervalSeconds;
+      driver.resume = o->checkpoint.resume;
       driver.checkpointJob = checkpointJob(*o, scene, given);
     }
     if (method.render) {  // a method that owns its loop: passes, each written as it completes
@@ -347,7 +334,8 @@ CommandRunner addRenderCommand(CLI::App &app) {
       stats.cameraSamples += passStats.cameraSamples;
       stats.interrupted = stats.interrupted || passStats.interrupted;
       if (passStats.resumedFromSamples >= 0 && !quiet)
-        fmt::print(stderr, "radiant: resumed from {} ({} spp done)\n", o->checkpointPath, passStats.resumedFromSamples);
+        fmt::print(stderr, "radiant: resumed from {} ({} spp done)\n", o->checkpoint.path,
+                   passStats.resumedFromSamples);
       if (!mapChannel.empty() && cluster::isRoot()) {
         writeSelectiveMap(film, mapChannel, o->selectiveMapPath);
         selectiveMapWritten = true;
@@ -372,7 +360,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
     writeRenderOutputs(image, outputs, display, app.count("--tonemap") > 0, tracer, camera, quiet);
     if (!o->variancePath.empty()) writeImage(rendered.variance, o->variancePath);
     // A finished render's checkpoint has served; a stopped one's is what --resume reads.
-    if (!o->checkpointPath.empty() && !stats.interrupted) std::filesystem::remove(o->checkpointPath);
+    if (!o->checkpoint.path.empty() && !stats.interrupted) std::filesystem::remove(o->checkpoint.path);
     if (!quiet) {
       // Converged pixels may have stopped early (render/driver.h): say what the mean pixel took.
       const double pixelsTaken = double(r.width) * r.height * (spectral ? passes : 1);

@@ -5,11 +5,11 @@
 #include <cctype>
 #include <filesystem>
 
+#include "checkpoint_options.h"
 #include "cluster/cluster.h"
 #include "colour_options.h"
 #include "commands.h"
 #include "display/grid_plan.h"
-#include "file_fingerprint.h"
 #include "interrupt_handler.h"
 #include "io/image.h"
 #include "io/output_files.h"
@@ -50,9 +50,7 @@ struct SolveCommandOptions {
   uint64_t seed = 1;
   int threads = 0;
   bool quiet = false;
-  std::string checkpointPath;
-  double checkpointInterval = 10;
-  bool resume = false;
+  CheckpointCommandOptions checkpoint;
 };
 }  // namespace
 
@@ -84,13 +82,7 @@ CommandRunner addSolveCommand(CLI::App &app) {
       ->default_val(0)
       ->check(CLI::Range(0, 4096));
   app.add_flag("-q,--quiet", o->quiet, "No progress or summary on stderr");
-  app.add_option("--checkpoint", o->checkpointPath,
-                 "Save the solver's state to this file every --checkpoint-interval seconds and when stopped, so that "
-                 "--resume carries on to the same solution (--solver stochastic; docs/cluster.md)");
-  app.add_option("--checkpoint-interval", o->checkpointInterval, "Seconds between checkpoints")
-      ->default_val(10)
-      ->check(CLI::Range(0.0, 1e6));
-  app.add_flag("--resume", o->resume, "Carry on from the --checkpoint file when it exists (else start)");
+  addCheckpointOptions(app, o->checkpoint, "the stochastic solver's state");
 
   return [o, &app]() {
     // With several MPI ranks (cluster/cluster.h) rank 0 prints and writes; every rank solves (the stochastic
@@ -103,11 +95,8 @@ CommandRunner addSolveCommand(CLI::App &app) {
     if (!o->gridReportPath.empty()) outputs.push_back({o->gridReportPath, InputLocation{"--grid-report"}});
     if (!o->gridImagePath.empty() && std::filesystem::path(o->gridImagePath).extension() != ".png")
       throw InputError(InputLocation{"--grid-image"}, "'" + o->gridImagePath + "': expected a .png file");
-    if (o->resume && o->checkpointPath.empty()) throw InputError(InputLocation{"--resume"}, "needs --checkpoint FILE");
-    if (!o->checkpointPath.empty() && !o->resume && std::filesystem::exists(o->checkpointPath))
-      throw InputError(InputLocation{"--checkpoint"},
-                       "'" + o->checkpointPath + "' exists: add --resume to carry on from it, or remove it");
-    if (!o->checkpointPath.empty()) outputs.push_back({o->checkpointPath, InputLocation{"--checkpoint"}});
+    checkCheckpointOptions(o->checkpoint);
+    if (!o->checkpoint.path.empty()) outputs.push_back({o->checkpoint.path, InputLocation{"--checkpoint"}});
     checkOutputFiles(outputs, {o->scenePath});
     // Ctrl-C stops the solve at its next iteration and writes nothing (but a checkpoint).
     InterruptHandler interrupts;
@@ -130,12 +119,12 @@ CommandRunner addSolveCommand(CLI::App &app) {
       for (const PointLight &light : scene.lights) fmt::print(stderr, "radiant: light {}\n", describeLight(light));
     RayTracer tracer(scene);
     SolveCheckpointOptions checkpoint;
-    if (!o->checkpointPath.empty()) {
+    if (!o->checkpoint.path.empty()) {
       if (scene.spectral.enabled())
         throw InputError(InputLocation{"--checkpoint"}, "not for spectral scenes yet (a solve per pass)");
-      checkpoint.path = o->checkpointPath;
-      checkpoint.intervalSeconds = o->checkpointInterval;
-      checkpoint.resume = o->resume;
+      checkpoint.path = o->checkpoint.path;
+      checkpoint.intervalSeconds = o->checkpoint.intervalSeconds;
+      checkpoint.resume = o->checkpoint.resume;
       // The job: the scene's bytes and everything that changes the solution.
       checkpoint.job = fmt::format("radiant solve {}\nscene {} {}\nsolver {}\nseed {}\n", RADIANT_VERSION, o->scenePath,
                                    fileFingerprint(o->scenePath), o->radiosity.solver, o->seed);
@@ -173,7 +162,7 @@ CommandRunner addSolveCommand(CLI::App &app) {
       if (!quiet) fmt::print(stderr, "radiant: wrote {}\n", o->outputPath);
     }
     // The finished solve's checkpoint has served (written after the solution, so a failed write keeps it).
-    if (!o->checkpointPath.empty()) std::filesystem::remove(o->checkpointPath);
+    if (!o->checkpoint.path.empty()) std::filesystem::remove(o->checkpoint.path);
     if (!o->reportPath.empty()) {
       writeSurfaceReport(solutions, scene, o->reportPath, balance);
       if (!quiet) fmt::print(stderr, "radiant: wrote {}\n", o->reportPath);

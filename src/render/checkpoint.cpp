@@ -18,16 +18,6 @@ constexpr uint32_t kMaxString = 1 << 20;
 
 static_assert(sizeof(Bands) == kBandCount * sizeof(double), "a film's Bands are written as kBandCount doubles");
 
-/// Every per-pixel array of the film, in file order.
-template <typename Film, typename BandsArray, typename CountArray>
-void forEachFilmArray(Film &film, const BandsArray &bands, const CountArray &counts) {
-  bands(film.sum);
-  bands(film.sumSquares);
-  counts(film.samples);
-  for (auto &c : film.channels)
-    for (auto *v : {&c.sum, &c.sumSquares, &c.sumDifference, &c.sumDifferenceSquares, &c.sumProducts}) bands(*v);
-}
-
 class Writer {
  public:
   explicit Writer(std::ofstream &out) : out_(out) {}

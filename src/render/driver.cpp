@@ -34,16 +34,6 @@ struct Tile {
   int x0, y0, x1, y1;
 };
 
-/// Every per-pixel array of the film: `bands(vector<Bands>&)`, `counts(vector<uint32_t>&)`.
-template <typename BandsArray, typename CountArray>
-void forEachFilmArray(Film &film, const BandsArray &bands, const CountArray &counts) {
-  bands(film.sum);
-  bands(film.sumSquares);
-  counts(film.samples);
-  for (FilmChannel &c : film.channels)
-    for (auto *v : {&c.sum, &c.sumSquares, &c.sumDifference, &c.sumDifferenceSquares, &c.sumProducts}) bands(*v);
-}
-
 /// Zeroes the pixels another rank owns (their values came from the last
 /// round's sum), so that the sum over the ranks counts each pixel once.
 void keepOwnPixels(Film &film, const std::vector<uint8_t> &own) {

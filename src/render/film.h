@@ -104,6 +104,18 @@ struct Film {
   }
 };
 
+/// Every per-pixel array of a film (Film or const Film), in one fixed order:
+/// `bands(vector<Bands>&)` for the sums, `counts(vector<uint32_t>&)` for the
+/// sample counts. What a checkpoint writes and the ranks of a job sum.
+template <typename AnyFilm, typename BandsArray, typename CountArray>
+void forEachFilmArray(AnyFilm &film, const BandsArray &bands, const CountArray &counts) {
+  bands(film.sum);
+  bands(film.sumSquares);
+  counts(film.samples);
+  for (auto &c : film.channels)
+    for (auto *v : {&c.sum, &c.sumSquares, &c.sumDifference, &c.sumDifferenceSquares, &c.sumProducts}) bands(*v);
+}
+
 /// Paired samples: per pixel the sums a control variate needs — of the
 /// control R, of the difference D = radiance − R, of their squares and of
 /// their product (render/control_variate.h); a film's channel holds them
