@@ -12,14 +12,14 @@ namespace radiant {
 
 namespace {
 
-constexpr char kMagic[] = "RADIANT-SOLVE-CHECKPOINT";
-constexpr uint32_t kVersion = 1;
+constexpr char kSolveCheckpointMagic[] = "RADIANT-SOLVE-CHECKPOINT";
+constexpr uint32_t kSolveCheckpointVersion = 1;
 constexpr uint32_t kMaxJob = 1 << 20;
 
 static_assert(sizeof(Bands) == kBandCount * sizeof(double), "Bands are written as kBandCount doubles");
 
 template <typename State, typename Visit>
-void forEachArray(State &state, const Visit &visit) {
+void forEachStateArray(State &state, const Visit &visit) {
   for (auto *v : {&state.radiosity, &state.direct, &state.indirect, &state.unshot, &state.irradiance}) visit(*v);
 }
 
@@ -30,8 +30,8 @@ void writeStochasticCheckpoint(const std::string &path, const std::string &job, 
     std::ofstream out(temporary, std::ios::binary);
     if (!out) throw std::runtime_error("cannot open the temporary file");
     auto put = [&](const auto &v) { out.write(reinterpret_cast<const char *>(&v), sizeof v); };
-    out.write(kMagic, sizeof kMagic - 1);
-    put(kVersion);
+    out.write(kSolveCheckpointMagic, sizeof kSolveCheckpointMagic - 1);
+    put(kSolveCheckpointVersion);
     put(uint32_t(job.size()));
     out.write(job.data(), std::streamsize(job.size()));
     put(uint64_t(state.radiosity.size())), put(int32_t(kBandCount));
@@ -40,7 +40,7 @@ void writeStochasticCheckpoint(const std::string &path, const std::string &job, 
     auto array = [&](const std::vector<Bands> &v) {
       out.write(reinterpret_cast<const char *>(v.data()), std::streamsize(v.size() * sizeof(Bands)));
     };
-    forEachArray(state, array);
+    forEachStateArray(state, array);
     if (!state.lightGain.empty()) array(state.lightGain);
     out.flush();
     if (!out) throw std::runtime_error("write failed (disk full?)");
@@ -58,12 +58,14 @@ StochasticCheckpoint readStochasticCheckpoint(const std::string &path, const std
       fail(fmt::format("the file ends inside {} (truncated?)", what));
   };
   auto get = [&](auto &v, const char *what) { bytes(&v, sizeof v, what); };
-  char magic[sizeof kMagic - 1];
+  char magic[sizeof kSolveCheckpointMagic - 1];
   bytes(magic, sizeof magic, "the header");
-  if (std::memcmp(magic, kMagic, sizeof magic) != 0) fail("it does not start with RADIANT-SOLVE-CHECKPOINT");
+  if (std::memcmp(magic, kSolveCheckpointMagic, sizeof magic) != 0)
+    fail("it does not start with RADIANT-SOLVE-CHECKPOINT");
   uint32_t version = 0, jobSize = 0;
   get(version, "the header");
-  if (version != kVersion) fail(fmt::format("checkpoint version {}; this radiant reads version {}", version, kVersion));
+  if (version != kSolveCheckpointVersion)
+    fail(fmt::format("checkpoint version {}; this radiant reads version {}", version, kSolveCheckpointVersion));
   get(jobSize, "the header");
   if (jobSize > kMaxJob) fail("its job description is too long");
   std::string saved(jobSize, '\0');
@@ -87,7 +89,7 @@ StochasticCheckpoint readStochasticCheckpoint(const std::string &path, const std
     v.resize(elements);
     bytes(v.data(), elements * sizeof(Bands), "the element values");
   };
-  forEachArray(state, array);
+  forEachStateArray(state, array);
   if (hasLightGain) array(state.lightGain);
   if (in.peek() != std::char_traits<char>::eof()) fail("it has bytes after the element values");
   return state;

@@ -12,15 +12,15 @@ namespace radiant {
 
 namespace {
 
-constexpr char kMagic[] = "RADIANT-CHECKPOINT";
-constexpr uint32_t kVersion = 1;
-constexpr uint32_t kMaxString = 1 << 20;
+constexpr char kRenderCheckpointMagic[] = "RADIANT-CHECKPOINT";
+constexpr uint32_t kRenderCheckpointVersion = 1;
+constexpr uint32_t kMaxCheckpointString = 1 << 20;
 
 static_assert(sizeof(Bands) == kBandCount * sizeof(double), "a film's Bands are written as kBandCount doubles");
 
-class Writer {
+class CheckpointWriter {
  public:
-  explicit Writer(std::ofstream &out) : out_(out) {}
+  explicit CheckpointWriter(std::ofstream &out) : out_(out) {}
   template <typename T>
   void value(const T &v) {
     out_.write(reinterpret_cast<const char *>(&v), sizeof v);
@@ -35,9 +35,9 @@ class Writer {
   std::ofstream &out_;
 };
 
-class Reader {
+class CheckpointReader {
  public:
-  Reader(std::ifstream &in, const std::string &path) : in_(in), path_(path) {}
+  CheckpointReader(std::ifstream &in, const std::string &path) : in_(in), path_(path) {}
   template <typename T>
   T value(const char *what) {
     T v{};
@@ -50,7 +50,7 @@ class Reader {
   }
   std::string text(const char *what) {
     const uint32_t size = value<uint32_t>(what);
-    if (size > kMaxString) fail(fmt::format("{} is {} bytes long, more than a checkpoint holds", what, size));
+    if (size > kMaxCheckpointString) fail(fmt::format("{} is {} bytes long, more than a checkpoint holds", what, size));
     std::string s(size, '\0');
     bytes(s.data(), size, what);
     return s;
@@ -70,9 +70,9 @@ void writeRenderCheckpoint(const std::string &path, const RenderCheckpoint &c, c
   writeAtomically(path, [&](const std::string &temporary) {
     std::ofstream out(temporary, std::ios::binary);
     if (!out) throw std::runtime_error("cannot open the temporary file");
-    Writer w(out);
-    w.bytes(kMagic, sizeof kMagic - 1);
-    w.value(kVersion);
+    CheckpointWriter w(out);
+    w.bytes(kRenderCheckpointMagic, sizeof kRenderCheckpointMagic - 1);
+    w.value(kRenderCheckpointVersion);
     w.text(c.job);
     w.value(int32_t(film.width)), w.value(int32_t(film.height)), w.value(int32_t(kBandCount));
     w.value(int32_t(c.tileSize)), w.value(int32_t(c.samplesDone)), w.value(int32_t(c.roundEnd));
@@ -93,12 +93,13 @@ void writeRenderCheckpoint(const std::string &path, const RenderCheckpoint &c, c
 void readRenderCheckpoint(const std::string &path, const std::string &job, RenderCheckpoint &c, Film &film) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(InputLocation{path}, "cannot open the checkpoint");
-  Reader r(in, path);
-  char magic[sizeof kMagic - 1];
+  CheckpointReader r(in, path);
+  char magic[sizeof kRenderCheckpointMagic - 1];
   r.bytes(magic, sizeof magic, "the header");
-  if (std::memcmp(magic, kMagic, sizeof magic) != 0) r.fail("it does not start with RADIANT-CHECKPOINT");
-  if (const uint32_t version = r.value<uint32_t>("the header"); version != kVersion)
-    r.fail(fmt::format("checkpoint version {}; this radiant reads version {}", version, kVersion));
+  if (std::memcmp(magic, kRenderCheckpointMagic, sizeof magic) != 0)
+    r.fail("it does not start with RADIANT-CHECKPOINT");
+  if (const uint32_t version = r.value<uint32_t>("the header"); version != kRenderCheckpointVersion)
+    r.fail(fmt::format("checkpoint version {}; this radiant reads version {}", version, kRenderCheckpointVersion));
   c.job = r.text("the job description");
   if (c.job != job)
     r.fail(
