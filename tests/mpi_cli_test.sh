@@ -15,6 +15,13 @@ fi
 # CI runs as root; more ranks than cores; waiting ranks yield the core (two cores here).
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_mpi_yield_when_idle=1
 mpi() { timeout 300 mpirun --oversubscribe -np "$@"; }
+# A machine where mpirun cannot start two processes at all (a container without shared memory or network
+# interfaces) has no MPI to test: say so and skip, unless required.
+if ! mpi 2 true >mpi-probe.txt 2>&1; then
+  echo "mpirun cannot start 2 processes here:"; head -20 mpi-probe.txt
+  [ "${RADIANT_REQUIRE_MPI_TESTS:-0}" = 1 ] && exit 1
+  exit 77
+fi
 
 size=(--width 48 --height 48)
 # same_image NAME ARGS...: 1, 2 and 3 ranks, the same bytes.
