@@ -50,8 +50,10 @@ cmp -s solved1.exr solved3.exr && pass || fail "solve: 3 ranks give another solu
 
 # A render stopped under mpirun (SIGTERM, as a batch system's time limit sends) resumes with another rank count.
 "$radiant" render "$cornell" --width 96 --height 96 --spp 512 -q -o whole.exr
-mpi 2 "$radiant" render "$cornell" --width 96 --height 96 --spp 512 -q -o part.exr --checkpoint ck.bin \
-  --checkpoint-interval 0.2 2>/dev/null &
+# mpirun itself in the background, not the mpi function: $! of a function is its subshell, and
+# SIGTERM to that would leave mpirun running on to the end beside the resumed job.
+mpirun --oversubscribe -np 2 "$radiant" render "$cornell" --width 96 --height 96 --spp 512 -q -o part.exr \
+  --checkpoint ck.bin --checkpoint-interval 0.2 2>/dev/null &
 pid=$!
 for _ in $(seq 600); do [ -f ck.bin ] && break; sleep 0.1; done
 sleep 0.5
