@@ -7,6 +7,7 @@
 #include <map>
 #include <tuple>
 
+#include "mesh/patch_lattice.h"
 #include "raytrace/surface_detail.h"
 
 namespace radiant {
@@ -32,11 +33,6 @@ bool identicalBits(const std::array<Vec3, N> &a, const std::array<Vec3, N> &b) {
 // expression for expression: the writer checks the result bit for bit and
 // stores the geometry whenever it differs, so a change there costs file size,
 // never correctness.
-
-/// buildMesh's bilinear point P(u, v) of a quad.
-Vec3 bilinearPoint(const std::array<Vec3, 4> &q, double u, double v) {
-  return q[0] * ((1 - u) * (1 - v)) + q[1] * (u * (1 - v)) + q[2] * (u * v) + q[3] * ((1 - u) * v);
-}
 
 /// buildMesh's patch area and splitTreeNode's node area.
 double areaOfPolygon(const std::array<Vec3, 4> &c, int count) {
@@ -132,19 +128,6 @@ std::string deriveMeshGeometry(const Scene &scene, const std::vector<CompactPatc
     Patch &patch = mesh.patches[p];
     patch.firstElement = uint32_t(mesh.elements.size());
     patch.firstNode = uint32_t(mesh.nodes.size());
-    auto addElement = [&](int count, std::array<uint32_t, 4> corners) {
-      Element e;
-      e.patch = p;
-      e.vertexCount = count;
-      e.nodes = corners;
-      Vec3 sum;
-      for (int k = 0; k < count; ++k) sum += mesh.nodes[corners[k]];
-      e.centre = sum / count;
-      for (int k = 1; k + 1 < count; ++k)
-        e.area += 0.5 * length(cross(mesh.nodes[corners[k]] - mesh.nodes[corners[0]],
-                                     mesh.nodes[corners[k + 1]] - mesh.nodes[corners[0]]));
-      mesh.elements.push_back(e);
-    };
     if (patch.treeRoot < 0) {
       // buildMesh's lattice; its size is checked first, in 64 bits.
       const uint64_t nU = uint64_t(patch.divisionsU), nV = uint64_t(patch.divisionsV);
@@ -152,25 +135,7 @@ std::string deriveMeshGeometry(const Scene &scene, const std::vector<CompactPatc
       const uint64_t count = patch.vertexCount == 4 ? nU * nV : nU * nU;
       const uint64_t corners = patch.vertexCount == 4 ? (nU + 1) * (nV + 1) : (nU + 1) * (nU + 2) / 2;
       if (count > elements - mesh.elements.size() || corners > nodes - mesh.nodes.size()) return tooMany;
-      if (patch.vertexCount == 4) {
-        const int u = patch.divisionsU, v = patch.divisionsV;
-        for (int j = 0; j <= v; ++j)
-          for (int i = 0; i <= u; ++i) mesh.nodes.push_back(bilinearPoint(patch.corners, double(i) / u, double(j) / v));
-        auto node = [&](int i, int j) { return patch.firstNode + uint32_t(j * (u + 1) + i); };
-        for (int j = 0; j < v; ++j)
-          for (int i = 0; i < u; ++i) addElement(4, {node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)});
-      } else {
-        const int n = patch.divisionsU;
-        const Vec3 &a = patch.corners[0], &b = patch.corners[1], &c = patch.corners[2];
-        for (int j = 0; j <= n; ++j)
-          for (int i = 0; i <= n - j; ++i)
-            mesh.nodes.push_back(a + (b - a) * (double(i) / n) + (c - a) * (double(j) / n));
-        auto node = [&](int i, int j) { return patch.firstNode + uint32_t(j * (n + 1) - j * (j - 1) / 2 + i); };
-        for (int j = 0; j < n; ++j) {
-          for (int i = 0; i < n - j; ++i) addElement(3, {node(i, j), node(i + 1, j), node(i, j + 1), 0});
-          for (int i = 0; i < n - j - 1; ++i) addElement(3, {node(i + 1, j), node(i + 1, j + 1), node(i, j + 1), 0});
-        }
-      }
+      appendPatchLattice(patch, p, mesh);
     } else {
       // rebuildElementsFromTrees: leaves depth first, children 0 to 3; a node per distinct corner.
       std::map<CornerBits, uint32_t> nodeAt;

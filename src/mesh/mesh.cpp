@@ -5,6 +5,7 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "mesh/patch_lattice.h"
 #include "util/error.h"
 #include "util/phase.h"
 
@@ -346,6 +347,41 @@ std::array<double, 4> RadiosityMesh::nodeWeights(const MeshLocation &l) const {
   return {1 - l.s - l.t, l.s, l.t, 0.0};
 }
 
+void appendPatchLattice(const Patch &patch, uint32_t patchIndex, RadiosityMesh &mesh) {
+  auto addElement = [&](int count, std::array<uint32_t, 4> nodes) {
+    Element e;
+    e.patch = patchIndex;
+    e.vertexCount = count;
+    e.nodes = nodes;
+    Vec3 sum;
+    for (int k = 0; k < count; ++k) sum += mesh.nodes[nodes[k]];
+    e.centre = sum / count;
+    for (int k = 1; k + 1 < count; ++k)
+      e.area += 0.5 * length(cross(mesh.nodes[nodes[k]] - mesh.nodes[nodes[0]],
+                                   mesh.nodes[nodes[k + 1]] - mesh.nodes[nodes[0]]));
+    mesh.elements.push_back(e);
+  };
+  if (patch.vertexCount == 4) {
+    const int nU = patch.divisionsU, nV = patch.divisionsV;
+    for (int j = 0; j <= nV; ++j)
+      for (int i = 0; i <= nU; ++i) mesh.nodes.push_back(bilinear(patch.corners, double(i) / nU, double(j) / nV));
+    auto node = [&](int i, int j) { return patch.firstNode + uint32_t(j * (nU + 1) + i); };
+    for (int j = 0; j < nV; ++j)
+      for (int i = 0; i < nU; ++i) addElement(4, {node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)});
+  } else {
+    const int n = patch.divisionsU;
+    const Vec3 &a = patch.corners[0], &b = patch.corners[1], &c = patch.corners[2];
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n - j; ++i) mesh.nodes.push_back(a + (b - a) * (double(i) / n) + (c - a) * (double(j) / n));
+    auto node = [&](int i, int j) { return patch.firstNode + uint32_t(j * (n + 1) - j * (j - 1) / 2 + i); };
+    // Row j: its n − j lower triangles, then its n − j − 1 upper ones (the order locate() assumes).
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n - j; ++i) addElement(3, {node(i, j), node(i + 1, j), node(i, j + 1), 0});
+      for (int i = 0; i < n - j - 1; ++i) addElement(3, {node(i + 1, j), node(i + 1, j + 1), node(i, j + 1), 0});
+    }
+  }
+}
+
 RadiosityMesh buildMesh(const Scene &scene, const MeshOptions &options) {
   Phase phase("meshing", scene.faces.size());
   RadiosityMesh mesh;
@@ -439,40 +475,7 @@ RadiosityMesh buildMesh(const Scene &scene, const MeshOptions &options) {
       patch.firstElement = static_cast<uint32_t>(mesh.elements.size());
       patch.firstNode = static_cast<uint32_t>(mesh.nodes.size());
       const uint32_t patchIndex = static_cast<uint32_t>(mesh.patches.size());
-      auto addElement = [&](int count, std::array<uint32_t, 4> nodes) {
-        Element e;
-        e.patch = patchIndex;
-        e.vertexCount = count;
-        e.nodes = nodes;
-        Vec3 sum;
-        for (int k = 0; k < count; ++k) sum += mesh.nodes[nodes[k]];
-        e.centre = sum / count;
-        for (int k = 1; k + 1 < count; ++k)
-          e.area += 0.5 * length(cross(mesh.nodes[nodes[k]] - mesh.nodes[nodes[0]],
-                                       mesh.nodes[nodes[k + 1]] - mesh.nodes[nodes[0]]));
-        mesh.elements.push_back(e);
-      };
-
-      if (patch.vertexCount == 4) {
-        const int nU = patch.divisionsU, nV = patch.divisionsV;
-        for (int j = 0; j <= nV; ++j)
-          for (int i = 0; i <= nU; ++i) mesh.nodes.push_back(bilinear(patch.corners, double(i) / nU, double(j) / nV));
-        auto node = [&](int i, int j) { return patch.firstNode + uint32_t(j * (nU + 1) + i); };
-        for (int j = 0; j < nV; ++j)
-          for (int i = 0; i < nU; ++i) addElement(4, {node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)});
-      } else {
-        const int n = patch.divisionsU;
-        const Vec3 &a = patch.corners[0], &b = patch.corners[1], &c = patch.corners[2];
-        for (int j = 0; j <= n; ++j)
-          for (int i = 0; i <= n - j; ++i)
-            mesh.nodes.push_back(a + (b - a) * (double(i) / n) + (c - a) * (double(j) / n));
-        auto node = [&](int i, int j) { return patch.firstNode + uint32_t(j * (n + 1) - j * (j - 1) / 2 + i); };
-        // Row j: its n − j lower triangles, then its n − j − 1 upper ones (the order locate() assumes).
-        for (int j = 0; j < n; ++j) {
-          for (int i = 0; i < n - j; ++i) addElement(3, {node(i, j), node(i + 1, j), node(i, j + 1), 0});
-          for (int i = 0; i < n - j - 1; ++i) addElement(3, {node(i + 1, j), node(i + 1, j + 1), node(i, j + 1), 0});
-        }
-      }
+      appendPatchLattice(patch, patchIndex, mesh);
       patch.elementCount = static_cast<uint32_t>(mesh.elements.size()) - patch.firstElement;
       patch.nodeCount = static_cast<uint32_t>(mesh.nodes.size()) - patch.firstNode;
       mesh.nodePatch.resize(mesh.nodes.size(), patchIndex);
