@@ -78,9 +78,14 @@ struct CornerList {
 };
 
 /// Where face g meets the plane of face f inside f: crossing or touching it,
-/// or lying on it (parallel, within `gap`), outlining its part of f.
+/// or lying on it (parallel, within `gap`), outlining its part of f. A face
+/// lying on f cuts it only when its area is at least `smallestLying`: each
+/// of its edges splits f along the whole line (splitPieces), so the
+/// thousands of millimetre facets at the foot of a tessellated sphere
+/// resting on a floor cut the floor into thousands of slivers, for a hidden
+/// patch far smaller than any element.
 void cutsOf(const PlanarFace &f, const CornerList &g, double onPlane, double gap, double tolerance,
-            std::vector<CutSegment> &out) {
+            double smallestLying, std::vector<CutSegment> &out) {
   std::array<double, 4> d{};
   double largest = 0, nearest = INFINITY;
   const size_t n = g.count;
@@ -92,6 +97,9 @@ void cutsOf(const PlanarFace &f, const CornerList &g, double onPlane, double gap
   const bool inFront = nearest >= -onPlane;
   if (largest <= gap && inFront && std::abs(dot(f.normal, g.normal)) > 0.9998) {
     // Lying on f: its outline, projected onto f's plane, cuts f.
+    const double area = n == 4 ? 0.5 * length(cross(g.corners[2] - g.corners[0], g.corners[3] - g.corners[1]))
+                               : 0.5 * length(cross(g.corners[1] - g.corners[0], g.corners[2] - g.corners[0]));
+    if (area < smallestLying) return;
     for (size_t k = 0; k < n; ++k) {
       Vec3 a = g.corners[k] - f.normal * d[k], b = g.corners[(k + 1) % n] - f.normal * d[(k + 1) % n];
       if (clipSegmentToPolygon(f.polygon, f.normal, a, b, -tolerance) && length(b - a) > tolerance)
@@ -250,6 +258,7 @@ std::vector<FaceSplit> splitFaces(const Scene &scene, const RayTracer &tracer, c
     box.hi = box.hi + widen;
     std::vector<uint32_t> near;
     tree.facesOverlapping(box, tolerance, near);
+    const double smallestLying = options.smallestLyingFraction * polygonArea(face.polygon);
     std::vector<CutSegment> cuts;
     for (uint32_t g : near) {
       if (g == f || g == scene.geometricFace(uint32_t(f)) || int64_t(g) == scene.faces[f].twin) continue;
@@ -258,7 +267,7 @@ std::vector<FaceSplit> splitFaces(const Scene &scene, const RayTracer &tracer, c
       corners.count = size_t(other.vertexCount);
       for (size_t k = 0; k < corners.count; ++k) corners.corners[k] = scene.positions[other.vertices[k]];
       corners.normal = normals[g];
-      cutsOf(face, corners, onPlane, gap, tolerance, cuts);
+      cutsOf(face, corners, onPlane, gap, tolerance, smallestLying, cuts);
     }
     if (cuts.empty()) return;
     std::vector<std::vector<Vec3>> pieces{face.polygon};

@@ -45,6 +45,10 @@ struct FaceSplitOptions {
   /// A face lying within this distance of another's plane, parallel and
   /// overlapping it, cuts it along its outline; relative to the scene's extent.
   double coplanarGap = 1e-2;
+  /// …when its area is at least this fraction of the face's: smaller ones
+  /// (the facets of a tessellated model resting on a floor) hide too little
+  /// of it to be worth the slivers their outlines' lines cut it into.
+  double smallestLyingFraction = 1e-4;
   /// A piece is hidden when, from its centre and from points towards each of
   /// its corners, at least this (cosine-weighted) fraction of rays meets the
   /// back of a face.
