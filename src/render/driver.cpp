@@ -274,15 +274,34 @@ RenderStats renderImage(const PinholeCamera &camera, const Renderer &renderer, c
       Bands imageMean(0.0);
       for (size_t p = 0; p < film.pixelCount(); ++p) imageMean += film.mean(p);
       imageMean = imageMean / double(std::max<size_t>(1, film.pixelCount()));
+      std::vector<Bands> means(film.pixelCount());
+      for (size_t p = 0; p < film.pixelCount(); ++p) means[p] = film.mean(p);
+      // An edge: a neighbour's mean differs by more than kEdgeContrast of
+      // the brighter. A pixel a light's edge barely crosses may have had
+      // none of its first samples on the light, and a zero variance says
+      // nothing about what those samples missed; its bright neighbour does.
+      auto onEdge = [&](size_t pixel) {
+        const int x = int(pixel % size_t(film.width)), y = int(pixel / size_t(film.width));
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int nx = x + dx, ny = y + dy;
+            if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= film.width || ny >= film.height) continue;
+            const Bands &a = means[pixel], &b = means[size_t(ny) * size_t(film.width) + size_t(nx)];
+            for (int band = 0; band < kBandCount; ++band)
+              if (std::abs(a[band] - b[band]) > kEdgeContrast * std::max(a[band], b[band]) + 0.1 * imageMean[band])
+                return true;
+          }
+        return false;
+      };
       for (size_t pixel = 0; pixel < active.size(); ++pixel) {
         if (!active[pixel]) continue;
-        const Bands mean = film.mean(pixel), variance = film.varianceOfMean(pixel);
+        const Bands &mean = means[pixel], variance = film.varianceOfMean(pixel);
         bool converged = true;
         for (int b = 0; b < kBandCount; ++b) {
           const double tolerance = kPixelTolerance * (mean[b] + 0.1 * imageMean[b]);
           converged = converged && variance[b] <= tolerance * tolerance;
         }
-        if (converged) active[pixel] = 0;
+        if (converged && !onEdge(pixel)) active[pixel] = 0;
       }
     };
   if (film.channels.empty())

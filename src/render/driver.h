@@ -13,7 +13,10 @@
 // standard error of its mean is below kPixelTolerance of its value (plus a
 // tenth of the image's mean, for dark pixels): a pixel inside one surface
 // has converged after a few samples, and the rest of the time goes to the
-// edges, whose antialiasing is then what the image's error is made of.
+// edges, whose antialiasing is then what the image's error is made of. A
+// pixel on an edge (a neighbour's mean differs by more than kEdgeContrast)
+// never stops early: where an edge barely crosses a pixel, its first
+// samples may all have missed it, and their zero variance says nothing.
 // Which pixels stop is decided between rounds from the film alone, so it
 // too is the same for every thread count.
 //
@@ -60,6 +63,10 @@ struct DriverOptions {
 
 constexpr int kMinimumSamples = 8;
 constexpr double kPixelTolerance = 1e-3;
+/// A pixel whose mean differs from a neighbour's by more than this fraction
+/// of the brighter (plus a tenth of the image's mean) lies on an edge, and
+/// does not stop, whatever its variance.
+constexpr double kEdgeContrast = 0.25;
 
 struct Progress {
   int samplesDone = 0;  ///< complete samples per pixel so far
