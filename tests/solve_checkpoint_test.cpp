@@ -71,6 +71,13 @@ TEST(SolveCheckpoint, AResumedStochasticSolveEqualsTheUninterruptedOne) {
         differing += resumed.radiosity[e][b] != whole.radiosity[e][b] || resumed.direct[e][b] != whole.direct[e][b] ||
                      resumed.irradiance[e][b] != whole.irradiance[e][b];
     EXPECT_EQ(differing, 0u) << "element values differing between the resumed and the uninterrupted solve";
+    // The display's node values too: the reflected light's density estimate
+    // reads the rays each element received, which the checkpoint carries.
+    ASSERT_EQ(resumed.nodeRadiosity.size(), whole.nodeRadiosity.size());
+    size_t differingNodes = 0;
+    for (size_t v = 0; v < whole.nodeRadiosity.size(); ++v)
+      for (int b = 0; b < kBandCount; ++b) differingNodes += resumed.nodeRadiosity[v][b] != whole.nodeRadiosity[v][b];
+    EXPECT_EQ(differingNodes, 0u) << "node values differing between the resumed and the uninterrupted solve";
   }
 }
 
@@ -79,6 +86,7 @@ TEST(SolveCheckpoint, AnotherJobsOrADamagedCheckpointIsRefused) {
   StochasticCheckpoint state;
   state.iteration = 3;
   state.radiosity = state.direct = state.indirect = state.unshot = state.irradiance = std::vector<Bands>(10);
+  state.raysArrived.assign(10, 0.0);
   writeStochasticCheckpoint(checkpoint.path, "job A", state);
   auto refusal = [&](const std::string &job, size_t elements) {
     try {

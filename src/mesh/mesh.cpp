@@ -393,7 +393,7 @@ RadiosityMesh buildMesh(const Scene &scene, const MeshOptions &options) {
         lo[k] = std::min(lo[k], p[k]);
         hi[k] = std::max(hi[k], p[k]);
       }
-    edge = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-9}) / 8;
+    edge = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z, 1e-9}) * options.defaultEdgeFraction;
   }
 
   // The polygons that become patches: each face whole, or the quads and

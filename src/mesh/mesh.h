@@ -25,9 +25,10 @@
 namespace radiant {
 
 struct MeshOptions {
-  /// Target element edge length, metres; 0 chooses 1/8 of the scene's largest
-  /// bounding-box side.
+  /// Target element edge length, metres; 0 chooses defaultEdgeFraction of
+  /// the scene's largest bounding-box side.
   double maxEdgeLength = 0;
+  double defaultEdgeFraction = 1.0 / 8;
   /// Refuse meshes above this many elements (a clear error, not an allocation).
   size_t maxElements = 2'000'000;
   /// One entry per face (mesh/face_split.h): a split face becomes a patch per

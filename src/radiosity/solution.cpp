@@ -50,16 +50,18 @@ Bands Solution::interpolate(const std::vector<Bands> &values, const MeshLocation
   return b;
 }
 
-void Solution::shareNodesAcrossPatches(std::vector<Bands> &sums, std::vector<double> &weight) const {
+std::vector<uint32_t> Solution::nodePools() const {
   // Nodes at the same place on neighbouring patches of one smooth surface
   // (same material, normals within 2°: a quad the input split in two, a
-  // floor modelled as tiles) pool their sums, so the interpolated radiosity
-  // has no seam there. Creases (normals further apart) keep their jump.
+  // floor modelled as tiles, the facets of a tessellated model) form a pool.
+  // Creases (normals further apart) keep their jump.
   // Positions are matched on a grid of 10⁻⁶ of the scene's size: the two
   // patches computed their nodes with different arithmetic.
+  std::vector<uint32_t> pool(mesh.nodes.size());
+  for (uint32_t v = 0; v < pool.size(); ++v) pool[v] = v;
   double extent = 0;
   for (const Vec3 &p : mesh.nodes) extent = std::max({extent, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-  if (extent <= 0) return;
+  if (extent <= 0) return pool;
   const double cell = extent * 1e-6;
   // Nodes by grid cell, then by index: a sort, not a hash map of lists (one
   // allocation per node: seconds at the 2·10⁶ nodes of a 10⁶-triangle model).
@@ -79,7 +81,7 @@ void Solution::shareNodesAcrossPatches(std::vector<Bands> &sums, std::vector<dou
   }
   std::sort(keyed.begin(), keyed.end());
   constexpr double kCos2Degrees = 0.99939;
-  std::vector<uint32_t> nodes, group;
+  std::vector<uint32_t> nodes;
   std::vector<bool> used;
   for (size_t start = 0; start < keyed.size();) {
     size_t end = start + 1;
@@ -87,28 +89,32 @@ void Solution::shareNodesAcrossPatches(std::vector<Bands> &sums, std::vector<dou
     if (end - start >= 2) {
       nodes.clear();
       for (size_t i = start; i < end; ++i) nodes.push_back(keyed[i].node);
-      // Group the nodes that may pool: same material and nearly the same normal as the first of a group.
+      // A pool: the nodes of the same material and nearly the same normal as its first.
       used.assign(nodes.size(), false);
       for (size_t a = 0; a < nodes.size(); ++a) {
         if (used[a]) continue;
         const Patch &pa = mesh.patches[mesh.nodePatch[nodes[a]]];
-        group.assign(1, nodes[a]);
         for (size_t b = a + 1; b < nodes.size(); ++b) {
           const Patch &pb = mesh.patches[mesh.nodePatch[nodes[b]]];
           if (!used[b] && pb.material == pa.material && dot(pa.normal, pb.normal) > kCos2Degrees) {
             used[b] = true;
-            group.push_back(nodes[b]);
+            pool[nodes[b]] = nodes[a];
           }
         }
-        if (group.size() < 2) continue;
-        Bands sum(0.0);
-        double w = 0;
-        for (uint32_t v : group) sum += sums[v], w += weight[v];
-        for (uint32_t v : group) sums[v] = sum, weight[v] = w;
       }
     }
     start = end;
   }
+  return pool;
+}
+
+void Solution::shareNodesAcrossPatches(std::vector<Bands> &sums, std::vector<double> &weight) const {
+  // A pool's nodes share its sums, so the interpolated radiosity has no seam there.
+  const std::vector<uint32_t> pool = nodePools();
+  for (uint32_t v = 0; v < pool.size(); ++v)
+    if (pool[v] != v) sums[pool[v]] += sums[v], weight[pool[v]] += weight[v];
+  for (uint32_t v = 0; v < pool.size(); ++v)
+    if (pool[v] != v) sums[v] = sums[pool[v]], weight[v] = weight[pool[v]];
 }
 
 std::vector<Bands> Solution::nodeValues(const std::vector<Bands> &perElement) const {

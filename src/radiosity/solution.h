@@ -121,6 +121,11 @@ struct Solution {
   Bands interpolate(const std::vector<Bands> &values, const MeshLocation &location) const;
   /// Recomputes nodeRadiosity, nodeReflectance and errorEstimate from the element radiosities (including ambient).
   void updateNodesAndErrors();
+  /// For every node, the first node of its pool: the nodes at one place on
+  /// neighbouring patches of one smooth surface (same material, normals
+  /// within 2°; none on a cut), which share their values so that the
+  /// interpolation has no seam there. A node alone is its own.
+  std::vector<uint32_t> nodePools() const;
 
  private:
   /// Pools the area-weighted sums of coincident nodes of neighbouring patches of one smooth surface.

@@ -4,6 +4,7 @@
 
 #include <cstring>
 #include <fstream>
+#include <stdexcept>
 
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -13,7 +14,7 @@ namespace radiant {
 namespace {
 
 constexpr char kSolveCheckpointMagic[] = "RADIANT-SOLVE-CHECKPOINT";
-constexpr uint32_t kSolveCheckpointVersion = 1;
+constexpr uint32_t kSolveCheckpointVersion = 2;
 constexpr uint32_t kMaxJob = 1 << 20;
 
 static_assert(sizeof(Bands) == kBandCount * sizeof(double), "Bands are written as kBandCount doubles");
@@ -26,6 +27,8 @@ void forEachStateArray(State &state, const Visit &visit) {
 }  // namespace
 
 void writeStochasticCheckpoint(const std::string &path, const std::string &job, const StochasticCheckpoint &state) {
+  if (state.raysArrived.size() != state.radiosity.size())
+    throw std::logic_error("a solve checkpoint needs the rays of every element");
   writeAtomically(path, [&](const std::string &temporary) {
     std::ofstream out(temporary, std::ios::binary);
     if (!out) throw std::runtime_error("cannot open the temporary file");
@@ -36,12 +39,14 @@ void writeStochasticCheckpoint(const std::string &path, const std::string &job, 
     out.write(job.data(), std::streamsize(job.size()));
     put(uint64_t(state.radiosity.size())), put(int32_t(kBandCount));
     put(int32_t(state.iteration)), put(uint8_t(state.emissionFirst)), put(state.formFactorRays), put(state.seconds);
-    put(uint8_t(!state.lightGain.empty()));
-    auto array = [&](const std::vector<Bands> &v) {
-      out.write(reinterpret_cast<const char *>(v.data()), std::streamsize(v.size() * sizeof(Bands)));
+    put(uint8_t(!state.lightGain.empty())), put(uint8_t(!state.transmittedDirect.empty()));
+    auto array = [&](const auto &v) {
+      out.write(reinterpret_cast<const char *>(v.data()), std::streamsize(v.size() * sizeof(v[0])));
     };
     forEachStateArray(state, array);
     if (!state.lightGain.empty()) array(state.lightGain);
+    if (!state.transmittedDirect.empty()) array(state.transmittedDirect), array(state.transmittedIndirect);
+    array(state.raysArrived);
     out.flush();
     if (!out) throw std::runtime_error("write failed (disk full?)");
   });
@@ -74,23 +79,25 @@ StochasticCheckpoint readStochasticCheckpoint(const std::string &path, const std
     fail("it belongs to another job (a different scene file, solver, option or seed); remove it to start afresh");
   uint64_t count = 0;
   int32_t bands = 0, iteration = 0;
-  uint8_t emissionFirst = 0, hasLightGain = 0;
+  uint8_t emissionFirst = 0, hasLightGain = 0, hasTransmitted = 0;
   StochasticCheckpoint state;
   get(count, "the header"), get(bands, "the header"), get(iteration, "the header");
   get(emissionFirst, "the header"), get(state.formFactorRays, "the header"), get(state.seconds, "the header");
-  get(hasLightGain, "the header");
+  get(hasLightGain, "the header"), get(hasTransmitted, "the header");
   if (count != elements || bands != kBandCount)
     fail(fmt::format("it holds {} elements of {} bands, the mesh has {} of {}", count, bands, elements, kBandCount));
-  if (iteration < 0 || emissionFirst > 1 || hasLightGain > 1 || !(state.seconds >= 0))
+  if (iteration < 0 || emissionFirst > 1 || hasLightGain > 1 || hasTransmitted > 1 || !(state.seconds >= 0))
     fail("its header holds impossible values");
   state.iteration = iteration;
   state.emissionFirst = emissionFirst != 0;
-  auto array = [&](std::vector<Bands> &v) {
+  auto array = [&](auto &v) {
     v.resize(elements);
-    bytes(v.data(), elements * sizeof(Bands), "the element values");
+    bytes(v.data(), elements * sizeof(v[0]), "the element values");
   };
   forEachStateArray(state, array);
   if (hasLightGain) array(state.lightGain);
+  if (hasTransmitted) array(state.transmittedDirect), array(state.transmittedIndirect);
+  array(state.raysArrived);
   if (in.peek() != std::char_traits<char>::eof()) fail("it has bytes after the element values");
   return state;
 }

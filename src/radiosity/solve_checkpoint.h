@@ -1,8 +1,9 @@
 // The stochastic solver's checkpoint (radiosity/stochastic_jacobi.cpp): after
 // an iteration, every few seconds and when stopped, the per-element state it
 // carries into the next one — radiosity, its direct and indirect parts, the
-// unshot radiosity, the irradiance, the point lights' light still to shoot
-// — and the iteration count. Each iteration draws its rays from generators
+// unshot radiosity, the irradiance, the point lights' light still to shoot,
+// the light through translucent faces, the rays each element received —
+// and the iteration count. Each iteration draws its rays from generators
 // seeded by (seed, chunk, iteration), so a solve resumed from the state after
 // iteration k ends with the very solution of one never stopped.
 //
@@ -34,6 +35,9 @@ struct StochasticCheckpoint {
   double seconds = 0;  ///< solve time before the checkpoint
   std::vector<Bands> radiosity, direct, indirect, unshot, irradiance;
   std::vector<Bands> lightGain;  ///< the point lights' reflected light not shot yet (may be empty)
+  /// The light through translucent faces (Solution::transmittedDirect; empty when nothing is translucent).
+  std::vector<Bands> transmittedDirect, transmittedIndirect;
+  std::vector<double> raysArrived;  ///< per element: the rays that brought its reflected light
 };
 
 /// Writes it atomically (std::runtime_error naming the file on failure).

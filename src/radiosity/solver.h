@@ -46,6 +46,10 @@ struct SolverOptions {
   /// Stochastic: rays in the first iteration per element (later iterations
   /// shoot fewer, in proportion to the unshot power left).
   int raysPerElement = 64;
+  /// Stochastic: the direct light exact at the mesh's nodes
+  /// (radiosity/node_direct_light.h) and the rays for the reflected light
+  /// only; false: the first iteration's rays shoot the emission too.
+  bool directAtNodes = true;
   int refinementRounds = 6;
   /// hierarchical-exact (radiosity/hierarchical_exact.cpp): tolerances relative to
   /// the scene's mean first-bounce radiosity (the area mean of ρ·H_direct).

@@ -25,7 +25,7 @@ ParameterSpec meshSize() {
           kPositive,
           std::numeric_limits<double>::infinity(),
           {},
-          "1/8 of the scene's largest extent"};
+          "1/8 of the scene's largest extent (stochastic with direct=nodes: 1/32)"};
 }
 
 ParameterSpec maxElements() {
@@ -113,6 +113,16 @@ ParameterSpec raysPerElement() {
           100000};
 }
 
+ParameterSpec directLight() {
+  ParameterSpec spec{
+      "direct", ParameterType::Choice, SolverOptions{}.directAtNodes ? "nodes" : "rays",
+      "the light straight from the emitters: nodes (exact at every mesh node by backprojection, no noise; the rays "
+      "carry the reflected light only, smoothed where the elements are too small for their rays) or rays (shot "
+      "with the first iteration's rays like the rest, per element: Neumann et al. 1994)"};
+  spec.choices = {"nodes", "rays"};
+  return spec;
+}
+
 ParameterSpec hemicubeResolution() {
   return {"hemicube-resolution",
           ParameterType::Integer,
@@ -165,11 +175,12 @@ const ParameterTable &solverParameters(const std::string &name) {
             {"link-threshold", ParameterType::Real, text(SolverOptions{}.linkThreshold),
              "link when F·B_source is below this fraction of the largest emitted radiosity (BF refinement)", 0, 1},
             importance()})},
-      {"stochastic", withCommon({raysPerElement(), adaptiveRounds(), adaptiveThreshold()})},
+      {"stochastic", withCommon({raysPerElement(), directLight(), adaptiveRounds(), adaptiveThreshold()})},
       {"hierarchical-exact", withCommon({quality()})},
       // What "auto" may pick (resolveSolverName): hierarchical-exact or
       // stochastic, and hierarchical when asked for importance.
-      {"auto", withCommon({quality(), raysPerElement(), adaptiveRounds(), adaptiveThreshold(), importance()})},
+      {"auto",
+       withCommon({quality(), raysPerElement(), directLight(), adaptiveRounds(), adaptiveThreshold(), importance()})},
   };
   std::string names;
   for (const auto &[solver, table] : tables) {
@@ -220,6 +231,7 @@ void applySolverParameters(const ParameterValues &given, const Scene &scene, Sol
   if (has("link-threshold")) options.linkThreshold = p.real("link-threshold");
   if (has("importance")) options.importance = p.flag("importance");
   if (has("rays-per-element")) options.raysPerElement = int(p.integer("rays-per-element"));
+  if (has("direct")) options.directAtNodes = p.choice("direct") == "nodes";
   if (has("adaptive-rounds")) {
     if (p.given("adaptive-threshold") && !p.given("adaptive-rounds"))
       throw InputError(p.origin("adaptive-threshold"), "needs adaptive-rounds");

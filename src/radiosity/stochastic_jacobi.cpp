@@ -15,10 +15,18 @@
 //
 // The estimate is noisy: an element hit by k rays has a relative error of
 // about 1/√k. `raysPerElement` sets the first iteration's N as a multiple of
-// the element count. The first iteration shoots emission only, so `direct`
-// is kept apart from `indirect` as in the progressive solver. Deterministic:
-// rays are drawn in fixed chunks with their own generators, whatever the
-// thread count.
+// the element count. Deterministic: rays are drawn in fixed chunks with
+// their own generators, whatever the thread count.
+//
+// The direct light is not left to the rays by default (directAtNodes): it is
+// computed exactly at the mesh's nodes and averaged over each element
+// (node_direct_light.h), so shadows and the shading of a tessellated model
+// carry no noise; the rays then shoot the reflected light only, and the
+// display reads it at the nodes through a density estimate wherever an
+// element is too small to hold enough rays of its own
+// (reflected_light_density.h). With direct=rays the first iteration shoots
+// the emission as the rest, and `direct` is kept apart from `indirect` as in
+// the progressive solver.
 //
 // Several MPI ranks (cluster/cluster.h) split each iteration's chunks, rank
 // r taking every chunk c with c mod N = r, and sum the power that arrived
@@ -31,10 +39,14 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include "cluster/cluster.h"
 #include "radiosity/backprojection.h"
+#include "radiosity/node_direct_light.h"
+#include "radiosity/reflected_light_density.h"
 #include "radiosity/solve_checkpoint.h"
 #include "radiosity/solver.h"
 #include "radiosity/transmission.h"
@@ -56,6 +68,10 @@ struct Deposit {
 /// shot power, far below one ray's share of it.
 constexpr double kArrivalScale = 0x1.0p60 / kBandCount;
 
+/// Rays a node's elements must hold for their own mean to be its reflected
+/// light (reflected_light_density.h): 400 rays, a relative error of about 5 %.
+constexpr double kEnoughRays = 400;
+
 }  // namespace
 
 void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOptions &options,
@@ -68,6 +84,7 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
   constexpr size_t kChunk = 4096;
 
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  const bool timing = std::getenv("RADIANT_TIMING") != nullptr;
   // Where a ray lands: a face meshed as one element is that element, found
   // without reading its patch (4 bytes a face instead of a patch record and
   // its corners: most of a 10⁶-triangle model's faces).
@@ -81,26 +98,51 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
     wholeFaceElement[f] =
         patches <= 1 && patch.treeRoot < 0 && patch.elementCount == 1 ? int32_t(patch.firstElement) : kLocate;
   }
+  std::vector<double> raysArrived(n, 0.0);  // per element, over the iterations
   const int maxIterations = options.maxIterations > 0 ? options.maxIterations : 1000;
 
-  // Point lights shoot first, exactly (backprojection.h): ρH is direct light
-  // already received, and is shot on as reflected light once the emission
-  // has been (iteration 1 stays the emitters' direct light).
-  // Through a translucent face (transmission.h) the other side gains τH of
-  // what arrives, shot on with the reflected light.
   const ElementTransmission transmission(tracer.scene(), s);
-  std::vector<Bands> lightGain;
-  if (const std::vector<Bands> h = pointLightIrradianceOfElements(tracer, s); !h.empty()) {
-    lightGain.assign(n, Bands(0.0));
-    for (size_t e = 0; e < n; ++e) {
-      lightGain[e] += s.reflectance[e] * h[e];
-      transmission.pass(e, h[e], [&](uint32_t to, const Bands &gain) { lightGain[to] += gain; });
-      s.irradiance[e] += h[e];
-    }
-    for (size_t e = 0; e < n; ++e) s.radiosity[e] += lightGain[e], s.direct[e] += lightGain[e];
-  }
+  // With the direct light at the nodes (node_direct_light.h), each element
+  // starts from ρ·H_direct, its exact irradiance's mean over it, as if the
+  // emission had been shot; the rays carry the reflected light only.
+  std::vector<Bands> lightGain, elementDirect;
   bool emissionFirst = false;
-  for (size_t e = 0; e < n && !emissionFirst; ++e) emissionFirst = s.unshot[e].max() > 0;
+  if (options.directAtNodes) {
+    MeshDirectLight light = directLightOfMesh(tracer, s, options.threads);
+    s.nodeDirectIrradiance = std::move(light.atNodes);
+    elementDirect = std::move(light.ofElements);
+    if (timing)
+      std::fprintf(stderr, "  %-28s %.3f s\n", "direct light at the nodes",
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    if (!transmission.empty()) s.transmittedDirect.assign(n, Bands(0.0)), s.transmittedIndirect.assign(n, Bands(0.0));
+    for (size_t e = 0; e < n; ++e) s.unshot[e] = Bands(0.0);  // the emission has arrived
+    for (size_t e = 0; e < n; ++e) {
+      const Bands &h = elementDirect[e];
+      const Bands gain = s.reflectance[e] * h;
+      s.irradiance[e] += h;
+      s.radiosity[e] += gain, s.direct[e] += gain, s.unshot[e] += gain;
+      transmission.pass(e, h, [&](uint32_t to, const Bands &through) {
+        s.radiosity[to] += through, s.direct[to] += through, s.unshot[to] += through;
+        s.transmittedDirect[to] += through;
+      });
+    }
+  } else {
+    // Point lights shoot first, exactly (backprojection.h): ρH is direct light
+    // already received, and is shot on as reflected light once the emission
+    // has been (iteration 1 stays the emitters' direct light).
+    // Through a translucent face (transmission.h) the other side gains τH of
+    // what arrives, shot on with the reflected light.
+    if (const std::vector<Bands> h = pointLightIrradianceOfElements(tracer, s); !h.empty()) {
+      lightGain.assign(n, Bands(0.0));
+      for (size_t e = 0; e < n; ++e) {
+        lightGain[e] += s.reflectance[e] * h[e];
+        transmission.pass(e, h[e], [&](uint32_t to, const Bands &gain) { lightGain[to] += gain; });
+        s.irradiance[e] += h[e];
+      }
+      for (size_t e = 0; e < n; ++e) s.radiosity[e] += lightGain[e], s.direct[e] += lightGain[e];
+    }
+    for (size_t e = 0; e < n && !emissionFirst; ++e) emissionFirst = s.unshot[e].max() > 0;
+  }
   auto shootLightGain = [&] {
     for (size_t e = 0; e < lightGain.size(); ++e) s.unshot[e] += lightGain[e];
     lightGain.clear();
@@ -116,6 +158,9 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
     s.radiosity = std::move(saved.radiosity), s.direct = std::move(saved.direct);
     s.indirect = std::move(saved.indirect), s.unshot = std::move(saved.unshot);
     s.irradiance = std::move(saved.irradiance), lightGain = std::move(saved.lightGain);
+    s.transmittedDirect = std::move(saved.transmittedDirect);
+    s.transmittedIndirect = std::move(saved.transmittedIndirect);
+    raysArrived = std::move(saved.raysArrived);
     emissionFirst = saved.emissionFirst;
     s.stats.formFactorRays = saved.formFactorRays;
     s.stats.iterations = saved.iteration;
@@ -133,6 +178,8 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
     state.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     state.radiosity = s.radiosity, state.direct = s.direct, state.indirect = s.indirect;
     state.unshot = s.unshot, state.irradiance = s.irradiance, state.lightGain = lightGain;
+    state.transmittedDirect = s.transmittedDirect, state.transmittedIndirect = s.transmittedIndirect;
+    state.raysArrived = raysArrived;
     writeStochasticCheckpoint(checkpoint.path, checkpoint.job, state);
     lastCheckpoint = std::chrono::steady_clock::now();
   };
@@ -241,14 +288,19 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
       (direct ? s.direct[e] : s.indirect[e]) += gain;
       s.unshot[e] += gain;
     };
+    auto passedTo = [&](size_t e, const Bands &gain) {
+      gainAt(e, gain);
+      if (s.hasTransmitted()) s.transmittedIndirect[e] += gain;
+    };
     for (size_t e = 0; e < n; ++e) {
       Bands power;
       for (int b = 0; b < kBandCount; ++b) power[b] = double(arrived[e * kBandCount + b]) / unitsPerWatt;
       if (power.max() <= 0) continue;
+      raysArrived[e] += power.average() / powerPerRay;
       Bands irradiance = power / s.mesh.elements[e].area;
       s.irradiance[e] += irradiance;
       gainAt(e, s.reflectance[e] * irradiance);
-      transmission.pass(e, irradiance, gainAt);
+      transmission.pass(e, irradiance, passedTo);
     }
     if (!lightGain.empty()) shootLightGain();
     s.stats.formFactorRays += rays;
@@ -274,6 +326,13 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
   s.stats.residual = unshotPower.average() / emitted;
   s.stats.escapedPower = s.stats.emittedPower - s.stats.absorbedPower - unshotPower;
   s.ambient = Bands(0.0);
+  if (options.directAtNodes) {
+    // The reflected light's irradiance at the nodes, formed from the
+    // elements' as nodeRadiosity would be; the display adds ρ̄·H_direct.
+    std::vector<Bands> reflectedPower(n);
+    for (size_t e = 0; e < n; ++e) reflectedPower[e] = (s.irradiance[e] - elementDirect[e]) * s.mesh.elements[e].area;
+    s.nodeIndirectIrradiance = reflectedIrradianceAtNodes(s, reflectedPower, raysArrived, kEnoughRays, options.threads);
+  }
 }
 
 }  // namespace radiant

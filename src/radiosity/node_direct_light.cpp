@@ -1,0 +1,152 @@
+#include "radiosity/node_direct_light.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "cluster/cluster.h"
+#include "radiosity/backprojection.h"
+#include "util/sampling.h"
+
+namespace radiant {
+
+namespace {
+
+/// Evaluates f(i) → Bands for i < count, each on one MPI rank (i mod N), in
+/// parallel, and sums the ranks' results: every rank gets every value, and
+/// x + 0 = x keeps them bit for bit one process's.
+template <typename F>
+std::vector<Bands> evaluateSplit(size_t count, int threads, const F &f) {
+  const size_t ranks = size_t(cluster::size()), rank = size_t(cluster::rank());
+  std::vector<double> values(count * kBandCount, 0.0);
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(size_t(0), count, [&](size_t i) {
+      if (i % ranks != rank) return;
+      const Bands h = f(i);
+      for (int b = 0; b < kBandCount; ++b) values[i * kBandCount + b] = h[b];
+    });
+  });
+  cluster::sumOnAllRanks(values.data(), values.size());
+  std::vector<Bands> result(count);
+  for (size_t i = 0; i < count; ++i)
+    for (int b = 0; b < kBandCount; ++b) result[i][b] = values[i * kBandCount + b];
+  return result;
+}
+
+/// The distance from `centre` to the nearest light, emitter polygons taken
+/// as balls about their centroids: the scale over which the direct light varies.
+double nearestLight(const Scene &scene, const DirectIrradiance &direct, const Vec3 &centre) {
+  double nearest = INFINITY;
+  for (const PointLight &light : scene.lights)
+    nearest = std::min(nearest, std::max(length(light.position - centre) - light.halfLength, 0.0));
+  for (const EmitterPolygon &e : direct.emitters()) {
+    const std::span<const Vec3> corners(e.corners.data(), size_t(e.vertexCount));
+    const Vec3 c = polygonCentroid(corners);
+    double radius = 0;
+    for (const Vec3 &p : corners) radius = std::max(radius, length(p - c));
+    nearest = std::min(nearest, std::max(length(c - centre) - radius, 0.0));
+  }
+  return nearest;
+}
+
+/// The midpoint rule on an n × n lattice of the element (quads: bilinear
+/// cells; triangles: the centroids of the n² sub-triangles), as
+/// meanPointLightIrradiance, with every light.
+Bands latticeMean(const DirectIrradiance &direct, const std::vector<Vec3> &polygon, const Vec3 &normal, int n) {
+  Bands sum(0.0);
+  int count = 0;
+  if (polygon.size() == 4) {
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const double u = (i + 0.5) / n, v = (j + 0.5) / n;
+        const Vec3 x = polygon[0] * ((1 - u) * (1 - v)) + polygon[1] * (u * (1 - v)) + polygon[2] * (u * v) +
+                       polygon[3] * ((1 - u) * v);
+        sum += direct.irradiance(x, normal), ++count;
+      }
+  } else {
+    const Vec3 du = (polygon[1] - polygon[0]) / double(n), dv = (polygon[2] - polygon[0]) / double(n);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; i + j < n; ++j) {
+        const Vec3 base = polygon[0] + du * double(i) + dv * double(j);
+        sum += direct.irradiance(base + (du + dv) / 3.0, normal), ++count;  // upright
+        if (i + j + 1 < n) sum += direct.irradiance(base + (du + dv) * (2.0 / 3.0), normal), ++count;
+      }
+  }
+  return count > 0 ? sum / double(count) : Bands(0.0);
+}
+
+}  // namespace
+
+MeshDirectLight directLightOfMesh(const RayTracer &tracer, const Solution &solution, int threads,
+                                  size_t maxExactOccluders) {
+  const RadiosityMesh &mesh = solution.mesh;
+  const Scene &scene = tracer.scene();
+  const DirectIrradiance direct(scene, tracer, maxExactOccluders);
+  MeshDirectLight light;
+  light.atNodes.assign(mesh.nodes.size(), Bands(0.0));
+  light.ofElements.assign(mesh.elements.size(), Bands(0.0));
+  if (direct.empty() || mesh.nodes.empty()) return light;
+
+  // At the nodes: one evaluation per pool, with the mean of its patches'
+  // normals (the smooth surface the facets stand for), shared by all of them.
+  const std::vector<uint32_t> pool = solution.nodePools();
+  std::vector<Vec3> normalSum(mesh.nodes.size());
+  for (uint32_t v = 0; v < pool.size(); ++v) normalSum[pool[v]] += mesh.patches[mesh.nodePatch[v]].normal;
+  std::vector<uint32_t> heads;
+  for (uint32_t v = 0; v < pool.size(); ++v)
+    if (pool[v] == v) heads.push_back(v);
+  const std::vector<Bands> atHeads = evaluateSplit(heads.size(), threads, [&](size_t i) {
+    const uint32_t v = heads[i];
+    const Patch &patch = mesh.patches[mesh.nodePatch[v]];
+    // A node on the patch's boundary may lie in the plane of a wall that
+    // stands there; the light it receives is the limit from inside the
+    // patch, so evaluate a hair's breadth towards the patch's interior
+    // (as DirectLightField::evaluate does).
+    Vec3 centre;
+    for (int k = 0; k < patch.vertexCount; ++k) centre += patch.corners[k];
+    centre = centre / patch.vertexCount;
+    const Vec3 x = mesh.nodes[v] + (centre - mesh.nodes[v]) * 1e-7;
+    const double len = length(normalSum[v]);
+    return direct.irradiance(x, len > 0 ? normalSum[v] / len : patch.normal);
+  });
+  for (size_t i = 0; i < heads.size(); ++i) light.atNodes[heads[i]] = atHeads[i];
+  for (uint32_t v = 0; v < pool.size(); ++v) light.atNodes[v] = light.atNodes[pool[v]];
+  // A T-vertex takes its edge's interpolation, as every node field does, so
+  // the display does not crack there.
+  for (const RadiosityMesh::TVertex &t : mesh.tVertices)
+    light.atNodes[t.node] = light.atNodes[t.edgeStart] * (1.0 - t.t) + light.atNodes[t.edgeEnd] * double(t.t);
+
+  // Over the elements: the corners' mean where the element is tiny against
+  // the distance over which the light varies (its error is then of order
+  // (size/distance)², far below the rays' noise), a lattice elsewhere.
+  constexpr double kTiny = 0.1;  // 4·size/distance below this: the corners
+  std::vector<uint32_t> large;
+  std::vector<int> lattice(mesh.elements.size(), 0);
+  for (uint32_t e = 0; e < mesh.elements.size(); ++e) {
+    const Element &element = mesh.elements[e];
+    double size = 0;
+    for (int k = 0; k < element.vertexCount; ++k)
+      size = std::max(size,
+                      length(mesh.nodes[element.nodes[(k + 1) % element.vertexCount]] - mesh.nodes[element.nodes[k]]));
+    const double nearest = nearestLight(scene, direct, element.centre);
+    const double ratio = 4.0 * size / std::max(nearest, 1e-9 * size);
+    if (ratio <= kTiny) {
+      for (int k = 0; k < element.vertexCount; ++k) light.ofElements[e] += light.atNodes[element.nodes[k]];
+      light.ofElements[e] = light.ofElements[e] / double(element.vertexCount);
+    } else {
+      lattice[e] = std::clamp(int(std::ceil(ratio)), 3, 16);
+      large.push_back(e);
+    }
+  }
+  const std::vector<Bands> means = evaluateSplit(large.size(), threads, [&](size_t i) {
+    const uint32_t e = large[i];
+    return latticeMean(direct, mesh.polygon(e), mesh.normalOf(e), lattice[e]);
+  });
+  for (size_t i = 0; i < large.size(); ++i) light.ofElements[large[i]] = means[i];
+  return light;
+}
+
+}  // namespace radiant
