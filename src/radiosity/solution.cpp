@@ -108,9 +108,9 @@ std::vector<uint32_t> Solution::nodePools() const {
   return pool;
 }
 
-void Solution::shareNodesAcrossPatches(std::vector<Bands> &sums, std::vector<double> &weight) const {
+void Solution::shareNodesAcrossPatches(std::vector<Bands> &sums, std::vector<double> &weight,
+                                       const std::vector<uint32_t> &pool) const {
   // A pool's nodes share its sums, so the interpolated radiosity has no seam there.
-  const std::vector<uint32_t> pool = nodePools();
   for (uint32_t v = 0; v < pool.size(); ++v)
     if (pool[v] != v) sums[pool[v]] += sums[v], weight[pool[v]] += weight[v];
   for (uint32_t v = 0; v < pool.size(); ++v)
@@ -118,6 +118,11 @@ void Solution::shareNodesAcrossPatches(std::vector<Bands> &sums, std::vector<dou
 }
 
 std::vector<Bands> Solution::nodeValues(const std::vector<Bands> &perElement) const {
+  return nodeValues(perElement, nodePools());
+}
+
+std::vector<Bands> Solution::nodeValues(const std::vector<Bands> &perElement,
+                                        const std::vector<uint32_t> &pools) const {
   std::vector<double> weight(mesh.nodes.size(), 0.0);
   std::vector<Bands> values(mesh.nodes.size(), Bands(0.0));
   for (uint32_t e = 0; e < mesh.elements.size(); ++e) {
@@ -127,7 +132,7 @@ std::vector<Bands> Solution::nodeValues(const std::vector<Bands> &perElement) co
       weight[element.nodes[k]] += element.area;
     }
   }
-  shareNodesAcrossPatches(values, weight);
+  shareNodesAcrossPatches(values, weight, pools);
   for (size_t v = 0; v < values.size(); ++v)
     if (weight[v] > 0) values[v] = values[v] / weight[v];
   applyTVertices(values);
@@ -144,8 +149,10 @@ void Solution::updateNodesAndErrors() {
   std::vector<Bands> display(mesh.elements.size());
   for (uint32_t e = 0; e < mesh.elements.size(); ++e)
     display[e] = atNodes ? emission[e] + (reflectance[e] + transmittanceOf(e)) * ambient : displayRadiosity(e);
-  nodeRadiosity = nodeValues(display);
-  nodeReflectance = nodeValues(reflectance);
+  // The pools once for every field (a sort of the nodes: 0.3 s at 2·10⁶).
+  const std::vector<uint32_t> pools = nodePools();
+  nodeRadiosity = nodeValues(display, pools);
+  nodeReflectance = nodeValues(reflectance, pools);
   if (atNodes) {
     // The reflected part from the values computed at the nodes, ρ̄H there;
     // T-vertices again from their edges' ends, so the sum does not crack.
@@ -158,7 +165,7 @@ void Solution::updateNodesAndErrors() {
     if (hasTransmitted()) {
       std::vector<Bands> through(elementCount());
       for (size_t e = 0; e < elementCount(); ++e) through[e] = transmittedDirect[e] + transmittedIndirect[e];
-      const std::vector<Bands> atNode = nodeValues(through);
+      const std::vector<Bands> atNode = nodeValues(through, pools);
       for (size_t v = 0; v < mesh.nodes.size(); ++v) nodeRadiosity[v] += atNode[v];
     }
   }

@@ -117,6 +117,8 @@ struct Solution {
   /// the patches of one smooth surface, T-vertices on their edges), so two
   /// such fields interpolate consistently and may be subtracted.
   std::vector<Bands> nodeValues(const std::vector<Bands> &perElement) const;
+  /// The same with the pools given (nodePools()), for several fields at once.
+  std::vector<Bands> nodeValues(const std::vector<Bands> &perElement, const std::vector<uint32_t> &pools) const;
   /// A field of node values (nodeRadiosity or from nodeValues) interpolated at a location.
   Bands interpolate(const std::vector<Bands> &values, const MeshLocation &location) const;
   /// Recomputes nodeRadiosity, nodeReflectance and errorEstimate from the element radiosities (including ambient).
@@ -129,7 +131,8 @@ struct Solution {
 
  private:
   /// Pools the area-weighted sums of coincident nodes of neighbouring patches of one smooth surface.
-  void shareNodesAcrossPatches(std::vector<Bands> &sums, std::vector<double> &weight) const;
+  void shareNodesAcrossPatches(std::vector<Bands> &sums, std::vector<double> &weight,
+                               const std::vector<uint32_t> &pool) const;
   /// Sets every T-vertex to the mean of its edge's ends, coarse to fine, so interpolation does not crack.
   void applyTVertices(std::vector<Bands> &values) const;
 

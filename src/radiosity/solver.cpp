@@ -73,10 +73,34 @@ std::string resolveSolverName(const std::string &name, size_t patches, bool impo
   return patches <= kAutoExactPatches && emitters <= kAutoExactEmitters ? "hierarchical-exact" : "stochastic";
 }
 
-std::string resolveSolverName(const std::string &name, const Scene &scene, bool importance) {
+namespace {
+
+/// The faces of an emitting material (either side) and the front faces.
+std::pair<size_t, size_t> countEmittersAndFaces(const Scene &scene) {
   size_t emitters = 0, faces = 0;
   for (const Face &f : scene.faces) emitters += scene.materials[f.material].isEmitter(), faces += !f.back;
+  return {emitters, faces};
+}
+
+constexpr size_t kMostNodeEmitters = 256;
+
+}  // namespace
+
+std::string resolveSolverName(const std::string &name, const Scene &scene, bool importance) {
+  const auto [emitters, faces] = countEmittersAndFaces(scene);
   return resolveSolverName(name, faces, importance, emitters);
+}
+
+bool directLightAtNodes(const SolverOptions &options, const Scene &scene) {
+  switch (options.stochasticDirect) {
+    case SolverOptions::StochasticDirect::Nodes:
+      return true;
+    case SolverOptions::StochasticDirect::Rays:
+      return false;
+    case SolverOptions::StochasticDirect::Auto:
+      break;
+  }
+  return countEmittersAndFaces(scene).first <= kMostNodeEmitters;
 }
 
 Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOptions &meshOptions,
@@ -110,7 +134,7 @@ Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOpt
       // is not (the 10⁶-triangle sphere in a room: RMSE 0.0057 at 1/8, 0.0023
       // at 1/32; docs/PERFORMANCE.md). A large scene's elements are its
       // model's facets, so this adds little.
-      if (options.directAtNodes) uniform.defaultEdgeFraction = 1.0 / 32;
+      if (directLightAtNodes(options, scene)) uniform.defaultEdgeFraction = 1.0 / 32;
     }
     Solution s = initialSolution(scene, buildMesh(scene, uniform));
     solveRadiosity(tracer, s, options, progress);

@@ -48,8 +48,11 @@ struct SolverOptions {
   int raysPerElement = 64;
   /// Stochastic: the direct light exact at the mesh's nodes
   /// (radiosity/node_direct_light.h) and the rays for the reflected light
-  /// only; false: the first iteration's rays shoot the emission too.
-  bool directAtNodes = true;
+  /// only (Nodes), or shot by the first iteration's rays with the rest
+  /// (Rays); Auto: Nodes for a scene of at most 256 emitting faces
+  /// (directLightAtNodes).
+  enum class StochasticDirect { Auto, Nodes, Rays };
+  StochasticDirect stochasticDirect = StochasticDirect::Auto;
   int refinementRounds = 6;
   /// hierarchical-exact (radiosity/hierarchical_exact.cpp): tolerances relative to
   /// the scene's mean first-bounce radiosity (the area mean of ρ·H_direct).
@@ -138,6 +141,12 @@ void applySolverParameters(const ParameterValues &given, const Scene &scene, Sol
 /// nodal values and error estimates.
 void solveRadiosity(const RayTracer &tracer, Solution &solution, const SolverOptions &options,
                     const SolverProgressCallback &progress = {});
+
+/// Whether the stochastic solver computes the direct light at the nodes:
+/// options.stochasticDirect, Auto being Nodes up to 256 emitting faces (the
+/// exact light costs a backprojection per emitter at every node: a furnace
+/// of 3750 glowing quads would take minutes) and Rays beyond.
+bool directLightAtNodes(const SolverOptions &options, const Scene &scene);
 
 /// "auto" resolved for a mesh of `patches` input patches; other names
 /// unchanged: hierarchical-exact up to 150 000 patches and 256 emitters, stochastic beyond.

@@ -25,7 +25,7 @@ ParameterSpec meshSize() {
           kPositive,
           std::numeric_limits<double>::infinity(),
           {},
-          "1/8 of the scene's largest extent (stochastic with direct=nodes: 1/32)"};
+          "1/8 of the scene's largest extent (stochastic with the direct light at the nodes: 1/32)"};
 }
 
 ParameterSpec maxElements() {
@@ -115,11 +115,12 @@ ParameterSpec raysPerElement() {
 
 ParameterSpec directLight() {
   ParameterSpec spec{
-      "direct", ParameterType::Choice, SolverOptions{}.directAtNodes ? "nodes" : "rays",
+      "direct", ParameterType::Choice, "auto",
       "the light straight from the emitters: nodes (exact at every mesh node by backprojection, no noise; the rays "
-      "carry the reflected light only, smoothed where the elements are too small for their rays) or rays (shot "
-      "with the first iteration's rays like the rest, per element: Neumann et al. 1994)"};
-  spec.choices = {"nodes", "rays"};
+      "carry the reflected light only, smoothed where the elements are too small for their rays), rays (shot with "
+      "the first iteration's rays like the rest, per element: Neumann et al. 1994), or auto (nodes for up to 256 "
+      "emitting faces, whose cost it multiplies)"};
+  spec.choices = {"auto", "nodes", "rays"};
   return spec;
 }
 
@@ -231,7 +232,12 @@ void applySolverParameters(const ParameterValues &given, const Scene &scene, Sol
   if (has("link-threshold")) options.linkThreshold = p.real("link-threshold");
   if (has("importance")) options.importance = p.flag("importance");
   if (has("rays-per-element")) options.raysPerElement = int(p.integer("rays-per-element"));
-  if (has("direct")) options.directAtNodes = p.choice("direct") == "nodes";
+  if (has("direct")) {
+    const std::string direct = p.choice("direct");
+    options.stochasticDirect = direct == "nodes"  ? SolverOptions::StochasticDirect::Nodes
+                               : direct == "rays" ? SolverOptions::StochasticDirect::Rays
+                                                  : SolverOptions::StochasticDirect::Auto;
+  }
   if (has("adaptive-rounds")) {
     if (p.given("adaptive-threshold") && !p.given("adaptive-rounds"))
       throw InputError(p.origin("adaptive-threshold"), "needs adaptive-rounds");

@@ -18,7 +18,7 @@
 // the element count. Deterministic: rays are drawn in fixed chunks with
 // their own generators, whatever the thread count.
 //
-// The direct light is not left to the rays by default (directAtNodes): it is
+// The direct light is not left to the rays by default (directLightAtNodes): it is
 // computed exactly at the mesh's nodes and averaged over each element
 // (node_direct_light.h), so shadows and the shading of a tessellated model
 // carry no noise; the rays then shoot the reflected light only, and the
@@ -107,7 +107,8 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
   // emission had been shot; the rays carry the reflected light only.
   std::vector<Bands> lightGain, elementDirect;
   bool emissionFirst = false;
-  if (options.directAtNodes) {
+  const bool directAtNodes = directLightAtNodes(options, tracer.scene());
+  if (directAtNodes) {
     MeshDirectLight light = directLightOfMesh(tracer, s, options.threads);
     s.nodeDirectIrradiance = std::move(light.atNodes);
     elementDirect = std::move(light.ofElements);
@@ -326,7 +327,7 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
   s.stats.residual = unshotPower.average() / emitted;
   s.stats.escapedPower = s.stats.emittedPower - s.stats.absorbedPower - unshotPower;
   s.ambient = Bands(0.0);
-  if (options.directAtNodes) {
+  if (directAtNodes) {
     // The reflected light's irradiance at the nodes, formed from the
     // elements' as nodeRadiosity would be; the display adds ρ̄·H_direct.
     std::vector<Bands> reflectedPower(n);
