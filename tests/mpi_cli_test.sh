@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # radiant under mpirun (docs/cluster.md): two and three ranks on one machine
 # write the very image and solution of one process, for the per-pixel methods
-# and the distributed stochastic solver; a render stopped under mpirun resumes
+# and the distributed stochastic and hierarchical-exact solvers; a render stopped under mpirun resumes
 # with another rank count; an error on the ranks ends the job. Skipped (77)
 # where radiant was built without MPI or mpirun is missing, unless
 # RADIANT_REQUIRE_MPI_TESTS=1 (CI). Usage: mpi_cli_test.sh path/to/radiant SOURCE_DIR
@@ -44,9 +44,22 @@ same_image "multipass" "$specular" --width 32 --height 32 --spp 6 --method multi
 # The distributed stochastic solve: the same solution (its file differs only in the time it took: compare images of it).
 "$radiant" solve "$cornell" --solver stochastic -q -o one.rad || fail "solve: one process"
 mpi 3 "$radiant" solve "$cornell" --solver stochastic -q -o three.rad || fail "solve: 3 ranks"
-"$radiant" render "$cornell" "${size[@]}" --spp 4 --method flat --solution one.rad -q -o solved1.exr
-"$radiant" render "$cornell" "${size[@]}" --spp 4 --method flat --solution three.rad -q -o solved3.exr
-cmp -s solved1.exr solved3.exr && pass || fail "solve: 3 ranks give another solution than one process"
+# interpolate reads the node values: the exact direct light and the reflected light's density estimate.
+for method in flat interpolate; do
+  "$radiant" render "$cornell" "${size[@]}" --spp 4 --method $method --solution one.rad -q -o solved1.exr
+  "$radiant" render "$cornell" "${size[@]}" --spp 4 --method $method --solution three.rad -q -o solved3.exr
+  cmp -s solved1.exr solved3.exr && pass || fail "solve: 3 ranks give another solution than one process ($method)"
+done
+
+# The distributed hierarchical-exact solve (auto's choice here): each rank estimates the links into the
+# receivers it owns and the direct light at every N-th point, and the ranks share them: the same solution.
+"$radiant" solve "$cornell" -q -o exact1.rad || fail "hierarchical-exact: one process"
+mpi 2 "$radiant" solve "$cornell" -o exact2.rad >exact2.log 2>&1 || fail "hierarchical-exact: 2 ranks"
+grep -q "hierarchical-exact solved" exact2.log && grep -q "summed" exact2.log && ! grep -q "summed 0.0 MB" exact2.log &&
+  pass || { fail "hierarchical-exact on 2 ranks shared no work:"; cat exact2.log; }
+"$radiant" render "$cornell" "${size[@]}" --spp 4 --method interpolate --solution exact1.rad -q -o exact1.exr
+"$radiant" render "$cornell" "${size[@]}" --spp 4 --method interpolate --solution exact2.rad -q -o exact2.exr
+cmp -s exact1.exr exact2.exr && pass || fail "hierarchical-exact: 2 ranks give another solution than one process"
 
 # A render stopped under mpirun (SIGTERM, as a batch system's time limit sends) resumes with another rank count.
 "$radiant" render "$cornell" --width 96 --height 96 --spp 512 -q -o whole.exr

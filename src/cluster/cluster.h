@@ -16,7 +16,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <string>
+#include <type_traits>
+#include <vector>
 
 namespace radiant::cluster {
 
@@ -56,6 +59,23 @@ void sumOnAllRanks(uint8_t *values, size_t count);
 void sumOnRoot(double *values, size_t count);
 void sumOnRoot(uint32_t *values, size_t count);
 void sumOnRoot(uint8_t *values, size_t count);
+/// Entries `which` of `values`, each computed by one rank (the one for
+/// which `owns(i)` is true) and not yet known to the others, on every rank
+/// afterwards, bit for bit: each rank contributes its own entries' bytes and
+/// zero bytes for the rest, and a byte-wise sum of one value and zeros is
+/// that value (a sum of doubles would turn −0 into +0). For a trivially
+/// copyable T (an estimate, a Bands).
+template <typename T, typename Owns>
+void shareOwnedEntries(std::vector<T> &values, const std::vector<size_t> &which, const Owns &owns) {
+  static_assert(std::is_trivially_copyable_v<T>, "entries travel as their bytes");
+  if (!distributed() || which.empty()) return;
+  std::vector<uint8_t> bytes(which.size() * sizeof(T), 0);
+  for (size_t k = 0; k < which.size(); ++k)
+    if (owns(which[k])) std::memcpy(&bytes[k * sizeof(T)], &values[which[k]], sizeof(T));
+  sumOnAllRanks(bytes.data(), bytes.size());
+  for (size_t k = 0; k < which.size(); ++k) std::memcpy(&values[which[k]], &bytes[k * sizeof(T)], sizeof(T));
+}
+
 /// Rank 0's value, on every rank (MPI_Bcast).
 int64_t fromRoot(int64_t value);
 double fromRoot(double value);

@@ -7,6 +7,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "cluster/cluster.h"
+
 namespace radiant {
 
 DirectLightField::Key DirectLightField::keyOf(uint32_t patch, const Vec3 &p) {
@@ -41,9 +43,14 @@ void DirectLightField::evaluate(const RadiosityMesh &mesh, const std::vector<std
     if (inserted) missing.push_back({patch, p});
   }
   std::vector<Bands> results(missing.size());
+  // With several MPI ranks each evaluates every N-th point, and they share
+  // the values (bit for bit: cluster::shareOwnedEntries).
+  const size_t ranks = size_t(cluster::size()), rank = size_t(cluster::rank());
+  auto owns = [&](size_t i) { return i % ranks == rank; };
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   arena.execute([&] {
     tbb::parallel_for(size_t(0), missing.size(), [&](size_t i) {
+      if (!owns(i)) return;
       const Patch &patch = mesh.patches[missing[i].first];
       // A point on the patch's boundary may lie in the plane of a wall that
       // stands there; the light it receives is the limit from inside the
@@ -55,6 +62,11 @@ void DirectLightField::evaluate(const RadiosityMesh &mesh, const std::vector<std
       results[i] = direct_.irradiance(x, patch.normal);
     });
   });
+  if (cluster::distributed()) {
+    std::vector<size_t> all(missing.size());
+    for (size_t i = 0; i < all.size(); ++i) all[i] = i;
+    cluster::shareOwnedEntries(results, all, owns);
+  }
   for (size_t i = 0; i < missing.size(); ++i) values_[keyOf(missing[i].first, missing[i].second)] = results[i];
 }
 

@@ -148,6 +148,9 @@ class ReflectedLightHierarchy {
   double error(uint32_t r, uint32_t s, double formFactor, double spreadOfF) const;
   void splitNode(uint32_t n);
   void refine(std::vector<PendingPair> pending);
+  /// The MPI rank that estimates the links into a receiver (a tree node or
+  /// cluster id): id mod ranks, all of them with one rank.
+  static bool ownsReceiver(uint32_t id);
   void initialiseNewLeaves();
   Bands pushPull(uint32_t n, const ReceiverPolynomial<Bands> &down, double &change, double &largest);
   /// One gather over every link, through the clusters to their patches (inside arena_).

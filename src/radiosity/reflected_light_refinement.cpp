@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cluster/cluster.h"
 #include "radiosity/reflected_light_hierarchy.h"
 
 namespace radiant {
@@ -123,6 +124,10 @@ bool ReflectedLightHierarchy::splitPair(uint32_t r, uint32_t s, bool clearShaft,
   return true;
 }
 
+bool ReflectedLightHierarchy::ownsReceiver(uint32_t id) {
+  return cluster::size() == 1 || id % uint32_t(cluster::size()) == uint32_t(cluster::rank());
+}
+
 void ReflectedLightHierarchy::refine(std::vector<PendingPair> pending) {
   // In batches from the back of the queue, so that the estimates held at
   // once (about 250 bytes each) stay bounded however many pairs wait.
@@ -155,8 +160,14 @@ void ReflectedLightHierarchy::refine(std::vector<PendingPair> pending) {
     }
     estimates.assign(count, LinkEstimate{});
     clusterEstimates.assign(count, ClusterLinkEstimate{});
+    // With several MPI ranks, each estimates the pairs whose receiver it
+    // owns (the links partitioned by receiver), and the estimates are then
+    // shared, so that every rank takes the same decisions below and holds
+    // the same links: the solution is one process's, bit for bit.
+    auto owns = [&](size_t i) { return ownsReceiver(batch[i].receiver); };
     arena_.execute([&] {
       tbb::parallel_for(size_t(0), count, [&](size_t i) {
+        if (!owns(i)) return;
         const uint32_t r = batch[i].receiver, s = batch[i].source;
         if (kind[i] == kTreeNodes)
           estimates[i] = estimator_.estimate(end(r), end(s), batch[i].clearShaft);
@@ -164,6 +175,31 @@ void ReflectedLightHierarchy::refine(std::vector<PendingPair> pending) {
           clusterEstimates[i] = estimateClusterLink(tracer_, hierarchyEnd(r), hierarchyEnd(s), kind[i] == kNearField);
       });
     });
+    if (cluster::distributed()) {
+      // What the decisions read of a tree-node link (a tenth of its
+      // estimate; the owner completes the shape of those kept, and shares
+      // them whole below), and every cluster link's estimate.
+      struct Decision {
+        double formFactor, spread;
+        int rays;
+        bool clearShaft;
+      };
+      std::vector<Decision> decisions(count);
+      std::vector<size_t> trees, clustered;
+      for (size_t i = 0; i < count; ++i) {
+        (kind[i] == kTreeNodes ? trees : clustered).push_back(i);
+        const LinkEstimate &e = estimates[i];
+        decisions[i] = {e.formFactor, e.spread, e.rays, e.clearShaft};
+      }
+      cluster::shareOwnedEntries(decisions, trees, owns);
+      for (size_t i : trees)
+        if (!owns(i)) {
+          LinkEstimate &e = estimates[i];
+          e.formFactor = decisions[i].formFactor, e.spread = decisions[i].spread;
+          e.rays = decisions[i].rays, e.clearShaft = decisions[i].clearShaft;
+        }
+      cluster::shareOwnedEntries(clusterEstimates, clustered, owns);
+    }
     kept.clear();
     for (size_t i = 0; i < count; ++i) {
       const uint32_t r = batch[i].receiver, s = batch[i].source;
@@ -189,9 +225,20 @@ void ReflectedLightHierarchy::refine(std::vector<PendingPair> pending) {
     arena_.execute([&] {
       tbb::parallel_for(size_t(0), kept.size(), [&](size_t k) {
         const size_t i = kept[k];
-        estimator_.completeShape(end(batch[i].receiver), end(batch[i].source), estimates[i]);
+        if (owns(i)) estimator_.completeShape(end(batch[i].receiver), end(batch[i].source), estimates[i]);
       });
     });
+    if (cluster::distributed()) {
+      // What a kept link's record takes of its completed estimate.
+      struct Shape {
+        ReceiverPolynomial<float> shape;
+        std::array<float, 2> moments;
+      };
+      std::vector<Shape> shapes(count);
+      for (size_t i : kept) shapes[i] = {estimates[i].shape, estimates[i].moments};
+      cluster::shareOwnedEntries(shapes, kept, owns);
+      for (size_t i : kept) estimates[i].shape = shapes[i].shape, estimates[i].moments = shapes[i].moments;
+    }
     for (size_t i : kept) {
       const uint32_t r = batch[i].receiver, s = batch[i].source;
       links_[r].push_back(static_cast<uint32_t>(records_.size()));
