@@ -99,20 +99,32 @@ Solution finelyMeshedFloor(bool panel) {
   return initialSolution(scene, buildMesh(scene, mesh));
 }
 
-/// Deposits of density `density` (W·m⁻²) on the elements facing `normalY`:
-/// a Poisson number of rays of mean `meanRays` each, every ray carrying
-/// density·A/meanRays.
-void deposit(const Solution &s, double normalY, double density, double meanRays, std::vector<Bands> &power,
-             std::vector<double> &rays, Pcg32 &rng) {
-  for (uint32_t e = 0; e < s.elementCount(); ++e) {
-    if (s.mesh.normalOf(e).y * normalY <= 0) continue;
-    // Poisson by inversion (the mean is small).
-    int k = 0;
-    for (double p = std::exp(-meanRays), cdf = p, u = rng.next(); u > cdf && k < 1000; cdf += p) p *= meanRays / ++k;
-    rays[e] = k;
-    power[e] = Bands(k * density * s.mesh.elements[e].area / meanRays);
+/// What landed on each element: power (W) and the rays that brought it.
+struct Deposits {
+  std::vector<Bands> power;
+  std::vector<double> rays;
+  explicit Deposits(const Solution &s) : power(s.elementCount(), Bands(0.0)), rays(s.elementCount(), 0.0) {}
+
+  /// Deposits of density `density` (W·m⁻²) on the elements facing
+  /// `normalY`: a Poisson number of rays of mean `meanRays` each, every ray
+  /// carrying density·A/meanRays.
+  void add(const Solution &s, double normalY, double density, double meanRays, Pcg32 &rng) {
+    for (uint32_t e = 0; e < s.elementCount(); ++e) {
+      if (s.mesh.normalOf(e).y * normalY <= 0) continue;
+      // Poisson by inversion (the mean is small).
+      int k = 0;
+      for (double p = std::exp(-meanRays), cdf = p, u = rng.next(); u > cdf && k < 1000; cdf += p) p *= meanRays / ++k;
+      rays[e] = k;
+      power[e] = Bands(k * density * s.mesh.elements[e].area / meanRays);
+    }
   }
-}
+  /// Their irradiance per element (W·m⁻²).
+  std::vector<Bands> irradiance(const Solution &s) const {
+    std::vector<Bands> h(s.elementCount());
+    for (uint32_t e = 0; e < s.elementCount(); ++e) h[e] = power[e] / s.mesh.elements[e].area;
+    return h;
+  }
+};
 
 TEST(ReflectedLightDensity, SparseRaysArePooledUntilTheirNoiseIsSmall) {
   // 4 rays per element on average: a node's own 4 elements hold about 16
@@ -120,15 +132,12 @@ TEST(ReflectedLightDensity, SparseRaysArePooledUntilTheirNoiseIsSmall) {
   // relative deviation over the nodes stays below 8 %, and the mean is the
   // density (the pooling is a weighted average of unbiased estimates).
   const Solution s = finelyMeshedFloor(false);
-  std::vector<Bands> power(s.elementCount(), Bands(0.0));
-  std::vector<double> rays(s.elementCount(), 0.0);
+  Deposits d(s);
   Pcg32 rng(7, 3);
-  deposit(s, 1, 2.0, 4.0, power, rays, rng);
-  const std::vector<Bands> h = reflectedIrradianceAtNodes(s, power, rays, 400, 0);
+  d.add(s, 1, 2.0, 4.0, rng);
+  const std::vector<Bands> h = reflectedIrradianceAtNodes(s, d.power, d.rays, 400, 0);
+  const std::vector<Bands> plain = s.nodeValues(d.irradiance(s));
   double sum = 0, squares = 0, rawSquares = 0;
-  std::vector<Bands> raw(s.elementCount());
-  for (uint32_t e = 0; e < s.elementCount(); ++e) raw[e] = power[e] / s.mesh.elements[e].area;
-  const std::vector<Bands> plain = s.nodeValues(raw);
   for (size_t v = 0; v < h.size(); ++v) {
     sum += h[v][0];
     squares += (h[v][0] / 2.0 - 1) * (h[v][0] / 2.0 - 1);
@@ -142,14 +151,11 @@ TEST(ReflectedLightDensity, SparseRaysArePooledUntilTheirNoiseIsSmall) {
 
 TEST(ReflectedLightDensity, NodesWithEnoughRaysKeepTheirElementsMean) {
   const Solution s = finelyMeshedFloor(false);
-  std::vector<Bands> power(s.elementCount(), Bands(0.0));
-  std::vector<double> rays(s.elementCount(), 0.0);
+  Deposits d(s);
   Pcg32 rng(11, 5);
-  deposit(s, 1, 2.0, 400.0, power, rays, rng);
-  const std::vector<Bands> h = reflectedIrradianceAtNodes(s, power, rays, 400, 0);
-  std::vector<Bands> perElement(s.elementCount());
-  for (uint32_t e = 0; e < s.elementCount(); ++e) perElement[e] = power[e] / s.mesh.elements[e].area;
-  const std::vector<Bands> plain = s.nodeValues(perElement);
+  d.add(s, 1, 2.0, 400.0, rng);
+  const std::vector<Bands> h = reflectedIrradianceAtNodes(s, d.power, d.rays, 400, 0);
+  const std::vector<Bands> plain = s.nodeValues(d.irradiance(s));
   size_t kept = 0;
   for (size_t v = 0; v < h.size(); ++v)
     if (std::abs(h[v][0] / plain[v][0] - 1) < 1e-12) ++kept;
@@ -161,12 +167,11 @@ TEST(ReflectedLightDensity, SurfacesFacingAwayFromEachOtherAreNeverPooled) {
   // A floor (density 2) and a panel's underside 1 mm above it (density 6),
   // one object: pooled together they would both read about 4.
   const Solution s = finelyMeshedFloor(true);
-  std::vector<Bands> power(s.elementCount(), Bands(0.0));
-  std::vector<double> rays(s.elementCount(), 0.0);
+  Deposits d(s);
   Pcg32 rng(13, 9);
-  deposit(s, 1, 2.0, 4.0, power, rays, rng);
-  deposit(s, -1, 6.0, 4.0, power, rays, rng);
-  const std::vector<Bands> h = reflectedIrradianceAtNodes(s, power, rays, 400, 0);
+  d.add(s, 1, 2.0, 4.0, rng);
+  d.add(s, -1, 6.0, 4.0, rng);
+  const std::vector<Bands> h = reflectedIrradianceAtNodes(s, d.power, d.rays, 400, 0);
   double floor = 0, panel = 0;
   size_t floorNodes = 0, panelNodes = 0;
   for (uint32_t v = 0; v < h.size(); ++v) {

@@ -373,27 +373,7 @@ Bands meanPointLightIrradiance(const DirectIrradiance &direct, const Scene &scen
   for (const PointLight &light : scene.lights)
     nearest = std::min(nearest, std::max(length(light.position - centre) - light.halfLength, 0.0));
   const int n = std::clamp(int(std::ceil(4.0 * size / std::max(nearest, 1e-9 * size))), 3, 16);
-  Bands sum(0.0);
-  int count = 0;
-  if (polygon.size() == 4) {
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j) {
-        const double u = (i + 0.5) / n, v = (j + 0.5) / n;
-        const Vec3 x = polygon[0] * ((1 - u) * (1 - v)) + polygon[1] * (u * (1 - v)) + polygon[2] * (u * v) +
-                       polygon[3] * ((1 - u) * v);
-        sum += direct.pointLightIrradiance(x, normal), ++count;
-      }
-  } else {
-    // The centroids of the n² equal sub-triangles of a regular subdivision.
-    const Vec3 du = (polygon[1] - polygon[0]) / double(n), dv = (polygon[2] - polygon[0]) / double(n);
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; i + j < n; ++j) {
-        const Vec3 base = polygon[0] + du * double(i) + dv * double(j);
-        sum += direct.pointLightIrradiance(base + (du + dv) / 3.0, normal), ++count;  // upright
-        if (i + j + 1 < n) sum += direct.pointLightIrradiance(base + (du + dv) * (2.0 / 3.0), normal), ++count;
-      }
-  }
-  return count > 0 ? sum / double(count) : Bands(0.0);
+  return latticeMean(polygon, n, [&](const Vec3 &x) { return direct.pointLightIrradiance(x, normal); });
 }
 
 std::vector<Bands> pointLightIrradianceOfElements(const RayTracer &tracer, const Solution &solution) {

@@ -22,6 +22,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "raytrace/face_tree.h"
@@ -58,6 +59,33 @@ struct EmitterPolygon {
 class RayTracer;
 class DirectIrradiance;
 struct Solution;
+
+/// The midpoint rule of f (a point → Bands) over a triangle or planar quad
+/// on an n × n lattice: a quad's n² bilinear cells' centres, a triangle's
+/// centroids of the n² equal sub-triangles of its regular subdivision.
+template <typename F>
+Bands latticeMean(std::span<const Vec3> polygon, int n, const F &f) {
+  Bands sum(0.0);
+  int count = 0;
+  if (polygon.size() == 4) {
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const double u = (i + 0.5) / n, v = (j + 0.5) / n;
+        sum += f(polygon[0] * ((1 - u) * (1 - v)) + polygon[1] * (u * (1 - v)) + polygon[2] * (u * v) +
+                 polygon[3] * ((1 - u) * v)),
+            ++count;
+      }
+  } else if (polygon.size() == 3) {
+    const Vec3 du = (polygon[1] - polygon[0]) / double(n), dv = (polygon[2] - polygon[0]) / double(n);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; i + j < n; ++j) {
+        const Vec3 base = polygon[0] + du * double(i) + dv * double(j);
+        sum += f(base + (du + dv) / 3.0), ++count;  // upright
+        if (i + j + 1 < n) sum += f(base + (du + dv) * (2.0 / 3.0)), ++count;
+      }
+  }
+  return count > 0 ? sum / double(count) : Bands(0.0);
+}
 
 /// The point lights' irradiance (DirectIrradiance::pointLightIrradiance)
 /// averaged over a triangle or planar quad of normal `normal` (the scene's

@@ -52,32 +52,6 @@ double nearestLight(const Scene &scene, const DirectIrradiance &direct, const Ve
   return nearest;
 }
 
-/// The midpoint rule on an n × n lattice of the element (quads: bilinear
-/// cells; triangles: the centroids of the n² sub-triangles), as
-/// meanPointLightIrradiance, with every light.
-Bands latticeMean(const DirectIrradiance &direct, const std::vector<Vec3> &polygon, const Vec3 &normal, int n) {
-  Bands sum(0.0);
-  int count = 0;
-  if (polygon.size() == 4) {
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j) {
-        const double u = (i + 0.5) / n, v = (j + 0.5) / n;
-        const Vec3 x = polygon[0] * ((1 - u) * (1 - v)) + polygon[1] * (u * (1 - v)) + polygon[2] * (u * v) +
-                       polygon[3] * ((1 - u) * v);
-        sum += direct.irradiance(x, normal), ++count;
-      }
-  } else {
-    const Vec3 du = (polygon[1] - polygon[0]) / double(n), dv = (polygon[2] - polygon[0]) / double(n);
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; i + j < n; ++j) {
-        const Vec3 base = polygon[0] + du * double(i) + dv * double(j);
-        sum += direct.irradiance(base + (du + dv) / 3.0, normal), ++count;  // upright
-        if (i + j + 1 < n) sum += direct.irradiance(base + (du + dv) * (2.0 / 3.0), normal), ++count;
-      }
-  }
-  return count > 0 ? sum / double(count) : Bands(0.0);
-}
-
 }  // namespace
 
 MeshDirectLight directLightOfMesh(const RayTracer &tracer, const Solution &solution, int threads,
@@ -143,7 +117,10 @@ MeshDirectLight directLightOfMesh(const RayTracer &tracer, const Solution &solut
   }
   const std::vector<Bands> means = evaluateSplit(large.size(), threads, [&](size_t i) {
     const uint32_t e = large[i];
-    return latticeMean(direct, mesh.polygon(e), mesh.normalOf(e), lattice[e]);
+    // The midpoint rule, as meanPointLightIrradiance, with every light.
+    const std::vector<Vec3> polygon = mesh.polygon(e);
+    const Vec3 &normal = mesh.normalOf(e);
+    return latticeMean(polygon, lattice[e], [&](const Vec3 &x) { return direct.irradiance(x, normal); });
   });
   for (size_t i = 0; i < large.size(); ++i) light.ofElements[large[i]] = means[i];
   return light;
