@@ -30,7 +30,8 @@ uint32_t contentFlags(const std::string &path) {
   return content;
 }
 
-constexpr uint32_t kGeometryStored = 1, kFacesStored = 2, kReflectanceStored = 8, kEmissionStored = 16;
+constexpr uint32_t kGeometryStored = 1, kFacesStored = 2, kReflectanceStored = 8, kEmissionStored = 16,
+                   kNodeIrradiancePooled = 1u << 11;
 
 /// Written and read back; the content flags of the file.
 uint32_t roundTrip(const Solution &s, const Scene &scene, Solution &back) {
@@ -67,6 +68,11 @@ TEST(SolutionFile, EverySolversMeshIsDerivedOnReading) {
     Solution back;
     const uint32_t content = roundTrip(s, scene, back);
     EXPECT_EQ(content & (kGeometryStored | kReflectanceStored | kEmissionStored), 0u) << std::hex << content;
+    // The stochastic solver's node irradiance (its direct light at the
+    // nodes) is the same at every node of a pool: stored once per pool.
+    if (std::string(c.solver) == "stochastic") {
+      EXPECT_NE(content & kNodeIrradiancePooled, 0u) << std::hex << content;
+    }
     test::expectSolutionReadBack(s, back);
   }
 }

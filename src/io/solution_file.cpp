@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "io/node_irradiance_pools.h"
 #include "io/solution_geometry.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
@@ -126,8 +127,10 @@ enum PassContent : uint32_t {
   kNodeIrradianceStored = 1u << 8,   ///< the irradiance at the nodes, direct and indirect (else none)
   kNodesOnCutsStored = 1u << 9,      ///< the list of nodes on a cut (else RadiosityMesh::nodeOnCut is empty)
   kTreeRadiosityStored = 1u << 10,   ///< B per tree node (hierarchical solvers; else none)
-  kKnownContent = (1u << 11) - 1,
+  kNodeIrradiancePooled = 1u << 11,  ///< with bit 8: one value per pool of nodes (io/node_irradiance_pools.h)
+  kKnownContent = (1u << 12) - 1,
 };
+
 /// Bit of a compact patch record's shape byte (bits 0–2 hold the vertex count).
 constexpr uint8_t kPatchCornersStored = 8;
 
@@ -180,7 +183,12 @@ void putSolution(Writer &w, const Solution &s, const Scene &scene) {
   if (!allZero(s.unshot)) content |= kUnshotStored;
   if (!allZero(transmittance)) content |= kTransmittanceStored;
   if (s.hasTransmitted()) content |= kTransmittedStored;
-  if (s.hasNodeIrradiance()) content |= kNodeIrradianceStored;
+  std::vector<uint32_t> pools;
+  if (s.hasNodeIrradiance()) {
+    content |= kNodeIrradianceStored;
+    pools = s.nodePools();
+    if (nodeIrradianceIsPooled(s, pools)) content |= kNodeIrradiancePooled;
+  }
   if (!m.nodeOnCut.empty()) content |= kNodesOnCutsStored;
   // Adaptive rounds of the other solvers refine trees but keep no B per tree node.
   if (!m.tree.empty() && s.treeRadiosity.size() == m.tree.size()) content |= kTreeRadiosityStored;
@@ -247,7 +255,14 @@ void putSolution(Writer &w, const Solution &s, const Scene &scene) {
     w.put(l.receiver), w.put(l.source), w.put(l.formFactor), w.put(l.visibleFraction);
     w.put(uint8_t(l.visibility)), w.put(l.carriedPower);
   }
-  if (content & kNodeIrradianceStored) w.putSingle(s.nodeDirectIrradiance), w.putSingle(s.nodeIndirectIrradiance);
+  if (content & kNodeIrradiancePooled) {
+    const std::vector<uint32_t> heads = poolHeads(pools);
+    w.put(uint32_t(heads.size()));
+    for (const std::vector<Bands> *values : {&s.nodeDirectIrradiance, &s.nodeIndirectIrradiance})
+      for (uint32_t v : heads) w.putSingle((*values)[v]);
+  } else if (content & kNodeIrradianceStored) {
+    w.putSingle(s.nodeDirectIrradiance), w.putSingle(s.nodeIndirectIrradiance);
+  }
   if (content & kNodesOnCutsStored) {
     std::vector<uint32_t> onCut;
     for (size_t v = 0; v < m.nodeOnCut.size(); ++v)
@@ -445,9 +460,14 @@ Solution getSolution(Reader &r, const Scene &scene) {
     l.visibility = static_cast<LinkVisibility>(visibility);
     l.carriedPower = r.get<float>();
   }
+  // Pooled: one value per pool, spread over its nodes once the mesh is whole (below).
+  const bool pooled = (content & kNodeIrradiancePooled) != 0;
+  if (pooled && !(content & kNodeIrradianceStored)) r.fail("pooled node irradiance without node irradiance");
   if (content & kNodeIrradianceStored) {
-    s.nodeDirectIrradiance = r.singleBands(nodes, "node irradiances");
-    s.nodeIndirectIrradiance = r.singleBands(nodes, "node irradiances");
+    const size_t count = pooled ? r.count(r.get<uint32_t>(), 2 * kBandCount * 4, "node irradiances") : nodes;
+    if (count > nodes) r.fail("more pools of node irradiance than nodes");
+    s.nodeDirectIrradiance = r.singleBands(count, "node irradiances");
+    s.nodeIndirectIrradiance = r.singleBands(count, "node irradiances");
     for (const std::vector<Bands> *v : {&s.nodeDirectIrradiance, &s.nodeIndirectIrradiance})
       for (const Bands &b : *v)
         if (!b.isFinite() || b.min() < 0) r.fail("a node's irradiance is negative or not finite");
@@ -563,6 +583,9 @@ Solution getSolution(Reader &r, const Scene &scene) {
   for (const Element &e : m.elements)
     if (!isFinite(e.centre) || !std::isfinite(e.area)) r.fail("an element's centre or area is not finite");
   m.buildPatchLookup();
+  // One value per pool, in the order of the pools' first nodes (the writer's: same mesh, same pools).
+  if (pooled)
+    if (const std::string wrong = spreadPooledNodeIrradiance(s); !wrong.empty()) r.fail(wrong);
   // Derived, not stored, and only after the checks above: the node values (ambient included) and
   // the error estimates, as the solver's last step made them (solveRadiosity).
   s.updateNodesAndErrors();
