@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # radiant under mpirun (docs/cluster.md): two and three ranks on one machine
 # write the very image and solution of one process, for the per-pixel methods
-# and the distributed stochastic and hierarchical-exact solvers; a render stopped under mpirun resumes
+# and the distributed stochastic, hierarchical-exact and hierarchical solvers; a render stopped under mpirun resumes
 # with another rank count; an error on the ranks ends the job. Skipped (77)
 # where radiant was built without MPI or mpirun is missing, unless
 # RADIANT_REQUIRE_MPI_TESTS=1 (CI). Usage: mpi_cli_test.sh path/to/radiant SOURCE_DIR
@@ -60,6 +60,16 @@ grep -q "hierarchical-exact solved" exact2.log && grep -q "summed" exact2.log &&
 "$radiant" render "$cornell" "${size[@]}" --spp 4 --method interpolate --solution exact1.rad -q -o exact1.exr
 "$radiant" render "$cornell" "${size[@]}" --spp 4 --method interpolate --solution exact2.rad -q -o exact2.exr
 cmp -s exact1.exr exact2.exr && pass || fail "hierarchical-exact: 2 ranks give another solution than one process"
+
+# The classic hierarchical solver: each rank measures the form factors of the links into the receivers it
+# owns, and the ranks share them; 3 ranks on the Cornell box give one process's solution.
+"$radiant" solve "$cornell" --solver hierarchical -q -o hsa1.rad || fail "hierarchical: one process"
+mpi 3 "$radiant" solve "$cornell" --solver hierarchical -o hsa3.rad >hsa3.log 2>&1 || fail "hierarchical: 3 ranks"
+grep -q "summed" hsa3.log && ! grep -q "summed 0.0 MB" hsa3.log && pass ||
+  { fail "hierarchical on 3 ranks shared no work:"; cat hsa3.log; }
+"$radiant" render "$cornell" "${size[@]}" --spp 4 --method interpolate --solution hsa1.rad -q -o hsa1.exr
+"$radiant" render "$cornell" "${size[@]}" --spp 4 --method interpolate --solution hsa3.rad -q -o hsa3.exr
+cmp -s hsa1.exr hsa3.exr && pass || fail "hierarchical: 3 ranks give another solution than one process"
 
 # A render stopped under mpirun (SIGTERM, as a batch system's time limit sends) resumes with another rank count.
 "$radiant" render "$cornell" --width 96 --height 96 --spp 512 -q -o whole.exr

@@ -27,18 +27,30 @@
 // propagated over the links after each round's solve, so links that matter
 // for the view are refined and the rest left coarse.
 //
+// Refinement only decides which links exist (from the cheap centre-to-polygon
+// estimates); each link's form factor, the solver's cost, is measured after
+// the refinement pass that made it, all at once: in parallel, with each MPI
+// rank measuring the links into the receivers it owns (receiver id mod N,
+// Hanrahan et al.'s gather is per receiver) and the ranks sharing them. A
+// link's shadow rays come from its own generator, so the solution is the
+// same bit for bit whatever the thread and rank counts.
+//
 // The leaves become the solution's elements; their corners become nodes
 // shared within a patch, and T-vertices (a node in the middle of a coarser
 // neighbour's edge) are recorded so interpolation stays continuous.
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
 #include <memory>
 #include <optional>
 
+#include "cluster/cluster.h"
 #include "radiosity/backprojection.h"
 #include "radiosity/form_factor.h"
+#include "radiosity/hierarchical_link.h"
 #include "radiosity/importance.h"
 #include "radiosity/solver.h"
 #include "radiosity/transmission.h"
@@ -69,15 +81,15 @@ struct Node {
 
 struct HierarchicalLink {
   uint32_t receiver, source;
-  double formFactor, visibleFraction;
-  double unoccludedFormFactor;  ///< F as if nothing were in between
+  double formFactor = 0, visibleFraction = 1;
+  double unoccludedFormFactor = 0;  ///< F as if nothing were in between
   bool alive = true;
 };
 
 class Hierarchy {
  public:
   Hierarchy(const RayTracer &tracer, const Solution &initial, const SolverOptions &options)
-      : tracer_(tracer), options_(options) {
+      : tracer_(tracer), options_(options), arena_(options.threads > 0 ? options.threads : tbb::task_arena::automatic) {
     if (!tracer.scene().lights.empty()) lights_.emplace(tracer.scene(), tracer, SIZE_MAX);
     double maxEmission = 0, largestElement = 0;
     for (const Element &e : initial.mesh.elements) largestElement = std::max(largestElement, e.area);
@@ -122,6 +134,7 @@ class Hierarchy {
     for (uint32_t p = 0; p < patches; ++p)
       for (uint32_t q = 0; q < patches; ++q)
         if (p != q && facing(nodes_[p], nodes_[q])) refine(p, q);
+    measureLinks(0);
   }
 
   /// Multigridding: re-examines every link with the current radiosities.
@@ -146,6 +159,7 @@ class Hierarchy {
       refineChildren(link.receiver, link.source);
       ++refined;
     }
+    measureLinks(count);
     return refined;
   }
 
@@ -309,79 +323,51 @@ class Hierarchy {
     }
   }
 
-  /// Point of node n at parameters (u, v) in [0,1]² (bilinear, or Heitz's map on triangles).
-  static Vec3 pointAt(const Node &n, double u, double v) {
-    const auto &c = n.corners;
-    if (n.vertexCount == 4)
-      return c[0] * ((1 - u) * (1 - v)) + c[1] * (u * (1 - v)) + c[2] * (u * v) + c[3] * ((1 - u) * v);
-    double b1, b2;
-    sampleUniformTriangle(u, v, b1, b2);
-    return c[0] * (1 - b1 - b2) + c[1] * b1 + c[2] * b2;
+  /// Link p ← q's form factor (hierarchical_link.h).
+  LinkMeasure measure(uint32_t p, uint32_t q) const {
+    auto end = [&](const Node &n) { return HierarchicalLinkEnd{n.vertexCount, n.corners, n.centre, n.normal, n.area}; };
+    return measureHierarchicalLink(tracer_, end(nodes_[p]), end(nodes_[q]), options_.visibilitySamples,
+                                   sampleGenerator(options_.seed, (uint64_t(p) << 32) | q, 0x4852));
   }
 
-  /// F(p ← q) = F_unoccluded × V. F_unoccluded is the point-to-polygon
-  /// factor averaged over an m × m grid of receiver points (m = max(4,
-  /// √visibilitySamples)): deterministic, so links between neighbours that
-  /// share an edge, where F(x → q) has a log singularity, stay accurate. V is
-  /// the visibility of pairs (grid point, random source point), each pair
-  /// weighted by the kernel cosθ_p cosθ_q /(π r² + a) it stands for: the near
-  /// parts of a source dominate its form factor, and plain area-weighted
-  /// visibility halved the Cornell back wall's factor to the floor, whose far
-  /// half hides behind the tall block while its near half is in plain view.
-  /// The unweighted fraction of rays that arrive classifies the link.
+  /// Links receiver p to source q; measureLinks() gives it its form factor.
   void link(uint32_t p, uint32_t q) {
-    const Node &receiver = nodes_[p], &source = nodes_[q];
-    const int m = std::max(4, static_cast<int>(std::lround(std::sqrt(double(options_.visibilitySamples)))));
-    Pcg32 rng = sampleGenerator(options_.seed, (uint64_t(p) << 32) | q, 0x4852);
-    // Receiver points and source strata are paired by a random permutation:
-    // a fixed pairing (row j of the receiver always with row j of the source)
-    // correlates where the receiver looks with where it looks from, and
-    // halved the back wall's factor to the floor in the Cornell box.
-    std::vector<int> strata(size_t(m) * m);
-    for (int k = 0; k < m * m; ++k) strata[k] = k;
-    for (int k = m * m - 1; k > 0; --k) std::swap(strata[k], strata[static_cast<int>(rng.next() * (k + 1))]);
-    double unoccluded = 0, weightVisible = 0, weightAll = 0;
-    const double pieceArea = source.area / (m * m);
-    int visible = 0, tested = 0;
-    for (int i = 0; i < m; ++i)
-      for (int j = 0; j < m; ++j) {
-        Vec3 x = pointAt(receiver, (i + 0.5) / m, (j + 0.5) / m);
-        int stratum = strata[i * m + j];
-        double su = (stratum % m + rng.next()) / m, sv = (stratum / m + rng.next()) / m;
-        if (dot(x - source.centre, source.normal) <= 0) continue;  // behind the source's front
-        double f = formFactorPointToPolygon(x, receiver.normal, polygon(source));
-        if (f <= 0) continue;
-        unoccluded += f;
-        // The form factor counts only the part of the source in front of x's
-        // tangent plane, so visibility must be sampled there too: a point
-        // behind it (a floor point under a block, seen from the block's side)
-        // would always read as occluded. Retry a few times before giving up.
-        Vec3 y = pointAt(source, su, sv);
-        for (int retry = 0; retry < 8 && dot(y - x, receiver.normal) <= 0; ++retry)
-          y = pointAt(source, rng.next(), rng.next());
-        Vec3 d = y - x;
-        double r2 = dot(d, d), r = std::sqrt(r2);
-        double cosX = dot(d, receiver.normal) / r, cosY = -dot(d, source.normal) / r;
-        if (cosX <= 0 || cosY <= 0) continue;
-        double weight = cosX * cosY / (kPi * r2 + pieceArea);
-        ++tested;
-        ++shadowRays_;
-        weightAll += weight;
-        if (tracer_.visible(x, receiver.normal, y, source.normal)) {
-          weightVisible += weight;
-          ++visible;
-        }
-      }
-    HierarchicalLink l;
-    l.receiver = p;
-    l.source = q;
-    l.unoccludedFormFactor = unoccluded / (m * m);
-    // No ray could be aimed (every grid point saw the source edge-on): no
-    // evidence of occlusion, so keep the unoccluded factor, which is tiny then.
-    l.formFactor = weightAll > 0 ? l.unoccludedFormFactor * weightVisible / weightAll : l.unoccludedFormFactor;
-    l.visibleFraction = tested ? double(visible) / tested : 1.0;
     nodes_[p].links.push_back(static_cast<uint32_t>(links_.size()));
-    links_.push_back(l);
+    links_.push_back({p, q});
+  }
+
+  /// Rank r measures the links into the receivers r, r + N, r + 2N, …
+  static bool ownsReceiver(uint32_t node) {
+    return cluster::size() == 1 || node % uint32_t(cluster::size()) == uint32_t(cluster::rank());
+  }
+
+  /// Measures links `from`… (those the last refinement made), in parallel and
+  /// split over the ranks by receiver, then shares them (class comment).
+  void measureLinks(size_t from) {
+    // In batches, so the measures held at once (and each sum between the ranks) stay bounded.
+    constexpr size_t kBatch = size_t(1) << 16;
+    std::vector<LinkMeasure> measures;
+    std::vector<size_t> all;
+    for (size_t first = from; first < links_.size(); first += kBatch) {
+      const size_t count = std::min(kBatch, links_.size() - first);
+      measures.assign(count, LinkMeasure{});
+      auto owns = [&](size_t i) { return ownsReceiver(links_[first + i].receiver); };
+      arena_.execute([&] {
+        tbb::parallel_for(size_t(0), count, [&](size_t i) {
+          if (owns(i)) measures[i] = measure(links_[first + i].receiver, links_[first + i].source);
+        });
+      });
+      all.resize(count);
+      for (size_t i = 0; i < count; ++i) all[i] = i;
+      cluster::shareOwnedEntries(measures, all, owns);
+      for (size_t i = 0; i < count; ++i) {
+        HierarchicalLink &l = links_[first + i];
+        l.formFactor = measures[i].formFactor;
+        l.visibleFraction = measures[i].visibleFraction();
+        l.unoccludedFormFactor = measures[i].unoccludedFormFactor;
+        shadowRays_ += measures[i].shadowRays;
+      }
+    }
   }
 
   Bands pushPull(uint32_t n, const Bands &down, const Bands &downDirect, double &change, double &largest) {
@@ -449,6 +435,7 @@ class Hierarchy {
   size_t leaves_ = 0;                                 ///< current leaf count, bounded by options.maxElements
   std::unique_ptr<ImportanceRefinement> importance_;  ///< --importance only
   std::optional<DirectIrradiance> lights_;            ///< scenes with point lights only
+  tbb::task_arena arena_;                             ///< --threads for measuring links
 };
 
 void Hierarchy::writeTo(Solution &s) const {
