@@ -183,5 +183,33 @@ TEST(ReflectedLightDensity, SurfacesFacingAwayFromEachOtherAreNeverPooled) {
   EXPECT_NEAR(panel / double(panelNodes), 6.0, 0.12);
 }
 
+// The pools are kept for the mesh they were found on (Solution::nodePools):
+// a changed mesh, even in a copy that shares them, gets its own.
+TEST(NodePools, AreFoundAgainWhenTheMeshChanges) {
+  Scene scene;
+  scene.objects.push_back({"test", "test"});
+  Material floor;
+  floor.diffuse = Bands(0.5);
+  scene.materials = {floor};
+  test::addQuad(scene, {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}}, 0);
+  test::addQuad(scene, {{1, 0, 0}, {1, 0, 1}, {2, 0, 1}, {2, 0, 0}}, 0);
+  MeshOptions options;
+  options.maxEdgeLength = 0.5;
+  const Solution s = initialSolution(scene, buildMesh(scene, options));
+  auto pooled = [](const std::vector<uint32_t> &pools) {
+    size_t count = 0;
+    for (uint32_t v = 0; v < pools.size(); ++v) count += pools[v] != v;
+    return count;
+  };
+  const std::vector<uint32_t> before = s.nodePools();
+  EXPECT_EQ(pooled(before), 3u);  // the shared edge's three nodes
+  Solution moved = s;
+  for (uint32_t v = 0; v < moved.mesh.nodes.size(); ++v)
+    if (moved.mesh.patches[moved.mesh.nodePatch[v]].face == 1) moved.mesh.nodes[v].x += 0.25;
+  EXPECT_EQ(pooled(moved.nodePools()), 0u);
+  EXPECT_EQ(s.nodePools(), before);
+  EXPECT_EQ(pooled(moved.nodePools()), 0u);
+}
+
 }  // namespace
 }  // namespace radiant

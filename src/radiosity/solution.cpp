@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <tuple>
 
 #include "radiosity/transmission.h"
@@ -50,7 +51,52 @@ Bands Solution::interpolate(const std::vector<Bands> &values, const MeshLocation
   return b;
 }
 
+namespace {
+
+/// FNV-1a over what the pools depend on: the nodes' places and patches, the
+/// cuts, and each patch's material and normal (a few ms at 2·10⁶ nodes).
+uint64_t poolFingerprint(const RadiosityMesh &mesh) {
+  uint64_t hash = 0xcbf29ce484222325ULL;
+  auto add = [&](const void *data, size_t bytes) {
+    const auto *p = static_cast<const uint8_t *>(data);
+    for (size_t i = 0; i < bytes; ++i) hash = (hash ^ p[i]) * 0x100000001b3ULL;
+  };
+  auto addWords = [&](const void *data, size_t bytes) {  // 8 bytes a step: the node arrays are large
+    const auto *p = static_cast<const uint8_t *>(data);
+    size_t i = 0;
+    for (; i + 8 <= bytes; i += 8) {
+      uint64_t word;
+      std::memcpy(&word, p + i, 8);
+      hash = (hash ^ word) * 0x100000001b3ULL;
+      hash ^= hash >> 29;
+    }
+    add(p + i, bytes - i);
+  };
+  const size_t sizes[] = {mesh.nodes.size(), mesh.nodePatch.size(), mesh.nodeOnCut.size(), mesh.patches.size()};
+  add(sizes, sizeof sizes);
+  addWords(mesh.nodes.data(), mesh.nodes.size() * sizeof(Vec3));
+  addWords(mesh.nodePatch.data(), mesh.nodePatch.size() * sizeof(uint32_t));
+  addWords(mesh.nodeOnCut.data(), mesh.nodeOnCut.size());
+  for (const Patch &patch : mesh.patches) {
+    add(&patch.material, sizeof patch.material);
+    add(&patch.normal, sizeof patch.normal);
+  }
+  return hash;
+}
+
+}  // namespace
+
 std::vector<uint32_t> Solution::nodePools() const {
+  const uint64_t fingerprint = poolFingerprint(mesh);
+  std::lock_guard<std::mutex> lock(nodePoolMemo_->mutex);
+  if (nodePoolMemo_->meshFingerprint != fingerprint || nodePoolMemo_->pools.size() != mesh.nodes.size()) {
+    nodePoolMemo_->pools = findNodePools();
+    nodePoolMemo_->meshFingerprint = fingerprint;
+  }
+  return nodePoolMemo_->pools;
+}
+
+std::vector<uint32_t> Solution::findNodePools() const {
   // Nodes at the same place on neighbouring patches of one smooth surface
   // (same material, normals within 2°: a quad the input split in two, a
   // floor modelled as tiles, the facets of a tessellated model) form a pool.
