@@ -266,9 +266,17 @@ CommandRunner addRenderCommand(CLI::App &app) {
       given.set("max-depth", std::to_string(r.maxDepth), where);
     }
     const Parameters parameters = methodParameters(method, given);
+    // A spectral render checkpoints each pass in a file of its own (FILE's
+    // stem + ".passK"), kept to the end: a pass that finished is not redone.
+    auto passCheckpoint = [&](int pass) {
+      return scene.spectral.enabled() ? passOutputPath(o->checkpoint.path, pass + 1) : o->checkpoint.path;
+    };
     if (!o->checkpoint.path.empty()) {
-      if (scene.spectral.enabled())
-        throw InputError(flag("--checkpoint"), "not for spectral scenes yet (a film per pass): use --colour rgb");
+      if (scene.spectral.enabled() && !o->checkpoint.resume)
+        for (int pass = 0; pass < scene.spectral.passCount(); ++pass)
+          if (std::filesystem::exists(passCheckpoint(pass)))
+            throw InputError(flag("--checkpoint"),
+                             "'" + passCheckpoint(pass) + "' exists: add --resume to carry on from it, or remove it");
       driver.checkpointPath = o->checkpoint.path;
       driver.checkpointIntervalSeconds = o->checkpoint.intervalSeconds;
       driver.resume = o->checkpoint.resume;
@@ -304,6 +312,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
     RenderStats stats;
     bool selectiveMapWritten = false;
     auto renderPass = [&](int pass, Film &film) {
+      if (stats.interrupted) return;  // a stopped spectral render starts no further pass
       const std::string label =
           spectral ? fmt::format("{} {} ({}/{})", o->method, passWavelengthLabel(scene, pass), pass + 1, passes)
                    : o->method;
@@ -327,6 +336,12 @@ CommandRunner addRenderCommand(CLI::App &app) {
       if (!mapChannel.empty()) film = Film(film.width, film.height, {mapChannel});
       DriverOptions passDriver = driver;
       passDriver.timeBudgetSeconds = driver.timeBudgetSeconds / passes;  // --time covers all passes
+      if (spectral && !driver.checkpointPath.empty()) {
+        passDriver.checkpointPath = passCheckpoint(pass);
+        passDriver.checkpointJob +=
+            fmt::format("pass {} of {}: {}\n", pass + 1, passes, passWavelengthLabel(scene, pass));
+        passDriver.checkpointWhenDone = true;
+      }
       RenderStats passStats =
           renderImage(camera, *renderer, passDriver, film, quiet ? ProgressCallback{} : makeConsoleProgress(label));
       stats.samplesPerPixel = std::max(stats.samplesPerPixel, passStats.samplesPerPixel);
@@ -334,7 +349,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
       stats.cameraSamples += passStats.cameraSamples;
       stats.interrupted = stats.interrupted || passStats.interrupted;
       if (passStats.resumedFromSamples >= 0 && !quiet)
-        fmt::print(stderr, "radiant: resumed from {} ({} spp done)\n", o->checkpoint.path,
+        fmt::print(stderr, "radiant: resumed from {} ({} spp done)\n", passDriver.checkpointPath,
                    passStats.resumedFromSamples);
       if (!mapChannel.empty() && cluster::isRoot()) {
         writeSelectiveMap(film, mapChannel, o->selectiveMapPath);
@@ -360,7 +375,8 @@ CommandRunner addRenderCommand(CLI::App &app) {
     writeRenderOutputs(image, outputs, display, app.count("--tonemap") > 0, tracer, camera, quiet);
     if (!o->variancePath.empty()) writeImage(rendered.variance, o->variancePath);
     // A finished render's checkpoint has served; a stopped one's is what --resume reads.
-    if (!o->checkpoint.path.empty() && !stats.interrupted) std::filesystem::remove(o->checkpoint.path);
+    if (!o->checkpoint.path.empty() && !stats.interrupted)
+      for (int pass = 0; pass < passes; ++pass) std::filesystem::remove(passCheckpoint(pass));
     if (!quiet) {
       // Converged pixels may have stopped early (render/driver.h): say what the mean pixel took.
       const double pixelsTaken = double(r.width) * r.height * (spectral ? passes : 1);

@@ -10,6 +10,7 @@
 #include "colour_options.h"
 #include "commands.h"
 #include "display/grid_plan.h"
+#include "image_method_command.h"
 #include "interrupt_handler.h"
 #include "io/image.h"
 #include "io/output_files.h"
@@ -119,9 +120,18 @@ CommandRunner addSolveCommand(CLI::App &app) {
       for (const PointLight &light : scene.lights) fmt::print(stderr, "radiant: light {}\n", describeLight(light));
     RayTracer tracer(scene);
     SolveCheckpointOptions checkpoint;
+    // A spectral solve checkpoints each pass in a file of its own (FILE's stem
+    // + ".passK"), kept to the end: a pass that finished is not solved again.
+    const int passes = scene.spectral.enabled() ? scene.spectral.passCount() : 1;
+    auto passCheckpoint = [&](int pass) {
+      return scene.spectral.enabled() ? passOutputPath(o->checkpoint.path, pass + 1) : o->checkpoint.path;
+    };
     if (!o->checkpoint.path.empty()) {
-      if (scene.spectral.enabled())
-        throw InputError(InputLocation{"--checkpoint"}, "not for spectral scenes yet (a solve per pass)");
+      if (scene.spectral.enabled() && !o->checkpoint.resume)
+        for (int pass = 0; pass < passes; ++pass)
+          if (std::filesystem::exists(passCheckpoint(pass)))
+            throw InputError(InputLocation{"--checkpoint"},
+                             "'" + passCheckpoint(pass) + "' exists: add --resume to carry on from it, or remove it");
       checkpoint.path = o->checkpoint.path;
       checkpoint.intervalSeconds = o->checkpoint.intervalSeconds;
       checkpoint.resume = o->checkpoint.resume;
@@ -132,15 +142,21 @@ CommandRunner addSolveCommand(CLI::App &app) {
       for (const auto &[name, value] : given.all()) checkpoint.job += fmt::format("--{} {}\n", name, value.text);
     }
     // One solution for an RGB scene, one per pass of three wavelengths for a spectral one.
-    const int passes = scene.spectral.enabled() ? scene.spectral.passCount() : 1;
     std::vector<Solution> solutions;
-    for (int pass = 0; pass < passes; ++pass) {
+    for (int pass = 0; pass < passes && !interruptRequested(); ++pass) {
+      SolveCheckpointOptions passCheckpointOptions = checkpoint;
       if (scene.spectral.enabled()) {
         applySpectralPass(scene, pass);
         if (!quiet)
           fmt::print(stderr, "radiant: solving at {} ({}/{})\n", passWavelengthLabel(scene, pass), pass + 1, passes);
+        if (!checkpoint.path.empty()) {
+          passCheckpointOptions.path = passCheckpoint(pass);
+          passCheckpointOptions.job +=
+              fmt::format("pass {} of {}: {}\n", pass + 1, passes, passWavelengthLabel(scene, pass));
+          passCheckpointOptions.saveWhenDone = true;
+        }
       }
-      solutions.push_back(solveScene(scene, tracer, o->radiosity, o->seed, o->threads, quiet, checkpoint));
+      solutions.push_back(solveScene(scene, tracer, o->radiosity, o->seed, o->threads, quiet, passCheckpointOptions));
     }
     if (interruptRequested()) throw Interrupted();  // between the solve's last report and here
     std::vector<GridIlluminance> grids;
@@ -162,7 +178,8 @@ CommandRunner addSolveCommand(CLI::App &app) {
       if (!quiet) fmt::print(stderr, "radiant: wrote {}\n", o->outputPath);
     }
     // The finished solve's checkpoint has served (written after the solution, so a failed write keeps it).
-    if (!o->checkpoint.path.empty()) std::filesystem::remove(o->checkpoint.path);
+    if (!o->checkpoint.path.empty())
+      for (int pass = 0; pass < passes; ++pass) std::filesystem::remove(passCheckpoint(pass));
     if (!o->reportPath.empty()) {
       writeSurfaceReport(solutions, scene, o->reportPath, balance);
       if (!quiet) fmt::print(stderr, "radiant: wrote {}\n", o->reportPath);

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # radiant render --checkpoint/--resume as a user runs them (docs/cluster.md):
 # a render killed with SIGKILL (no chance to save) or stopped with SIGTERM (it
-# saves), then resumed, writes the very image of a run never stopped; the
+# saves), then resumed, writes the very image of a run never stopped, a
+# spectral one too; the
 # flags' misuse is refused. Usage: checkpoint_cli_test.sh path/to/radiant SOURCE_DIR
 source "$(dirname "$0")/cli_common.sh"
 
@@ -34,6 +35,26 @@ stop_and_resume() {
 stop_and_resume KILL
 stop_and_resume TERM
 
+# A spectral render (6 passes of 3 wavelengths) checkpoints each pass in a file of its own, kept to the end:
+# killed in its second pass, then resumed, it does not redo the first and writes the uninterrupted image.
+"$radiant" render "$spectral" "${size[@]}" --spp 256 -o swhole.exr -q || fail "the uninterrupted spectral render"
+"$radiant" render "$spectral" "${size[@]}" --spp 256 -o sresumed.exr -q --checkpoint sck.bin \
+  --checkpoint-interval 0.2 2>/dev/null &
+pid=$!
+wait_for sck.pass2.bin || fail "spectral: no second pass's checkpoint within 60 s"
+kill -KILL $pid
+wait $pid 2>/dev/null
+if [ -f sck.pass6.bin ] || [ ! -f sck.pass1.bin ]; then
+  fail "spectral: killed in pass 2, expected sck.pass1.bin and no sck.pass6.bin:"; ls sck*
+fi
+expect_error "a spectral pass's checkpoint without --resume" "sck.pass1.bin' exists: add --resume" \
+  "$radiant" render "$spectral" "${size[@]}" --spp 256 -o sresumed.exr --checkpoint sck.bin
+"$radiant" render "$spectral" "${size[@]}" --spp 256 -o sresumed.exr --checkpoint sck.bin --resume 2>serr.txt ||
+  fail "spectral: the resumed render"
+grep -q "resumed from sck.pass1.bin (256 spp done)" serr.txt && pass || { fail "spectral: pass 1 redone:"; cat serr.txt; }
+cmp -s swhole.exr sresumed.exr && pass || fail "spectral: the resumed image differs from the uninterrupted one"
+compgen -G "sck.pass*.bin" >/dev/null && fail "spectral: a finished render left its checkpoints" || pass
+
 # Misuse.
 expect_error "--resume alone" "--resume: needs --checkpoint" "$radiant" render "$cornell" --spp 1 --resume -o x.exr
 echo "not a checkpoint at all, but long enough to hold a header" >old.bin
@@ -60,6 +81,25 @@ expect_error "multipass" "--checkpoint: --method multipass writes an image per p
 "$radiant" render "$cornell" --width 32 --height 32 --spp 2 --method flat --solution plain.rad -q -o plain.exr
 "$radiant" render "$cornell" --width 32 --height 32 --spp 2 --method flat --solution saved.rad -q -o saved.exr
 cmp -s plain.exr saved.exr && pass || fail "checkpointing changed the solution"
+# A spectral solve: a checkpoint per pass, kept to the end; killed after its first pass, resumed, the same solution.
+ssolve=(--solver stochastic --rays-per-element 1000)
+"$radiant" solve "$spectral" "${ssolve[@]}" -q -o splain.rad || fail "spectral solve without a checkpoint"
+"$radiant" solve "$spectral" "${ssolve[@]}" -q -o sresumed.rad --checkpoint ssolve.bin --checkpoint-interval 0 \
+  2>/dev/null &
+pid=$!
+wait_for ssolve.pass2.bin || fail "spectral solve: no second pass's checkpoint within 60 s"
+kill -KILL $pid
+wait $pid 2>/dev/null
+[ -f ssolve.pass1.bin ] && [ ! -f sresumed.rad ] && pass ||
+  fail "spectral solve: killed after pass 1, expected ssolve.pass1.bin and no solution"
+"$radiant" solve "$spectral" "${ssolve[@]}" -o sresumed.rad --checkpoint ssolve.bin --resume 2>sserr.txt ||
+  fail "spectral solve: resumed"
+grep -q "resumed from ssolve.pass1.bin" sserr.txt && pass || { fail "spectral solve: did not resume pass 1:"; cat sserr.txt; }
+for f in splain sresumed; do
+  "$radiant" render "$spectral" --width 32 --height 32 --spp 2 --method flat --solution $f.rad -q -o $f.exr
+done
+cmp -s splain.exr sresumed.exr && pass || fail "spectral solve: the resumed solution differs from the uninterrupted one"
+compgen -G "ssolve.pass*.bin" >/dev/null && fail "spectral solve: a finished solve left its checkpoints" || pass
 expect_error "solve --checkpoint with another solver" "only the stochastic solver saves its state" \
   "$radiant" solve "$cornell" --solver gauss-seidel --checkpoint g.bin -o g.rad
 expect_error "solve --resume alone" "--resume: needs --checkpoint" "$radiant" solve "$cornell" --resume -o g.rad

@@ -26,6 +26,9 @@ struct SolveCheckpointOptions {
   double intervalSeconds = 10;
   bool resume = false;  ///< carry on from `path` when it exists
   std::string job;      ///< fingerprint, written and required
+  /// Save the finished solve's state too: a spectral pass's solution, which
+  /// the passes after it must not lose to a kill (resumed, it ends at once).
+  bool saveWhenDone = false;
 };
 
 struct StochasticCheckpoint {

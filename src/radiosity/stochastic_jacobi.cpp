@@ -316,6 +316,7 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
       progress({iteration, s.stats.residual, options.tolerance,
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
   }
+  if (!checkpoint.path.empty() && checkpoint.saveWhenDone && !interruptRequested()) saveCheckpoint(s.stats.iterations);
   // Final residual and energy balance.
   Bands unshotPower(0.0);
   s.stats.absorbedPower = Bands(0.0);

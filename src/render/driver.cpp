@@ -254,6 +254,7 @@ RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, Fil
   }
   // The image so far, whole on rank 0 (every rank: the film is the same on all).
   if (interrupted && ranks > 1) sumFilmOverRanks(film, ownPixel, true);
+  if (checkpointing && options.checkpointWhenDone && !interrupted) saveCheckpoint(done);
   report(done, 0, 0, true);
 
   stats.samplesPerPixel = done;

@@ -59,6 +59,9 @@ struct DriverOptions {
   bool resume = false;
   /// The job's fingerprint, written into the checkpoint and required of one resumed.
   std::string checkpointJob;
+  /// Save a checkpoint when the render completes too: a spectral pass's
+  /// film, which the passes after it must not lose to a kill.
+  bool checkpointWhenDone = false;
 };
 
 constexpr int kMinimumSamples = 8;
