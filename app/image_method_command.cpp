@@ -9,14 +9,10 @@
 #include "display_options.h"
 #include "io/image.h"
 #include "util/atomic_file.h"
+#include "util/file_extension.h"
 #include "util/interrupt.h"
 
 namespace radiant {
-
-std::string passOutputPath(const std::string &path, int pass) {
-  std::filesystem::path p(path);
-  return (p.parent_path() / (p.stem().string() + fmt::format(".pass{}", pass) + p.extension().string())).string();
-}
 
 void runImageMethod(const RendererInfo &method, const Parameters &parameters, ImageJob job,
                     const ImageMethodCommand &command) {
@@ -26,7 +22,7 @@ void runImageMethod(const RendererInfo &method, const Parameters &parameters, Im
     // With several MPI ranks rank 0 writes (every rank has the whole image: render/driver.h).
     if (interruptRequested() || !cluster::isRoot()) return;
     std::vector<std::string> passPaths, paths;
-    for (const std::string &path : command.outputs) passPaths.push_back(passOutputPath(path, pass));
+    for (const std::string &path : command.outputs) passPaths.push_back(passFilePath(path, pass));
     Image image = mean;
     writeRenderOutputs(image, passPaths, command.display, command.describeDisplay && pass == 1, job.tracer, job.camera,
                        true, &coverage);

@@ -18,9 +18,6 @@ struct ImageMethodCommand {
   bool quiet = false;
 };
 
-/// "out.exr", 3 → "out.pass3.exr".
-std::string passOutputPath(const std::string &path, int pass);
-
 /// Runs the method on `job` (its solve set by the caller), with outputs and progress from `command`.
 void runImageMethod(const RendererInfo &method, const Parameters &parameters, ImageJob job,
                     const ImageMethodCommand &command);

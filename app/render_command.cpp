@@ -30,6 +30,7 @@
 #include "scene/load_scene.h"
 #include "scene/spectral_scene.h"
 #include "util/error.h"
+#include "util/file_extension.h"
 #include "util/interrupt.h"
 #include "view_options.h"
 
@@ -188,10 +189,6 @@ CommandRunner addRenderCommand(CLI::App &app) {
       if (!o->selectiveMapPath.empty() && std::filesystem::path(o->selectiveMapPath).extension() != ".png")
         throw InputError(flag("--selective-map"), "'" + o->selectiveMapPath + "': expected a .png file");
       checkCheckpointOptions(o->checkpoint);
-      if (!o->checkpoint.path.empty() && method.render)
-        throw InputError(flag("--checkpoint"), "--method " + o->method +
-                                                   " writes an image per pass: its last pass's files are what "
-                                                   "a stopped run keeps; --checkpoint is for the per-pixel methods");
     }
     // Every output checked before any work: a long render must not end in "cannot write".
     std::vector<std::string> outputs = o->outputs;
@@ -268,15 +265,28 @@ CommandRunner addRenderCommand(CLI::App &app) {
     const Parameters parameters = methodParameters(method, given);
     // A spectral render checkpoints each pass in a file of its own (FILE's
     // stem + ".passK"), kept to the end: a pass that finished is not redone.
+    // The stochastic solve a method needs checkpoints beside it (".solve",
+    // ".solveK"), and keeps its final state until the image is written, so
+    // that a render stopped in its image phase does not solve again.
+    const int passCount = scene.spectral.enabled() ? scene.spectral.passCount() : 1;
     auto passCheckpoint = [&](int pass) {
-      return scene.spectral.enabled() ? passOutputPath(o->checkpoint.path, pass + 1) : o->checkpoint.path;
+      return scene.spectral.enabled() ? passFilePath(o->checkpoint.path, pass + 1) : o->checkpoint.path;
     };
-    if (!o->checkpoint.path.empty()) {
-      if (scene.spectral.enabled() && !o->checkpoint.resume)
-        for (int pass = 0; pass < scene.spectral.passCount(); ++pass)
-          if (std::filesystem::exists(passCheckpoint(pass)))
+    auto solveCheckpoint = [&](int pass) {
+      const std::filesystem::path p(o->checkpoint.path);
+      const std::string suffix = scene.spectral.enabled() ? fmt::format(".solve{}", pass + 1) : ".solve";
+      return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
+    };
+    const bool checkpointedSolve = !o->checkpoint.path.empty() && method.needsSolution && !method.render &&
+                                   o->solutionPath.empty() &&
+                                   resolveSolverName(o->radiosity.solver, scene) == "stochastic";
+    if (!o->checkpoint.path.empty() && !o->checkpoint.resume)
+      for (int pass = 0; pass < passCount; ++pass)
+        for (const std::string &file : {passCheckpoint(pass), solveCheckpoint(pass)})
+          if (std::filesystem::exists(file))
             throw InputError(flag("--checkpoint"),
-                             "'" + passCheckpoint(pass) + "' exists: add --resume to carry on from it, or remove it");
+                             "'" + file + "' exists: add --resume to carry on from it, or remove it");
+    if (!o->checkpoint.path.empty()) {
       driver.checkpointPath = o->checkpoint.path;
       driver.checkpointIntervalSeconds = o->checkpoint.intervalSeconds;
       driver.resume = o->checkpoint.resume;
@@ -294,6 +304,8 @@ CommandRunner addRenderCommand(CLI::App &app) {
       job.timeBudgetSeconds = r.timeBudgetSeconds;
       job.seed = r.seed;
       job.threads = o->threads;
+      job.checkpointPath = driver.checkpointPath, job.checkpointJob = driver.checkpointJob;
+      job.checkpointIntervalSeconds = driver.checkpointIntervalSeconds, job.resume = driver.resume;
       job.solve = [&](int maxShots) {
         if (maxShots > 0) return solvePreview(scene, tracer, o->radiosity, maxShots, r.seed, o->threads);
         RadiosityCommandOptions radiosity = o->radiosity;
@@ -323,7 +335,15 @@ CommandRunner addRenderCommand(CLI::App &app) {
       if (method.needsSolution) {
         if (solutions.empty()) {
           if (!quiet && spectral) fmt::print(stderr, "radiant: solving at {}\n", passWavelengthLabel(scene, pass));
-          solved = solveScene(scene, tracer, o->radiosity, r.seed, o->threads, quiet);
+          SolveCheckpointOptions solveState;
+          if (checkpointedSolve) {
+            solveState.path = solveCheckpoint(pass);
+            solveState.intervalSeconds = o->checkpoint.intervalSeconds;
+            solveState.resume = o->checkpoint.resume;
+            solveState.job = fmt::format("{}solve of pass {}\n", driver.checkpointJob, pass + 1);
+            solveState.saveWhenDone = true;
+          }
+          solved = solveScene(scene, tracer, o->radiosity, r.seed, o->threads, quiet, solveState);
         }
         context.solution = solutions.empty() ? &solved : &solutions[pass];
       }
@@ -376,7 +396,10 @@ CommandRunner addRenderCommand(CLI::App &app) {
     if (!o->variancePath.empty()) writeImage(rendered.variance, o->variancePath);
     // A finished render's checkpoint has served; a stopped one's is what --resume reads.
     if (!o->checkpoint.path.empty() && !stats.interrupted)
-      for (int pass = 0; pass < passes; ++pass) std::filesystem::remove(passCheckpoint(pass));
+      for (int pass = 0; pass < passes; ++pass) {
+        std::filesystem::remove(passCheckpoint(pass));
+        std::filesystem::remove(solveCheckpoint(pass));
+      }
     if (!quiet) {
       // Converged pixels may have stopped early (render/driver.h): say what the mean pixel took.
       const double pixelsTaken = double(r.width) * r.height * (spectral ? passes : 1);

@@ -10,7 +10,6 @@
 #include "colour_options.h"
 #include "commands.h"
 #include "display/grid_plan.h"
-#include "image_method_command.h"
 #include "interrupt_handler.h"
 #include "io/image.h"
 #include "io/output_files.h"
@@ -22,6 +21,7 @@
 #include "radiosity_options.h"
 #include "scene/load_scene.h"
 #include "scene/spectral_scene.h"
+#include "util/file_extension.h"
 #include "util/interrupt.h"
 
 namespace radiant {
@@ -124,7 +124,7 @@ CommandRunner addSolveCommand(CLI::App &app) {
     // + ".passK"), kept to the end: a pass that finished is not solved again.
     const int passes = scene.spectral.enabled() ? scene.spectral.passCount() : 1;
     auto passCheckpoint = [&](int pass) {
-      return scene.spectral.enabled() ? passOutputPath(o->checkpoint.path, pass + 1) : o->checkpoint.path;
+      return scene.spectral.enabled() ? passFilePath(o->checkpoint.path, pass + 1) : o->checkpoint.path;
     };
     if (!o->checkpoint.path.empty()) {
       if (scene.spectral.enabled() && !o->checkpoint.resume)

@@ -4,9 +4,11 @@
 #include "render/multipass.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <thread>
 
 #include "film_metrics.h"
@@ -19,6 +21,8 @@
 #include "sanitizer.h"
 #include "scene/load_scene.h"
 #include "test_scenes.h"
+#include "util/file_extension.h"
+#include "util/interrupt.h"
 #include "util/random.h"
 #include "util/sampling.h"
 
@@ -357,6 +361,66 @@ TEST(Multipass, TheScheduleEndsAndIsDeterministic) {
 // machine's speed (how much of a budget a render uses in between is measured
 // by bench/multipass_budget, docs/PERFORMANCE.md). A budget of 1 ns is spent
 // by the time the preview is shown, so the preview is the only pass.
+// --checkpoint (render/multipass_checkpoint.h): a render stopped in pass 3
+// (before its first save), halfway through pass 5 (its film in its own file)
+// or as pass 6 ends, then resumed, ends with the uninterrupted run's image,
+// bit for bit, and leaves no checkpoint behind.
+TEST(Multipass, AResumedRenderEndsWithTheUninterruptedImage) {
+  Scene scene = loadScene(kSpecularBox);
+  RayTracer tracer(scene);
+  constexpr int kSize = 16;
+  PinholeCamera camera(scene.camera, kSize, kSize);
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("radiant-multipass-" + std::to_string(::getpid()) + ".bin")).string();
+  MultipassOptions options;
+  options.samplesPerPixel = 96;
+  options.photonsPerPass = 5000;
+  options.checkpointJob = "test job\n";
+  options.checkpointIntervalSeconds = 0;  // the pass in progress saves after every wave
+  const MultipassSolver solve = progressiveOn(tracer, 0.25);
+  // Runs to the end or to the stop; the last image written, and the passes rendered.
+  auto run = [&](const std::string &stopIn, double stopAt, bool resume, int *firstPass = nullptr) {
+    MultipassOptions o = options;
+    o.checkpointPath = stopIn == "none" && !resume ? "" : path;
+    o.resume = resume;
+    Image last;
+    int first = 0;
+    renderMultipass(
+        tracer, camera, kSize, kSize, o, solve,
+        [&](const MultipassPass &pass, const Image &mean, const Image &) {
+          if (interruptRequested()) return;
+          last = mean;
+          if (!first) first = pass.index;
+        },
+        [&](const std::string &label) -> ProgressCallback {
+          if (label.rfind(stopIn + " ", 0) != 0) return {};
+          return [stopAt](const Progress &p) {
+            if (p.fraction >= stopAt) requestInterrupt();
+          };
+        });
+    if (firstPass) *firstPass = first;
+    return last;
+  };
+  const Image whole = run("none", 0, false);
+  for (const auto &[pass, fraction] :
+       std::vector<std::pair<std::string, double>>{{"multipass 3", 0.0}, {"multipass 5", 0.5}, {"multipass 6", 1.0}}) {
+    std::filesystem::remove(path);
+    run(pass, fraction, false);
+    ASSERT_TRUE(interruptRequested());
+    clearInterrupt();
+    EXPECT_TRUE(std::filesystem::exists(path)) << "stopped in " << pass;
+    int firstPass = 0;
+    const Image resumed = run("none", 0, true, &firstPass);
+    EXPECT_GE(firstPass, 3) << "passes 1 and 2 are not redone";
+    ASSERT_EQ(resumed.rgb.size(), whole.rgb.size());
+    size_t differing = 0;
+    for (size_t i = 0; i < whole.rgb.size(); ++i) differing += resumed.rgb[i] != whole.rgb[i];
+    EXPECT_EQ(differing, 0u) << "stopped in " << pass;
+    EXPECT_FALSE(std::filesystem::exists(path));
+    for (int k = 3; k < 20; ++k) EXPECT_FALSE(std::filesystem::exists(passFilePath(path, k))) << k;
+  }
+}
+
 TEST(Multipass, ASpentBudgetEndsTheRenderAfterThePreview) {
   Scene scene = loadScene(kSpecularBox);
   RayTracer tracer(scene);

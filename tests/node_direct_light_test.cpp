@@ -84,15 +84,21 @@ TEST(NodeDirectLight, TheElementsMeansCarryThePowerThatArrives) {
   EXPECT_NEAR(power / reference, 1.0, 1e-3);
 }
 
-/// A 1 m² floor meshed into 100 × 100 elements (object 0, facing up) and,
-/// with `panel`, a panel's underside 1 mm above it (facing down, same object).
-Solution finelyMeshedFloor(bool panel) {
+/// A scene of grey quads (ρ = 0.5), all of one object and material.
+Scene greyQuads(std::initializer_list<std::initializer_list<Vec3>> quads) {
   Scene scene;
   scene.objects.push_back({"test", "test"});
   Material m;
   m.diffuse = Bands(0.5);
   scene.materials = {m};
-  test::addQuad(scene, {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}}, 0);
+  for (const auto &corners : quads) test::addQuad(scene, corners, 0);
+  return scene;
+}
+
+/// A 1 m² floor meshed into 100 × 100 elements (object 0, facing up) and,
+/// with `panel`, a panel's underside 1 mm above it (facing down, same object).
+Solution finelyMeshedFloor(bool panel) {
+  Scene scene = greyQuads({{{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}}});
   if (panel) test::addQuad(scene, {{0, 0.001, 0}, {1, 0.001, 0}, {1, 0.001, 1}, {0, 0.001, 1}}, 0);
   MeshOptions mesh;
   mesh.maxEdgeLength = 0.01;
@@ -186,13 +192,8 @@ TEST(ReflectedLightDensity, SurfacesFacingAwayFromEachOtherAreNeverPooled) {
 // The pools are kept for the mesh they were found on (Solution::nodePools):
 // a changed mesh, even in a copy that shares them, gets its own.
 TEST(NodePools, AreFoundAgainWhenTheMeshChanges) {
-  Scene scene;
-  scene.objects.push_back({"test", "test"});
-  Material floor;
-  floor.diffuse = Bands(0.5);
-  scene.materials = {floor};
-  test::addQuad(scene, {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}}, 0);
-  test::addQuad(scene, {{1, 0, 0}, {1, 0, 1}, {2, 0, 1}, {2, 0, 0}}, 0);
+  const Scene scene =
+      greyQuads({{{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}}, {{1, 0, 0}, {1, 0, 1}, {2, 0, 1}, {2, 0, 0}}});
   MeshOptions options;
   options.maxEdgeLength = 0.5;
   const Solution s = initialSolution(scene, buildMesh(scene, options));

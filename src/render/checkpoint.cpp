@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "render/checkpoint_io.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
 
@@ -14,56 +15,6 @@ namespace {
 
 constexpr char kRenderCheckpointMagic[] = "RADIANT-CHECKPOINT";
 constexpr uint32_t kRenderCheckpointVersion = 1;
-constexpr uint32_t kMaxCheckpointString = 1 << 20;
-
-static_assert(sizeof(Bands) == kBandCount * sizeof(double), "a film's Bands are written as kBandCount doubles");
-
-class CheckpointWriter {
- public:
-  explicit CheckpointWriter(std::ofstream &out) : out_(out) {}
-  template <typename T>
-  void value(const T &v) {
-    out_.write(reinterpret_cast<const char *>(&v), sizeof v);
-  }
-  void bytes(const void *data, size_t size) { out_.write(static_cast<const char *>(data), std::streamsize(size)); }
-  void text(const std::string &s) {
-    value(uint32_t(s.size()));
-    bytes(s.data(), s.size());
-  }
-
- private:
-  std::ofstream &out_;
-};
-
-class CheckpointReader {
- public:
-  CheckpointReader(std::ifstream &in, const std::string &path) : in_(in), path_(path) {}
-  template <typename T>
-  T value(const char *what) {
-    T v{};
-    bytes(&v, sizeof v, what);
-    return v;
-  }
-  void bytes(void *data, size_t size, const char *what) {
-    if (!in_.read(static_cast<char *>(data), std::streamsize(size)))
-      fail(fmt::format("the file ends inside {} (truncated?)", what));
-  }
-  std::string text(const char *what) {
-    const uint32_t size = value<uint32_t>(what);
-    if (size > kMaxCheckpointString) fail(fmt::format("{} is {} bytes long, more than a checkpoint holds", what, size));
-    std::string s(size, '\0');
-    bytes(s.data(), size, what);
-    return s;
-  }
-  [[noreturn]] void fail(const std::string &message) const {
-    throw InputError(InputLocation{path_}, "not a usable render checkpoint: " + message);
-  }
-
- private:
-  std::ifstream &in_;
-  const std::string &path_;
-};
-
 }  // namespace
 
 void writeRenderCheckpoint(const std::string &path, const RenderCheckpoint &c, const Film &film) {
@@ -71,9 +22,7 @@ void writeRenderCheckpoint(const std::string &path, const RenderCheckpoint &c, c
     std::ofstream out(temporary, std::ios::binary);
     if (!out) throw std::runtime_error("cannot open the temporary file");
     CheckpointWriter w(out);
-    w.bytes(kRenderCheckpointMagic, sizeof kRenderCheckpointMagic - 1);
-    w.value(kRenderCheckpointVersion);
-    w.text(c.job);
+    writeCheckpointHeader(w, kRenderCheckpointMagic, kRenderCheckpointVersion, c.job);
     w.value(int32_t(film.width)), w.value(int32_t(film.height)), w.value(int32_t(kBandCount));
     w.value(int32_t(c.tileSize)), w.value(int32_t(c.samplesDone)), w.value(int32_t(c.roundEnd));
     w.value(c.elapsedSeconds), w.value(c.cameraSamples);
@@ -94,17 +43,8 @@ void readRenderCheckpoint(const std::string &path, const std::string &job, Rende
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(InputLocation{path}, "cannot open the checkpoint");
   CheckpointReader r(in, path);
-  char magic[sizeof kRenderCheckpointMagic - 1];
-  r.bytes(magic, sizeof magic, "the header");
-  if (std::memcmp(magic, kRenderCheckpointMagic, sizeof magic) != 0)
-    r.fail("it does not start with RADIANT-CHECKPOINT");
-  if (const uint32_t version = r.value<uint32_t>("the header"); version != kRenderCheckpointVersion)
-    r.fail(fmt::format("checkpoint version {}; this radiant reads version {}", version, kRenderCheckpointVersion));
-  c.job = r.text("the job description");
-  if (c.job != job)
-    r.fail(
-        "it belongs to another job (a different scene file, image size, method, samples, seed or option); "
-        "remove it to start afresh");
+  readCheckpointHeader(r, kRenderCheckpointMagic, kRenderCheckpointVersion, job);
+  c.job = job;
   const int width = r.value<int32_t>("the header"), height = r.value<int32_t>("the header");
   const int bands = r.value<int32_t>("the header");
   if (width != film.width || height != film.height || bands != kBandCount)
@@ -136,7 +76,7 @@ void readRenderCheckpoint(const std::string &path, const std::string &job, Rende
   forEachFilmArray(
       film, [&](std::vector<Bands> &v) { r.bytes(v.data(), v.size() * sizeof(Bands), "the film"); },
       [&](std::vector<uint32_t> &v) { r.bytes(v.data(), v.size() * sizeof(uint32_t), "the film"); });
-  if (in.peek() != std::char_traits<char>::eof()) r.fail("it has bytes after the film");
+  if (!r.atEnd()) r.fail("it has bytes after the film");
 }
 
 }  // namespace radiant

@@ -17,6 +17,15 @@ ControlVariateImage::ControlVariateImage(int width, int height, int tileSize)
       controls_(width, height),
       pairs_(width, height) {}
 
+void ControlVariateImage::restore(Sums sums) {
+  if (sums.controls.width != width_ || sums.controls.height != height_ || sums.pairs.width != width_ ||
+      sums.pairs.height != height_ || !sums.controls.channels.empty())
+    throw std::invalid_argument("ControlVariateImage::restore: sums of another image");
+  controls_ = std::move(sums.controls);
+  pairs_ = std::move(sums.pairs);
+  controlSpp_ = sums.controlSpp, pairedSpp_ = sums.pairedSpp;
+}
+
 void ControlVariateImage::addControls(const Film &controls) {
   controls_.accumulate(controls);
   if (controls.pixelCount()) controlSpp_ += int(controls.samples[0]);

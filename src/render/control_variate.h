@@ -87,6 +87,17 @@ class ControlVariateImage {
   int controlSamples() const { return controlSpp_; }  ///< per pixel, R-only rounds and pairs together
   int pairedSamples() const { return pairedSpp_; }
 
+  /// Everything it has summed: what a checkpoint keeps (render/multipass_checkpoint.h).
+  struct Sums {
+    Film controls;
+    PairedFilm pairs;
+    int controlSpp = 0, pairedSpp = 0;
+  };
+  const Film &controlSums() const { return controls_; }
+  const PairedFilm &pairedSums() const { return pairs_; }
+  /// Carries on from saved sums (of an image of the same size: std::invalid_argument otherwise).
+  void restore(Sums sums);
+
  private:
   /// Per tile, averaged over its pixels and bands: per-sample variances of R
   /// and D, their per-sample covariance, and the estimated squared bias of R

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
+#include <optional>
 #include <stdexcept>
 
 #include "cluster/cluster.h"
@@ -12,9 +14,11 @@
 #include "render/caustic_photons.h"
 #include "render/control_variate.h"
 #include "render/film_image.h"
+#include "render/multipass_checkpoint.h"
 #include "render/path_tracer.h"
 #include "render/registry.h"
 #include "render/secondary_sources.h"
+#include "util/file_extension.h"
 #include "util/interrupt.h"
 #include "util/random.h"
 
@@ -81,7 +85,15 @@ ParameterValues forMethod(const ParameterValues &given, const std::string &metho
 void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int width, int height,
                      const MultipassOptions &options, const MultipassSolver &solve, const MultipassOutput &output,
                      const MultipassProgress &progress) {
-  const Clock::time_point start = Clock::now();
+  // A checkpoint to carry on from (multipass_checkpoint.h): passes 1 and 2
+  // are behind it, and its time is the render's so far.
+  const bool checkpointing = !options.checkpointPath.empty();
+  std::optional<MultipassCheckpoint> resumed;
+  if (checkpointing && options.resume && std::filesystem::exists(options.checkpointPath))
+    resumed = readMultipassCheckpoint(options.checkpointPath, options.checkpointJob, width, height);
+  const Clock::time_point start =
+      Clock::now() - std::chrono::duration_cast<Clock::duration>(
+                         std::chrono::duration<double>(resumed ? resumed->elapsedSeconds : 0.0));
   const bool budgeted = options.timeBudgetSeconds > 0;
   // Ctrl-C (util/interrupt.h) ends the passes: the last complete one's image stands.
   // Both collectives on every call, whatever the answer.
@@ -109,21 +121,22 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
   // Pass 1: the radiosity preview, from an interrupted progressive solution.
   Clock::time_point passStart = Clock::now();
   MultipassPass pass{1, "radiosity preview", kPreviewSpp};
-  const Solution preview = solve(kPreviewShots);
-  {
+  const Solution preview = resumed && !resumed->previewSolution ? Solution{} : solve(kPreviewShots);
+  if (!resumed) {
     RenderContext o = options.context;
     o.solution = &preview;
     Film film(width, height);
     renderImage(camera, *createRenderer("interpolate", tracer, o, forMethod(options.parameters, "interpolate")),
                 driverFor(pass, kPreviewSpp, 0), film, progressFor(pass));
     finish(pass, film, passStart);
+    if (spent()) return;
   }
-  if (spent()) return;
 
   // The solution the later passes read: --solver's, unless the budget is
   // too short to pay for it (kOwnSolveBudget).
   passStart = Clock::now();
-  const bool shortBudget = budgeted && options.timeBudgetSeconds < kOwnSolveBudget * secondsSince(start);
+  const bool shortBudget = resumed ? resumed->previewSolution
+                                   : budgeted && options.timeBudgetSeconds < kOwnSolveBudget * secondsSince(start);
   Solution solved;
   if (!shortBudget) solved = solve(0);
   const Solution &solution = shortBudget ? preview : solved;
@@ -132,7 +145,8 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
   // per pixel, the rest of the solution interpolated) with caustics from a
   // photon map. A preview: no later pass uses the map (see passes 3…), so a
   // short budget goes without it (kHighFrequencyBudget).
-  if (!budgeted || (!shortBudget && options.timeBudgetSeconds >= kHighFrequencyBudget * secondsSince(start))) {
+  if (!resumed &&
+      (!budgeted || (!shortBudget && options.timeBudgetSeconds >= kHighFrequencyBudget * secondsSince(start)))) {
     pass = {2, "high frequency", kHighFrequencySpp};
     const CausticPhotonMap caustics(tracer, options.photonsPerPass, hashSeed(options.seed, 0xCA05ULL << 48),
                                     options.photonRadius);
@@ -171,9 +185,21 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
   double controlSpent = 0, pairedSpent = 0, controlCost = 0, pairedCost = 0;
   // The samples-per-pixel budget counts paired-sample equivalents: a control costs kControlCostRatio.
   double unitsSpent = 0;
-  for (int index = 3; !spent(); ++index) {
+  if (resumed) {
+    combined.restore(std::move(resumed->sums));
+    unitsSpent = resumed->unitsSpent, controlSpent = resumed->controlSpent, pairedSpent = resumed->pairedSpent;
+    controlCost = resumed->controlCost, pairedCost = resumed->pairedCost;
+  }
+  // The pass in progress saves its film beside the checkpoint, in a file of its own.
+  auto passCheckpoint = [&](int index) { return passFilePath(options.checkpointPath, index); };
+  int index = resumed ? resumed->pass : 3;
+  if (resumed && progress && cluster::isRoot())
+    fmt::print(stderr, "radiant: resumed from {} at pass {} ({} spp reading the solution done)\n",
+               options.checkpointPath, index, combined.controlSamples());
+  for (; !spent(); ++index) {
     const double unitsLeft = options.samplesPerPixel - unitsSpent;
-    if (unitsLeft < kControlCostRatio) break;
+    const bool planned = resumed && index == resumed->pass;  // the stopped pass, as it was planned
+    if (unitsLeft < kControlCostRatio && !planned) break;
     // What to render: pairs first (the image needs D̄, and nothing is known of
     // D's variance before), then by the forecast, with a floor on the pairs'
     // share. Each pass's kind and length are fixed before its samples are
@@ -209,10 +235,32 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
     // --spp caps the work (the loop's condition leaves at least half a unit); a last half unit: controls.
     if (paired && unitsLeft < 1) paired = false;
     spp = std::min(spp, int(unitsLeft / (paired ? 1.0 : kControlCostRatio)));
+    if (planned) paired = resumed->paired, spp = resumed->samplesPerPixel;
 
     passStart = Clock::now();
     pass = {index, paired ? "unbiased, the solution as control variate" : "low frequency, solution after 1 bounce",
             spp};
+    DriverOptions driver = driverFor(pass, spp, 0);
+    if (checkpointing) {
+      // The state before this pass, with its plan; then the last pass's film is no longer needed.
+      MultipassCheckpoint state;
+      state.job = options.checkpointJob;
+      state.pass = index, state.paired = paired, state.samplesPerPixel = spp;
+      state.previewSolution = shortBudget;
+      state.elapsedSeconds = std::chrono::duration<double>(Clock::now() - start).count();
+      state.unitsSpent = unitsSpent, state.controlSpent = controlSpent, state.pairedSpent = pairedSpent;
+      state.controlCost = controlCost, state.pairedCost = pairedCost;
+      if (cluster::isRoot()) {
+        writeMultipassCheckpoint(options.checkpointPath, state, combined);
+        std::filesystem::remove(passCheckpoint(index - 1));
+      }
+      driver.checkpointPath = passCheckpoint(index);
+      driver.checkpointIntervalSeconds = options.checkpointIntervalSeconds;
+      driver.resume = planned;
+      driver.checkpointJob = fmt::format("{}multipass pass {}: {} {} spp\n", options.checkpointJob, index,
+                                         paired ? "paired" : "controls", spp);
+      driver.checkpointWhenDone = true;  // a kill before the next pass's save finds it complete
+    }
     {
       RenderContext o = options.context;
       o.solution = &solution;
@@ -220,7 +268,8 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
       const auto renderer = createRenderer("path", tracer, o, forMethod(options.parameters, "path"));
       Film &film = paired ? pairedFilm : controlFilm;
       film.clear();
-      renderImage(camera, *renderer, driverFor(pass, spp, 0), film, progressFor(pass));
+      const RenderStats rendered = renderImage(camera, *renderer, driver, film, progressFor(pass));
+      if (rendered.interrupted) return;  // the pass's film is in its checkpoint; no image of a part of a pass
       if (paired)
         combined.addPairs(film);
       else
@@ -240,6 +289,12 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
     pass.pairedSamples = combined.pairedSamples();
     pass.estimatedBias = stats.biasRms;
     output(pass, mean, combined.variance());
+  }
+  // Finished (not stopped): the checkpoints have served.
+  if (checkpointing && !interruptRequested() && cluster::isRoot()) {
+    std::filesystem::remove(passCheckpoint(index - 1));
+    std::filesystem::remove(passCheckpoint(index));  // a planned pass a budget then left out
+    std::filesystem::remove(options.checkpointPath);
   }
 }
 
@@ -270,6 +325,8 @@ void renderMultipassJob(const ImageJob &job, const Parameters &parameters) {
   options.threads = job.threads;
   options.context.pixelSpreadAngle = texturePixelSpread(job.pixelAngle, 4);  // its filtered passes: 4 spp
   options.parameters = parameters.givenValues();
+  options.checkpointPath = job.checkpointPath, options.checkpointJob = job.checkpointJob;
+  options.checkpointIntervalSeconds = job.checkpointIntervalSeconds, options.resume = job.resume;
   renderMultipass(
       job.tracer, job.camera, job.width, job.height, options, job.solve,
       [&](const MultipassPass &pass, const Image &mean, const Image &variance) {

@@ -41,6 +41,11 @@ struct MultipassOptions {
   size_t photonsPerPass = 200000;  ///< emitted for pass 2's caustic map
   double photonRadius = 0;         ///< pass 2's map's radius, metres; ≤ 0: 1 % of the scene's diagonal
   RenderContext context;           ///< pixel spread (the passes set the solution and caustics)
+  /// --checkpoint (render/multipass_checkpoint.h): saved at the start of
+  /// every pass from 3 on, the pass in progress every interval; empty: never.
+  std::string checkpointPath, checkpointJob;
+  double checkpointIntervalSeconds = 10;
+  bool resume = false;  ///< carry on from checkpointPath when it exists
   /// Values for multipassParameters(): max-depth (the path passes), sources,
   /// source-fraction (pass 2's kok), bump-orientations (passes 1 and 2).
   ParameterValues parameters;

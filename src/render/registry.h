@@ -38,6 +38,11 @@ struct ImageJob {
   std::function<void(int pass, const std::string &summary, const Image &mean, const Image &variance)> output;
   /// A progress reporter for a pass's label (render/driver.h), or none.
   std::function<ProgressCallback(const std::string &label)> progress;
+  /// --checkpoint: where the method saves its state (its own format), the
+  /// job it belongs to, how often, and whether to carry on from it; empty: never.
+  std::string checkpointPath, checkpointJob;
+  double checkpointIntervalSeconds = 10;
+  bool resume = false;
 };
 
 /// A registry entry: one rendering method. Most methods work at

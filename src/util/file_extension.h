@@ -15,4 +15,11 @@ inline std::string lowercaseExtension(const std::string &path) {
   return extension;
 }
 
+/// The file of one pass beside `path`: "out.exr", 3 → "out.pass3.exr" (a
+/// multipass image, a spectral or multipass pass's checkpoint).
+inline std::string passFilePath(const std::string &path, int pass) {
+  const std::filesystem::path p(path);
+  return (p.parent_path() / (p.stem().string() + ".pass" + std::to_string(pass) + p.extension().string())).string();
+}
+
 }  // namespace radiant
