@@ -10,8 +10,10 @@
 #include <atomic>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "render/driver.h"
+#include "render/multipass_checkpoint.h"
 #include "util/error.h"
 #include "util/interrupt.h"
 
@@ -162,6 +164,61 @@ TEST(RenderCheckpoint, ACheckpointOfAnotherJobOrADamagedOneIsRefused) {
   // Not a checkpoint at all.
   std::ofstream(checkpoint.path) << "{\"version\": 1, \"camera\": {\"eye\": [0, 1, 3]}, \"image\": {\"width\": 64}}";
   EXPECT_NE(refusal("another job", kSize).find("RADIANT-CHECKPOINT"), std::string::npos);
+}
+
+// multipass's checkpoint (render/multipass_checkpoint.h): read back as
+// written; another job's, another size's, a file cut anywhere, one with
+// impossible counts, or not one at all is refused naming the file.
+TEST(MultipassCheckpoint, ReadsBackAndRefusesAnotherJobsOrADamagedOne) {
+  TempFile checkpoint;
+  constexpr int kWidth = 8, kHeight = 4;
+  ControlVariateImage combined(kWidth, kHeight);
+  Film pairs(kWidth, kHeight, {"control"});
+  pairs.add(5, Bands(2.0), std::vector<Bands>{Bands(1.5)}.data());
+  combined.addPairs(pairs);
+  MultipassCheckpoint state;
+  state.job = "job A";
+  state.pass = 7, state.paired = false, state.samplesPerPixel = 24;
+  state.elapsedSeconds = 1.5, state.unitsSpent = 12, state.pairedCost = 0.25;
+  writeMultipassCheckpoint(checkpoint.path, state, combined);
+  const MultipassCheckpoint read = readMultipassCheckpoint(checkpoint.path, "job A", kWidth, kHeight);
+  EXPECT_EQ(read.pass, 7);
+  EXPECT_FALSE(read.paired);
+  EXPECT_EQ(read.samplesPerPixel, 24);
+  EXPECT_EQ(read.elapsedSeconds, 1.5);
+  EXPECT_EQ(read.unitsSpent, 12);
+  EXPECT_EQ(read.pairedCost, 0.25);
+  EXPECT_EQ(read.sums.pairedSpp, combined.pairedSamples());
+  EXPECT_EQ(read.sums.pairs.sumDifference[5][0], 0.5);
+  EXPECT_EQ(read.sums.controls.sum[5][0], 1.5);
+  auto refusal = [&](const std::string &job, int width) {
+    try {
+      readMultipassCheckpoint(checkpoint.path, job, width, kHeight);
+    } catch (const InputError &e) {
+      EXPECT_EQ(e.location().file, checkpoint.path);
+      return std::string(e.message());
+    }
+    return std::string();
+  };
+  EXPECT_NE(refusal("job B", kWidth).find("another job"), std::string::npos);
+  EXPECT_NE(refusal("job A", 2 * kWidth).find("8x4"), std::string::npos);
+  // Cut anywhere: a clear refusal, never a crash.
+  const std::string whole = [&] {
+    std::ifstream in(checkpoint.path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  for (size_t size = 0; size < whole.size(); size += 1 + size / 8) {
+    std::ofstream(checkpoint.path, std::ios::binary) << whole.substr(0, size);
+    EXPECT_NE(refusal("job A", kWidth), "") << "cut at " << size;
+  }
+  // Impossible counts: a pass before 3.
+  std::string bad = whole;
+  const size_t passOffset = std::string("RADIANT-MULTIPASS").size() + 4 + 4 + 5 + 3 * 4;
+  bad[passOffset] = 1;
+  std::ofstream(checkpoint.path, std::ios::binary) << bad;
+  EXPECT_NE(refusal("job A", kWidth).find("impossible"), std::string::npos);
+  std::ofstream(checkpoint.path, std::ios::binary) << "RADIANT-CHECKPOINT and more";
+  EXPECT_NE(refusal("job A", kWidth).find("RADIANT-MULTIPASS"), std::string::npos);
 }
 
 }  // namespace
