@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # radiant under mpirun (docs/cluster.md): two and three ranks on one machine
 # write the very image and solution of one process, for the per-pixel methods
-# and the distributed stochastic, hierarchical-exact and hierarchical solvers; a render stopped under mpirun resumes
+# and every distributed solver; a render stopped under mpirun resumes
 # with another rank count; an error on the ranks ends the job. Skipped (77)
 # where radiant was built without MPI or mpirun is missing, unless
 # RADIANT_REQUIRE_MPI_TESTS=1 (CI). Usage: mpi_cli_test.sh path/to/radiant SOURCE_DIR
@@ -70,6 +70,15 @@ grep -q "summed" hsa3.log && ! grep -q "summed 0.0 MB" hsa3.log && pass ||
 "$radiant" render "$cornell" "${size[@]}" --spp 4 --method interpolate --solution hsa1.rad -q -o hsa1.exr
 "$radiant" render "$cornell" "${size[@]}" --spp 4 --method interpolate --solution hsa3.rad -q -o hsa3.exr
 cmp -s hsa1.exr hsa3.exr && pass || fail "hierarchical: 3 ranks give another solution than one process"
+
+# gauss-seidel (its matrix's rows split over the ranks) and progressive (each shot's receivers split).
+for solver in gauss-seidel progressive; do
+  "$radiant" solve "$cornell" --solver $solver -q -o "$solver-1.rad" || fail "$solver: one process"
+  mpi 2 "$radiant" solve "$cornell" --solver $solver -q -o "$solver-2.rad" || fail "$solver: 2 ranks"
+  "$radiant" render "$cornell" "${size[@]}" --spp 4 --method flat --solution "$solver-1.rad" -q -o "$solver-1.exr"
+  "$radiant" render "$cornell" "${size[@]}" --spp 4 --method flat --solution "$solver-2.rad" -q -o "$solver-2.exr"
+  cmp -s "$solver-1.exr" "$solver-2.exr" && pass || fail "$solver: 2 ranks give another solution than one process"
+done
 
 # A render stopped under mpirun (SIGTERM, as a batch system's time limit sends) resumes with another rank count.
 "$radiant" render "$cornell" --width 96 --height 96 --spp 512 -q -o whole.exr

@@ -10,14 +10,18 @@
 //
 // The whole matrix is stored, so this is the solver for small meshes (up to
 // a few thousand elements) and for checking the others against; its cost and
-// memory grow as n².
+// memory grow as n². With MPI ranks, rank r computes the rows i = r mod N
+// (each from its own generator) and the ranks share them, so every rank
+// sweeps the same matrix: one process's solution, bit for bit.
 #include <fmt/format.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <chrono>
 #include <cmath>
+#include <cstring>
 
+#include "cluster/cluster.h"
 #include "radiosity/backprojection.h"
 #include "radiosity/form_factor.h"
 #include "radiosity/solver.h"
@@ -33,6 +37,32 @@ struct Coupling {
   uint32_t element;
   float formFactor;
 };
+
+/// Every rank's rows on every rank: first their lengths, then their
+/// couplings as bytes at the offsets the lengths give (a byte-wise sum of
+/// one rank's bytes and zeros is those bytes).
+template <typename Owns>
+void shareRows(std::vector<std::vector<Coupling>> &rows, std::vector<size_t> &visibilityRays, const Owns &owns) {
+  const size_t n = rows.size();
+  std::vector<int64_t> counts(2 * n, 0);  // per row: its length, its rays
+  for (size_t i = 0; i < n; ++i)
+    if (owns(i)) counts[2 * i] = int64_t(rows[i].size()), counts[2 * i + 1] = int64_t(visibilityRays[i]);
+  cluster::sumOnAllRanks(counts.data(), counts.size());
+  std::vector<size_t> offset(n + 1, 0);
+  for (size_t i = 0; i < n; ++i) offset[i + 1] = offset[i] + size_t(counts[2 * i]);
+  std::vector<uint8_t> bytes(offset[n] * sizeof(Coupling), 0);
+  for (size_t i = 0; i < n; ++i)
+    if (owns(i) && !rows[i].empty())
+      std::memcpy(&bytes[offset[i] * sizeof(Coupling)], rows[i].data(), rows[i].size() * sizeof(Coupling));
+  cluster::sumOnAllRanks(bytes.data(), bytes.size());
+  for (size_t i = 0; i < n; ++i) {
+    visibilityRays[i] = size_t(counts[2 * i + 1]);
+    if (owns(i)) continue;
+    rows[i].resize(size_t(counts[2 * i]));
+    if (!rows[i].empty())
+      std::memcpy(rows[i].data(), &bytes[offset[i] * sizeof(Coupling)], rows[i].size() * sizeof(Coupling));
+  }
+}
 }  // namespace
 
 void solveGaussSeidel(const RayTracer &tracer, Solution &s, const SolverOptions &options,
@@ -52,8 +82,12 @@ void solveGaussSeidel(const RayTracer &tracer, Solution &s, const SolverOptions 
   const size_t k = size_t(std::max(1L, std::lround(std::sqrt(double(options.visibilitySamples)))));
   const size_t raysPerFactor = k * k;  // visibleFraction's stratified k × k grid
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
+  auto ownsRow = [](size_t i) {
+    return cluster::size() == 1 || i % size_t(cluster::size()) == size_t(cluster::rank());
+  };
   arena.execute([&] {
     tbb::parallel_for(size_t(0), n, [&](size_t i) {
+      if (!ownsRow(i)) return;
       const Element &ei = s.mesh.elements[i];
       const Vec3 &ni = s.mesh.normalOf(static_cast<uint32_t>(i));
       Pcg32 rng = sampleGenerator(options.seed, i, 0x6a55);  // one generator per row: thread-count independent
@@ -70,6 +104,7 @@ void solveGaussSeidel(const RayTracer &tracer, Solution &s, const SolverOptions 
       }
     });
   });
+  if (cluster::distributed()) shareRows(rows, visibilityRays, ownsRow);
   for (size_t rays : visibilityRays) s.stats.formFactorRays += rays;
 
   // The direct part is one gather from the emitters, ρ_i Σ_j F_ij E_j, plus

@@ -23,6 +23,7 @@
 #include <cmath>
 #include <optional>
 
+#include "cluster/cluster.h"
 #include "radiosity/backprojection.h"
 #include "radiosity/form_factor.h"
 #include "radiosity/hemicube.h"
@@ -148,8 +149,13 @@ void solveProgressive(const RayTracer &tracer, Solution &s, const SolverOptions 
                             ? 0.0
                             : std::min(1.0, formFactor[j] * source.area / s.mesh.elements[j].area);
     } else {
+      // With MPI ranks, rank r takes the receivers j = r mod N, each from its
+      // own generator, and the form factors are summed over the ranks: every
+      // rank shoots alike, and the solution is one process's bit for bit.
+      const size_t ranks = size_t(cluster::size()), me = size_t(cluster::rank());
       arena.execute([&] {
         tbb::parallel_for(size_t(0), n, [&](size_t j) {
+          if (j % ranks != me) return;
           const Element &receiver = s.mesh.elements[j];
           if (receiver.patch == shooterPatch) return;
           const Vec3 &receiverNormal = s.mesh.normalOf(static_cast<uint32_t>(j));
@@ -171,6 +177,12 @@ void solveProgressive(const RayTracer &tracer, Solution &s, const SolverOptions 
           }
         });
       });
+      if (cluster::distributed()) {
+        cluster::sumOnAllRanks(formFactor.data(), n);
+        int64_t traced = int64_t(receiversTraced.load());
+        cluster::sumOnAllRanks(&traced, 1);
+        receiversTraced = size_t(traced);
+      }
     }
     for (size_t j = 0; j < n; ++j) {
       if (formFactor[j] <= 0) continue;
