@@ -140,7 +140,8 @@ void RayTracer::resolveHit(const Ray &ray, unsigned primitive, float &u, float &
   }
 }
 
-void RayTracer::completeHit(const Ray &ray, float tfar, unsigned triangle, float u, float v, Hit &hit) const {
+void RayTracer::completeHit(const Ray &ray, float tfar, unsigned triangle, float u, float v, Hit &hit,
+                            bool interpolateNormal) const {
   const TriangleGeometry &g = geometry_[triangle];
   hit.triangle = triangle;
   hit.b1 = u;
@@ -152,7 +153,7 @@ void RayTracer::completeHit(const Ray &ray, float tfar, unsigned triangle, float
   hit.distance = std::isfinite(distance) ? distance : static_cast<double>(tfar);
   hit.geometricNormal = g.normal;
   hit.shadingNormal = g.normal;
-  if (g.hasVertexNormals) {
+  if (interpolateNormal && g.hasVertexNormals) {
     const Triangle &t = scene_.triangles[triangle];
     double b0 = 1.0 - hit.b1 - hit.b2;
     Vec3 n = normalize(scene_.normals[t.n[0]] * b0 + scene_.normals[t.n[1]] * hit.b1 + scene_.normals[t.n[2]] * hit.b2);
@@ -161,6 +162,14 @@ void RayTracer::completeHit(const Ray &ray, float tfar, unsigned triangle, float
 }
 
 bool RayTracer::intersect(const Ray &ray, Hit &hit, double tMax) const {
+  return nearestHit(ray, tMax, true, hit);
+}
+
+bool RayTracer::intersectPosition(const Ray &ray, Hit &hit) const {
+  return nearestHit(ray, INFINITY, false, hit);
+}
+
+bool RayTracer::nearestHit(const Ray &ray, double tMax, bool interpolateNormal, Hit &hit) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh;
@@ -169,29 +178,7 @@ bool RayTracer::intersect(const Ray &ray, Hit &hit, double tMax) const {
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   uint32_t triangle;
   resolveHit(ray, rh.hit.primID, rh.hit.u, rh.hit.v, triangle);
-  completeHit(ray, rh.ray.tfar, triangle, rh.hit.u, rh.hit.v, hit);
-  return true;
-}
-
-bool RayTracer::intersectPosition(const Ray &ray, Hit &hit) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  RTCRayHit rh;
-  setEmbreeRayHit(rh, ray, INFINITY);
-  rtcIntersect1(rtcScene_, &context, &rh);
-  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-  uint32_t triangle;
-  resolveHit(ray, rh.hit.primID, rh.hit.u, rh.hit.v, triangle);
-  const TriangleGeometry &g = geometry_[triangle];
-  hit.triangle = triangle;
-  hit.b1 = rh.hit.u;
-  hit.b2 = rh.hit.v;
-  hit.material = g.material;
-  hit.face = g.face;
-  hit.position = g.p0 + g.edge1 * hit.b1 + g.edge2 * hit.b2;
-  const double distance = dot(hit.position - ray.origin, ray.direction);
-  hit.distance = std::isfinite(distance) ? distance : static_cast<double>(rh.ray.tfar);
-  hit.geometricNormal = hit.shadingNormal = g.normal;
+  completeHit(ray, rh.ray.tfar, triangle, rh.hit.u, rh.hit.v, hit, interpolateNormal);
   return true;
 }
 

@@ -82,9 +82,14 @@ class RayTracer {
   /// Fills a Hit from a scene triangle and its barycentrics (used by the
   /// stream path and the benchmark; without back faces Embree's primitive
   /// ids are the scene's triangle indices).
-  void completeHit(const Ray &ray, float tfar, unsigned triangle, float u, float v, Hit &hit) const;
+  /// Without `interpolateNormal` the shading normal is the geometric one
+  /// (intersectPosition: the vertex normals are not read).
+  void completeHit(const Ray &ray, float tfar, unsigned triangle, float u, float v, Hit &hit,
+                   bool interpolateNormal = true) const;
 
  private:
+  /// The nearest hit within tMax, completed (intersect and intersectPosition).
+  bool nearestHit(const Ray &ray, double tMax, bool interpolateNormal, Hit &hit) const;
   const Scene &scene_;
   RTCDevice device_ = nullptr;
   RTCScene rtcScene_ = nullptr;
