@@ -25,9 +25,15 @@ void addCheckpointOptions(CLI::App &app, CheckpointCommandOptions &o, const std:
 
 void checkCheckpointOptions(const CheckpointCommandOptions &o) {
   if (o.resume && o.path.empty()) throw InputError(InputLocation{"--resume"}, "needs --checkpoint FILE");
-  if (!o.path.empty() && !o.resume && std::filesystem::exists(o.path))
-    throw InputError(InputLocation{"--checkpoint"},
-                     "'" + o.path + "' exists: add --resume to carry on from it, or remove it");
+  if (!o.path.empty()) refuseExistingCheckpoints(o, {o.path});
+}
+
+void refuseExistingCheckpoints(const CheckpointCommandOptions &o, const std::vector<std::string> &files) {
+  if (o.resume) return;
+  for (const std::string &file : files)
+    if (std::filesystem::exists(file))
+      throw InputError(InputLocation{"--checkpoint"},
+                       "'" + file + "' exists: add --resume to carry on from it, or remove it");
 }
 
 std::string fileFingerprint(const std::string &path) {

@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 namespace radiant {
 
@@ -20,6 +21,10 @@ void addCheckpointOptions(CLI::App &app, CheckpointCommandOptions &options, cons
 /// --resume without --checkpoint, and an existing checkpoint without --resume
 /// (a second run would overwrite the first one's state): InputError.
 void checkCheckpointOptions(const CheckpointCommandOptions &options);
+
+/// The same for the files a checkpoint is split into (a spectral pass's, a
+/// render's solve): without --resume, any of them existing is an InputError.
+void refuseExistingCheckpoints(const CheckpointCommandOptions &options, const std::vector<std::string> &files);
 
 /// FNV-1a (64 bits) of the file's bytes, in hex; "" for no path, "unreadable" when it cannot be read.
 std::string fileFingerprint(const std::string &path);

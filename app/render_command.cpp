@@ -273,20 +273,17 @@ CommandRunner addRenderCommand(CLI::App &app) {
       return scene.spectral.enabled() ? passFilePath(o->checkpoint.path, pass + 1) : o->checkpoint.path;
     };
     auto solveCheckpoint = [&](int pass) {
-      const std::filesystem::path p(o->checkpoint.path);
-      const std::string suffix = scene.spectral.enabled() ? fmt::format(".solve{}", pass + 1) : ".solve";
-      return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
+      return suffixedFilePath(o->checkpoint.path,
+                              scene.spectral.enabled() ? fmt::format(".solve{}", pass + 1) : ".solve");
     };
     const bool checkpointedSolve = !o->checkpoint.path.empty() && method.needsSolution && !method.render &&
                                    o->solutionPath.empty() &&
                                    resolveSolverName(o->radiosity.solver, scene) == "stochastic";
-    if (!o->checkpoint.path.empty() && !o->checkpoint.resume)
-      for (int pass = 0; pass < passCount; ++pass)
-        for (const std::string &file : {passCheckpoint(pass), solveCheckpoint(pass)})
-          if (std::filesystem::exists(file))
-            throw InputError(flag("--checkpoint"),
-                             "'" + file + "' exists: add --resume to carry on from it, or remove it");
     if (!o->checkpoint.path.empty()) {
+      std::vector<std::string> files;
+      for (int pass = 0; pass < passCount; ++pass)
+        files.insert(files.end(), {passCheckpoint(pass), solveCheckpoint(pass)});
+      refuseExistingCheckpoints(o->checkpoint, files);
       driver.checkpointPath = o->checkpoint.path;
       driver.checkpointIntervalSeconds = o->checkpoint.intervalSeconds;
       driver.resume = o->checkpoint.resume;

@@ -127,11 +127,9 @@ CommandRunner addSolveCommand(CLI::App &app) {
       return scene.spectral.enabled() ? passFilePath(o->checkpoint.path, pass + 1) : o->checkpoint.path;
     };
     if (!o->checkpoint.path.empty()) {
-      if (scene.spectral.enabled() && !o->checkpoint.resume)
-        for (int pass = 0; pass < passes; ++pass)
-          if (std::filesystem::exists(passCheckpoint(pass)))
-            throw InputError(InputLocation{"--checkpoint"},
-                             "'" + passCheckpoint(pass) + "' exists: add --resume to carry on from it, or remove it");
+      std::vector<std::string> files;
+      for (int pass = 0; pass < passes; ++pass) files.push_back(passCheckpoint(pass));
+      refuseExistingCheckpoints(o->checkpoint, files);
       checkpoint.path = o->checkpoint.path;
       checkpoint.intervalSeconds = o->checkpoint.intervalSeconds;
       checkpoint.resume = o->checkpoint.resume;

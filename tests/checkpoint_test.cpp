@@ -135,6 +135,19 @@ TEST(RenderCheckpoint, ConvergedPixelsStayStoppedAcrossAResume) {
   EXPECT_GE(resumedFrom, kMinimumSamples);
 }
 
+/// The message of the InputError that reading `path` raises (which must name
+/// the file), or "" when it reads.
+template <typename Read>
+std::string refusalOf(const std::string &path, const Read &read) {
+  try {
+    read();
+  } catch (const InputError &e) {
+    EXPECT_EQ(e.location().file, path);
+    return std::string(e.message());
+  }
+  return std::string();
+}
+
 TEST(RenderCheckpoint, ACheckpointOfAnotherJobOrADamagedOneIsRefused) {
   TempFile checkpoint;
   RenderCheckpoint state;
@@ -145,15 +158,11 @@ TEST(RenderCheckpoint, ACheckpointOfAnotherJobOrADamagedOneIsRefused) {
   Film film(kSize, kSize);
   writeRenderCheckpoint(checkpoint.path, state, film);
   auto refusal = [&](const std::string &job, int width) {
-    Film target(width, kSize);
-    RenderCheckpoint read;
-    try {
+    return refusalOf(checkpoint.path, [&] {
+      Film target(width, kSize);
+      RenderCheckpoint read;
       readRenderCheckpoint(checkpoint.path, job, read, target);
-    } catch (const InputError &e) {
-      EXPECT_EQ(e.location().file, checkpoint.path);
-      return std::string(e.message());
-    }
-    return std::string();
+    });
   };
   EXPECT_EQ(refusal("another job", kSize), "");
   EXPECT_NE(refusal("checkpoint test", kSize).find("another job"), std::string::npos);
@@ -192,13 +201,7 @@ TEST(MultipassCheckpoint, ReadsBackAndRefusesAnotherJobsOrADamagedOne) {
   EXPECT_EQ(read.sums.pairs.sumDifference[5][0], 0.5);
   EXPECT_EQ(read.sums.controls.sum[5][0], 1.5);
   auto refusal = [&](const std::string &job, int width) {
-    try {
-      readMultipassCheckpoint(checkpoint.path, job, width, kHeight);
-    } catch (const InputError &e) {
-      EXPECT_EQ(e.location().file, checkpoint.path);
-      return std::string(e.message());
-    }
-    return std::string();
+    return refusalOf(checkpoint.path, [&] { readMultipassCheckpoint(checkpoint.path, job, width, kHeight); });
   };
   EXPECT_NE(refusal("job B", kWidth).find("another job"), std::string::npos);
   EXPECT_NE(refusal("job A", 2 * kWidth).find("8x4"), std::string::npos);

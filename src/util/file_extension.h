@@ -15,11 +15,16 @@ inline std::string lowercaseExtension(const std::string &path) {
   return extension;
 }
 
+/// A file beside `path`, its stem extended: "out.exr", ".solve" → "out.solve.exr".
+inline std::string suffixedFilePath(const std::string &path, const std::string &suffix) {
+  const std::filesystem::path p(path);
+  return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
+}
+
 /// The file of one pass beside `path`: "out.exr", 3 → "out.pass3.exr" (a
 /// multipass image, a spectral or multipass pass's checkpoint).
 inline std::string passFilePath(const std::string &path, int pass) {
-  const std::filesystem::path p(path);
-  return (p.parent_path() / (p.stem().string() + ".pass" + std::to_string(pass) + p.extension().string())).string();
+  return suffixedFilePath(path, ".pass" + std::to_string(pass));
 }
 
 }  // namespace radiant
