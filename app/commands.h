@@ -16,5 +16,6 @@ CommandRunner addTonemapCommand(CLI::App &app);
 CommandRunner addMethodsCommand(CLI::App &app);
 CommandRunner addExportCommand(CLI::App &app);
 CommandRunner addServeCommand(CLI::App &app);
+CommandRunner addInfoCommand(CLI::App &app);
 
 }  // namespace radiant

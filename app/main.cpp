@@ -72,6 +72,8 @@ int main(int argc, char **argv) {
       "export", "Write the radiosity solution as a mesh with light at its vertices: glTF 2.0 (.glb, .gltf) or PLY");
   CLI::App *serve =
       app.add_subcommand("serve", "Serve the browser viewer and a .glb on a local web server (127.0.0.1)");
+  CLI::App *info = app.add_subcommand(
+      "info", "Describe a scene as Radiant reads it: bounds and units, counts, what loading dropped, the solver");
   radiant::CommandRunner runRender = radiant::addRenderCommand(*render);
   radiant::CommandRunner runSolve = radiant::addSolveCommand(*solve);
   radiant::CommandRunner runCompare = radiant::addCompareCommand(*compare);
@@ -79,6 +81,7 @@ int main(int argc, char **argv) {
   radiant::CommandRunner runMethods = radiant::addMethodsCommand(*methods);
   radiant::CommandRunner runExport = radiant::addExportCommand(*exportCommand);
   radiant::CommandRunner runServe = radiant::addServeCommand(*serve);
+  radiant::CommandRunner runInfo = radiant::addInfoCommand(*info);
 
   try {
     app.parse(argc, argv);
@@ -86,7 +89,7 @@ int main(int argc, char **argv) {
     // --help and --version exit 0; a bad flag is bad input, exit 2 like every other.
     const int status = app.exit(e);
     if (dynamic_cast<const CLI::ExtrasError *>(&e))
-      for (CLI::App *command : {render, solve, compare, tonemap, methods, exportCommand, serve})
+      for (CLI::App *command : {render, solve, compare, tonemap, methods, exportCommand, serve, info})
         if (command->parsed()) suggestFlags(app, *command);
     return status == 0 ? 0 : 2;
   }
@@ -98,6 +101,7 @@ int main(int argc, char **argv) {
     if (methods->parsed()) return runMethods();
     if (exportCommand->parsed()) return runExport();
     if (serve->parsed()) return runServe();
+    if (info->parsed()) return runInfo();
   } catch (const radiant::Interrupted &) {
     if (radiant::cluster::isRoot())
       fmt::print(stderr, "radiant: interrupted before anything was complete; nothing written\n");

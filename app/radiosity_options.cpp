@@ -48,25 +48,36 @@ void checkRadiosityOptions(const RadiosityCommandOptions &options, bool solving,
   checkSolverParameters(options.solver, given);
 }
 
-Solution solveScene(const Scene &scene, const RayTracer &tracer, const RadiosityCommandOptions &o, uint64_t seed,
-                    int threads, bool quiet, const SolveCheckpointOptions &checkpoint) {
-  MeshOptions meshOptions;
+SolverOptions solverOptionsFor(const Scene &scene, const RadiosityCommandOptions &o, MeshOptions &meshOptions) {
   SolverOptions solverOptions;
   solverOptions.solver = o.solver;
   applySolverParameters(o.parameters.given(), scene, solverOptions, meshOptions);
+  if (solverOptions.importance) {
+    // The view importance comes from: the scene's camera, as `render` has set it from --eye, --target, … .
+    solverOptions.importanceView.camera = scene.camera;
+    solverOptions.importanceView.aspect = double(scene.render.width) / std::max(1, scene.render.height);
+  }
+  return solverOptions;
+}
+
+SolverChoice chooseSolver(const Scene &scene, const RadiosityCommandOptions &o) {
+  MeshOptions meshOptions;
+  return chooseSolver(scene, solverOptionsFor(scene, o, meshOptions));
+}
+
+Solution solveScene(const Scene &scene, const RayTracer &tracer, const RadiosityCommandOptions &o, uint64_t seed,
+                    int threads, bool quiet, const SolveCheckpointOptions &checkpoint) {
+  MeshOptions meshOptions;
+  SolverOptions solverOptions = solverOptionsFor(scene, o, meshOptions);
   solverOptions.seed = seed;
   solverOptions.threads = threads;
   solverOptions.checkpoint = checkpoint;
   if (solverOptions.importance) {
-    // "auto" is settled by the patch count, one patch per face.
-    const std::string resolved = resolveSolverName(o.solver, scene.faces.size(), true);
-    if (resolved != "hierarchical")
+    const SolverChoice chosen = chooseSolver(scene, solverOptions);
+    if (chosen.solver != "hierarchical")
       throw InputError(InputLocation{"--importance"},
-                       fmt::format("applies only to --solver hierarchical; --solver {} runs {} on {} patches", o.solver,
-                                   resolved, scene.faces.size()));
-    // The view importance comes from: the scene's camera, as `render` has set it from --eye, --target, … .
-    solverOptions.importanceView.camera = scene.camera;
-    solverOptions.importanceView.aspect = double(scene.render.width) / std::max(1, scene.render.height);
+                       fmt::format("applies only to --solver hierarchical; --solver {} runs {} ({})", o.solver,
+                                   chosen.solver, chosen.reason));
   }
 
   SolverProgressCallback progress;

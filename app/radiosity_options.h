@@ -26,6 +26,11 @@ void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &options);
 /// solver's parameter given to another solver (checkSolverParameters).
 void checkRadiosityOptions(const RadiosityCommandOptions &options, bool solving, const std::string &reason);
 
+/// The solver options the flags ask for on this scene (mesh-size in its units, the importance view from its camera).
+SolverOptions solverOptionsFor(const Scene &scene, const RadiosityCommandOptions &options, MeshOptions &meshOptions);
+/// What the solve of these flags will run, and why (radiosity/solver.h chooseSolver).
+SolverChoice chooseSolver(const Scene &scene, const RadiosityCommandOptions &options);
+
 /// Meshes and solves the scene, printing progress and a summary unless quiet.
 Solution solveScene(const Scene &scene, const RayTracer &tracer, const RadiosityCommandOptions &options, uint64_t seed,
                     int threads, bool quiet, const SolveCheckpointOptions &checkpoint = {});

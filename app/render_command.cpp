@@ -277,8 +277,7 @@ CommandRunner addRenderCommand(CLI::App &app) {
                               scene.spectral.enabled() ? fmt::format(".solve{}", pass + 1) : ".solve");
     };
     const bool checkpointedSolve = !o->checkpoint.path.empty() && method.needsSolution && !method.render &&
-                                   o->solutionPath.empty() &&
-                                   resolveSolverName(o->radiosity.solver, scene) == "stochastic";
+                                   o->solutionPath.empty() && chooseSolver(scene, o->radiosity).solver == "stochastic";
     if (!o->checkpoint.path.empty()) {
       std::vector<std::string> files;
       for (int pass = 0; pass < passCount; ++pass)

@@ -100,7 +100,13 @@ int main(int argc, char **argv) {
     std::printf(
         "multipass_budget: %s, %dx%d, %d threads, solver %s (%s here), medians of %d runs; load average %.2f "
         "before\n\n",
-        scenePath.c_str(), size, size, threads, solverName.c_str(), resolveSolverName(solverName, scene).c_str(),
+        scenePath.c_str(), size, size, threads, solverName.c_str(),
+        [&] {
+          SolverOptions options;
+          options.solver = solverName;
+          return chooseSolver(scene, options).solver;
+        }()
+            .c_str(),
         repeats, loadBefore);
     std::printf("| budget s | used s | used / budget | passes 1-2 s | passes | last pass s | R spp | pairs |\n");
     std::printf("|---:|---:|---:|---:|---:|---:|---:|---:|\n");

@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin
   clang-format-14
+  python3
   chromium
 )
 # The browser viewer (viewer/) and its tests run on Node.js: Debian's, unless

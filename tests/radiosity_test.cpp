@@ -546,14 +546,36 @@ TEST(Stochastic, AgreesWithHierarchicalOnTheCornellBox) {
   EXPECT_NEAR(directMc / directGs, 1.0, 0.02);
 }
 
+namespace {
+
+/// A scene of `faces` front faces, `emitters` of them emitting: all chooseSolver counts.
+Scene sceneOfFaces(size_t faces, size_t emitters) {
+  Scene scene;
+  scene.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  scene.materials.resize(2);
+  scene.materials[1].emission = Bands(1.0);
+  scene.faces.resize(faces);
+  for (size_t f = 0; f < faces; ++f) scene.faces[f] = Face{3, {0, 1, 2}}, scene.faces[f].material = f < emitters;
+  return scene;
+}
+
+SolverChoice chooseFor(const Scene &scene, const std::string &solver, bool importance = false) {
+  SolverOptions options;
+  options.solver = solver;
+  options.importance = importance;
+  return chooseSolver(scene, options);
+}
+
+}  // namespace
+
 TEST(Radiosity, AutoPicksHierarchicalExactUpTo150000PatchesAndStochasticBeyond) {
-  EXPECT_EQ(resolveSolverName("auto", 150000, false), "hierarchical-exact");
-  EXPECT_EQ(resolveSolverName("auto", 250001, false), "stochastic");
-  EXPECT_EQ(resolveSolverName("auto", 2000, true), "hierarchical");
-  EXPECT_EQ(resolveSolverName("auto", 2001, true), "stochastic");
-  EXPECT_EQ(resolveSolverName("auto", 1000, false, 256), "hierarchical-exact");
-  EXPECT_EQ(resolveSolverName("auto", 1000, false, 257), "stochastic");
-  EXPECT_EQ(resolveSolverName("gauss-seidel", 10, false), "gauss-seidel");
+  EXPECT_EQ(chooseFor(sceneOfFaces(150000, 1), "auto").solver, "hierarchical-exact");
+  EXPECT_EQ(chooseFor(sceneOfFaces(150001, 1), "auto").solver, "stochastic");
+  EXPECT_EQ(chooseFor(sceneOfFaces(2000, 1), "auto", true).solver, "hierarchical");
+  EXPECT_EQ(chooseFor(sceneOfFaces(2001, 1), "auto", true).solver, "stochastic");
+  EXPECT_EQ(chooseFor(sceneOfFaces(1000, 256), "auto").solver, "hierarchical-exact");
+  EXPECT_EQ(chooseFor(sceneOfFaces(1000, 257), "auto").solver, "stochastic");
+  EXPECT_EQ(chooseFor(sceneOfFaces(10, 1), "gauss-seidel").solver, "gauss-seidel");
   Scene room = test::furnace(1.0, 0.5);
   EXPECT_EQ(solve(room, "auto", 0.5, 1e-3).stats.solver, "hierarchical-exact");
 }

@@ -53,26 +53,6 @@ void applyQuality(SolverOptions &options, const std::string &name) {
   throw InputError(InputLocation::ofParameter("quality"), fmt::format("unknown quality '{}'; known: {}", name, names));
 }
 
-std::string resolveSolverName(const std::string &name, size_t patches, bool importance, size_t emitters) {
-  // hierarchical (for --importance) links every pair of input patches
-  // first, hopeless beyond a few thousand. hierarchical-exact starts from
-  // clusters: a 10⁵-triangle scene (cornell-knots) solves in 50–55 s on 2
-  // cores at the default --quality high (25 s at normal) and its image then
-  // has half the path tracer's RMSE at equal time, where the stochastic
-  // solver's stays 3–6× worse at every budget; a 10⁵-triangle sphere in a
-  // room takes 90 s and 1.2 GB at high (28 s, 0.8 GB at normal;
-  // docs/PERFORMANCE.md), growing as faces^0.5–0.6, so beyond 1.5·10⁵
-  // faces, where it would take minutes and gigabytes, the stochastic
-  // solver takes over. Its direct light is exact per emitter face at every
-  // mesh node: a room lit by a few lamps, not a furnace of 3750 glowing
-  // quads (5 minutes), so beyond 256 emitting faces the stochastic solver
-  // takes over too.
-  constexpr size_t kAutoHierarchicalPatches = 2000, kAutoExactPatches = 150000, kAutoExactEmitters = 256;
-  if (name != "auto") return name;
-  if (importance) return patches <= kAutoHierarchicalPatches ? "hierarchical" : "stochastic";
-  return patches <= kAutoExactPatches && emitters <= kAutoExactEmitters ? "hierarchical-exact" : "stochastic";
-}
-
 namespace {
 
 /// The faces of an emitting material (either side) and the front faces.
@@ -86,9 +66,42 @@ constexpr size_t kMostNodeEmitters = 256;
 
 }  // namespace
 
-std::string resolveSolverName(const std::string &name, const Scene &scene, bool importance) {
-  const auto [emitters, faces] = countEmittersAndFaces(scene);
-  return resolveSolverName(name, faces, importance, emitters);
+SolverChoice chooseSolver(const Scene &scene, const SolverOptions &options) {
+  if (options.solver != "auto") return {options.solver, "named by --solver"};
+  // hierarchical (for --importance) links every pair of input patches
+  // first, hopeless beyond a few thousand. hierarchical-exact starts from
+  // clusters: a 10⁵-triangle scene (cornell-knots) solves in 50–55 s on 2
+  // cores at the default --quality high (25 s at normal) and its image then
+  // has half the path tracer's RMSE at equal time, where the stochastic
+  // solver's stays 3–6× worse at every budget; a 10⁵-triangle sphere in a
+  // room takes 90 s and 1.2 GB at high (28 s, 0.8 GB at normal;
+  // docs/PERFORMANCE.md), growing as faces^0.5–0.6, so beyond 1.5·10⁵
+  // faces, where it would take minutes and gigabytes, the stochastic
+  // solver takes over. Its direct light is exact per emitter face at every
+  // mesh node: a room lit by a few lamps, not a furnace of 3750 glowing
+  // quads (5 minutes), so beyond 256 emitting faces the stochastic solver
+  // takes over too.
+  constexpr size_t kAutoHierarchicalPatches = 2000, kAutoExactPatches = 150000;
+  const auto [emitters, patches] = countEmittersAndFaces(scene);
+  if (options.importance) {
+    if (patches <= kAutoHierarchicalPatches)
+      return {"hierarchical", fmt::format("--importance refines for the view, and {} patches (at most {}) can all be "
+                                          "linked",
+                                          patches, kAutoHierarchicalPatches)};
+    return {"stochastic", fmt::format("--importance needs hierarchical, which links every pair of patches: too many "
+                                      "at {} (more than {})",
+                                      patches, kAutoHierarchicalPatches)};
+  }
+  if (emitters > kMostNodeEmitters)
+    return {"stochastic", fmt::format("{} emitting faces (more than {}): the exact direct light at every node would "
+                                      "cost a backprojection of each",
+                                      emitters, kMostNodeEmitters)};
+  if (patches > kAutoExactPatches)
+    return {"stochastic",
+            fmt::format("{} faces (more than {}): hierarchical-exact would take minutes", patches, kAutoExactPatches)};
+  return {"hierarchical-exact",
+          fmt::format("{} face{} (at most {}) and {} emitting face{} (at most {})", patches, patches == 1 ? "" : "s",
+                      kAutoExactPatches, emitters, emitters == 1 ? "" : "s", kMostNodeEmitters)};
 }
 
 bool directLightAtNodes(const SolverOptions &options, const Scene &scene) {
@@ -104,8 +117,11 @@ bool directLightAtNodes(const SolverOptions &options, const Scene &scene) {
 }
 
 Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOptions &meshOptions,
-                      const SolverOptions &options, const SolverProgressCallback &progress) {
-  if (resolveSolverName(options.solver, scene, options.importance) == "hierarchical-exact") {
+                      const SolverOptions &given, const SolverProgressCallback &progress) {
+  // "auto" decided once, here, for the meshing and the solve alike.
+  SolverOptions options = given;
+  options.solver = chooseSolver(scene, given).solver;
+  if (options.solver == "hierarchical-exact") {
     // It refines the patches' trees itself, from a uniform start.
     if (options.adaptiveRounds > 0)
       throw InputError(InputLocation::ofParameter("adaptive-rounds"), "hierarchical-exact refines by itself");
@@ -125,7 +141,7 @@ Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOpt
     // The large-scene solver meshes the cut faces too (no leaks, nothing hidden meshed).
     std::vector<FaceSplit> splits;
     MeshOptions uniform = meshOptions;
-    if (resolveSolverName(options.solver, scene, options.importance) == "stochastic") {
+    if (options.solver == "stochastic") {
       splits = splitFaces(scene, tracer);
       uniform.faceSplits = &splits;
       // With the direct light exact at the nodes, the display interpolates
@@ -143,8 +159,7 @@ Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOpt
   if (!options.checkpoint.path.empty())
     throw InputError(InputLocation{"--checkpoint"}, "not with adaptive rounds (a solve per round)");
   RadiosityMesh mesh = buildTreeMesh(scene, meshOptions);
-  SolverOptions round = options;
-  round.solver = resolveSolverName(options.solver, scene, options.importance);
+  const SolverOptions &round = options;
   if (round.solver == "hierarchical")
     throw InputError(InputLocation::ofParameter("adaptive-rounds"),
                      "the hierarchical solver refines by itself; adaptive rounds are for --solver gauss-seidel, "
@@ -185,8 +200,7 @@ namespace {
 
 void solveRadiosity(const RayTracer &tracer, Solution &solution, const SolverOptions &options,
                     const SolverProgressCallback &progress) {
-  // "auto": resolveSolverName says which and why.
-  std::string name = resolveSolverName(options.solver, tracer.scene(), options.importance);
+  const std::string name = chooseSolver(tracer.scene(), options).solver;
   const SolverInfo *chosen = nullptr;
   std::string names = "auto";
   for (const SolverInfo &info : solverRegistry()) {
@@ -198,8 +212,7 @@ void solveRadiosity(const RayTracer &tracer, Solution &solution, const SolverOpt
                      fmt::format("unknown solver '{}'; known solvers: {}", options.solver, names));
   if (!options.checkpoint.path.empty() && std::string(chosen->name) != "stochastic")
     throw InputError(InputLocation{"--checkpoint"},
-                     fmt::format("only the stochastic solver saves its state yet; --solver {} runs {}", options.solver,
-                                 chosen->name));
+                     fmt::format("only the stochastic solver saves its state yet; this solve runs {}", chosen->name));
   auto start = std::chrono::steady_clock::now();
   solution.stats.solver = chosen->name;
   // With every ρ < 1 and form factors that sum to at most 1, each iteration

@@ -23,8 +23,7 @@ struct ImportanceView {
 };
 
 struct SolverOptions {
-  /// A name from solverRegistry(), or "auto": hierarchical-exact for up to
-  /// 150 000 input faces lit by at most 256 emitting ones, stochastic beyond (resolveSolverName).
+  /// A name from solverRegistry(), or "auto" (chooseSolver decides).
   std::string solver = "auto";
   /// Gauss–Seidel and hierarchical: max change of B in a sweep over the
   /// largest reflected radiosity B − E; progressive: unshot power over
@@ -148,14 +147,17 @@ void solveRadiosity(const RayTracer &tracer, Solution &solution, const SolverOpt
 /// of 3750 glowing quads would take minutes) and Rays beyond.
 bool directLightAtNodes(const SolverOptions &options, const Scene &scene);
 
-/// "auto" resolved for a mesh of `patches` input patches; other names
-/// unchanged: hierarchical-exact up to 150 000 patches and 256 emitters, stochastic beyond.
-/// With `importance` (--importance), "auto" picks the solver that refines
-/// for a view, hierarchical, up to 2000 patches.
-std::string resolveSolverName(const std::string &name, size_t patches, bool importance = false, size_t emitters = 0);
-/// The same for a scene: its faces are the patches, and hierarchical-exact
-/// only while at most 256 of them emit.
-std::string resolveSolverName(const std::string &name, const Scene &scene, bool importance = false);
+/// What a solve runs: "auto" resolved (here and nowhere else), or the solver
+/// named, with the reason for a person (radiant info, the solve's summary).
+struct SolverChoice {
+  std::string solver;  ///< a name from solverRegistry() (an unknown name is passed through for the caller to refuse)
+  std::string reason;  ///< why auto picked it; for a named solver, "named by --solver"
+};
+/// The one place "auto" is decided, from the scene's front faces (the
+/// patches), its emitting faces and options.solver and options.importance
+/// (docs/radiosity.md, "What auto chooses"). Every caller that needs to know
+/// the solver before the solve (the app's checks, checkpoints, info) asks this.
+SolverChoice chooseSolver(const Scene &scene, const SolverOptions &options);
 
 /// Meshes the scene and solves it. With options.adaptiveRounds > 0 the mesh is
 /// a tree mesh, and each round splits the elements whose error estimate
