@@ -56,9 +56,7 @@ CommandRunner addMethodsCommand(CLI::App &app) {
                           "solution)\n\n"
                         : "\nRadiosity solvers (--solver):\n");
     std::vector<std::pair<std::string, std::string>> solvers = {
-        {"auto",
-         "hierarchical-exact up to 150 000 input faces (256 emitting), else stochastic; it takes the "
-         "parameters of the solvers it may pick"}};
+        {"auto", std::string(kAutoSolverSummary) + "; it takes the parameters of the solvers it may pick"}};
     for (const SolverInfo &info : solverRegistry()) solvers.push_back({info.name, info.summary});
     for (const auto &[name, summary] : solvers) {
       fmt::print(fmt::runtime(md ? "#### `--solver {}`\n\n{}.\n\n" : "  {}: {}\n"), name, summary);

@@ -16,8 +16,7 @@
 namespace radiant {
 
 void addRadiosityOptions(CLI::App &app, RadiosityCommandOptions &o) {
-  std::string solvers = fmt::format("\n  {:<13} {}", "auto",
-                                    "hierarchical-exact up to 150 000 input faces (256 emitting), else stochastic");
+  std::string solvers = fmt::format("\n  {:<13} {}", "auto", kAutoSolverSummary);
   for (const SolverInfo &info : solverRegistry()) solvers += fmt::format("\n  {:<13} {}", info.name, info.summary);
   o.solverOption = app.add_option("--solver", o.solver, "Radiosity solver:" + solvers)->default_val("auto");
   // The parameters every solver takes first, then each solver's own.

@@ -103,7 +103,8 @@ class DepositGrid {
 }  // namespace
 
 std::vector<Bands> reflectedIrradianceAtNodes(const Solution &solution, const std::vector<Bands> &power,
-                                              const std::vector<double> &rays, double enoughRays, int threads) {
+                                              const std::vector<double> &rays, double enoughRays, int threads,
+                                              const SparseNodeEstimate &estimateSparse) {
   const RadiosityMesh &mesh = solution.mesh;
   const size_t nodeCount = mesh.nodes.size();
   std::vector<Bands> atNodes(nodeCount, Bands(0.0));
@@ -139,7 +140,10 @@ std::vector<Bands> reflectedIrradianceAtNodes(const Solution &solution, const st
     objectIsSparse[object] = true;
   }
 
-  if (!sparse.empty()) {
+  if (!sparse.empty() && estimateSparse) {
+    const std::vector<Bands> estimates = estimateSparse(sparse);
+    for (size_t i = 0; i < sparse.size(); ++i) atNodes[sparse[i]] = estimates[i];
+  } else if (!sparse.empty()) {
     // The ladder of grids over the objects that need them.
     Vec3 lo = mesh.nodes[0], hi = mesh.nodes[0];
     for (const Vec3 &p : mesh.nodes) {

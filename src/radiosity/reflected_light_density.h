@@ -24,6 +24,7 @@
 // the estimate trades as little blur for as much noise as the rays allow.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "radiosity/solution.h"
@@ -37,7 +38,11 @@ namespace radiant {
 /// at least `enoughRays` keeps their area-weighted mean (Solution::nodeValues);
 /// any other takes the density estimate over the smallest neighbourhood that
 /// holds that many, or the largest there is. Deterministic, in parallel.
+/// With `estimateSparse`, the nodes with too few rays take its estimates
+/// (reflected_light_gather.h) instead of the density estimate.
+using SparseNodeEstimate = std::function<std::vector<Bands>(const std::vector<uint32_t> &nodes)>;
 std::vector<Bands> reflectedIrradianceAtNodes(const Solution &solution, const std::vector<Bands> &power,
-                                              const std::vector<double> &rays, double enoughRays, int threads);
+                                              const std::vector<double> &rays, double enoughRays, int threads,
+                                              const SparseNodeEstimate &estimateSparse = {});
 
 }  // namespace radiant

@@ -69,19 +69,22 @@ constexpr size_t kMostNodeEmitters = 256;
 SolverChoice chooseSolver(const Scene &scene, const SolverOptions &options) {
   if (options.solver != "auto") return {options.solver, "named by --solver"};
   // hierarchical (for --importance) links every pair of input patches
-  // first, hopeless beyond a few thousand. hierarchical-exact starts from
-  // clusters: a 10⁵-triangle scene (cornell-knots) solves in 50–55 s on 2
-  // cores at the default --quality high (25 s at normal) and its image then
-  // has half the path tracer's RMSE at equal time, where the stochastic
-  // solver's stays 3–6× worse at every budget; a 10⁵-triangle sphere in a
-  // room takes 90 s and 1.2 GB at high (28 s, 0.8 GB at normal;
-  // docs/PERFORMANCE.md), growing as faces^0.5–0.6, so beyond 1.5·10⁵
-  // faces, where it would take minutes and gigabytes, the stochastic
-  // solver takes over. Its direct light is exact per emitter face at every
-  // mesh node: a room lit by a few lamps, not a furnace of 3750 glowing
-  // quads (5 minutes), so beyond 256 emitting faces the stochastic solver
-  // takes over too.
-  constexpr size_t kAutoHierarchicalPatches = 2000, kAutoExactPatches = 150000;
+  // first, hopeless beyond a few thousand. hierarchical-exact is the most
+  // accurate where the input is a few large faces (the Cornell box: 2 s,
+  // RMSE 0.0004), but its links and shadow refinement multiply with the
+  // faces of a tessellated model: on 2 cores, whole runs at 256², 960
+  // faces of a sphere 3.3 s, the 3.7k-face Wuson 18 s (worse than the path
+  // tracer given those 18 s), 9 800 faces 17 s, 10⁵ (cornell-knots) 47 s.
+  // The stochastic solver, with the direct light exact at the nodes and the
+  // reflected light gathered at a model's nodes (reflected_light_gather.h),
+  // takes 1.3–1.5 s on the first three and 9.5 s on the last, at 0.3–0.5×
+  // the path tracer's RMSE given the same time (docs/PERFORMANCE.md, "The
+  // default on the scenes users bring"). So beyond 2000 faces it takes over.
+  // Its exact direct light costs a backprojection per emitter face at every
+  // node: a room lit by a few lamps, not a furnace of 3750 glowing quads (5
+  // minutes), so a scene of more than 256 emitting faces goes to the
+  // stochastic solver with the emission shot by rays.
+  constexpr size_t kAutoHierarchicalPatches = 2000, kAutoExactPatches = 2000;
   const auto [emitters, patches] = countEmittersAndFaces(scene);
   if (options.importance) {
     if (patches <= kAutoHierarchicalPatches)

@@ -153,6 +153,8 @@ struct SolverChoice {
   std::string solver;  ///< a name from solverRegistry() (an unknown name is passed through for the caller to refuse)
   std::string reason;  ///< why auto picked it; for a named solver, "named by --solver"
 };
+/// What "auto" picks, in a line (the --solver help, `radiant methods`).
+constexpr const char *kAutoSolverSummary = "hierarchical-exact up to 2000 input faces (256 emitting), else stochastic";
 /// The one place "auto" is decided, from the scene's front faces (the
 /// patches), its emitting faces and options.solver and options.importance
 /// (docs/radiosity.md, "What auto chooses"). Every caller that needs to know

@@ -47,6 +47,7 @@
 #include "radiosity/backprojection.h"
 #include "radiosity/node_direct_light.h"
 #include "radiosity/reflected_light_density.h"
+#include "radiosity/reflected_light_gather.h"
 #include "radiosity/solve_checkpoint.h"
 #include "radiosity/solver.h"
 #include "radiosity/transmission.h"
@@ -71,6 +72,11 @@ constexpr double kArrivalScale = 0x1.0p60 / kBandCount;
 /// Rays a node's elements must hold for their own mean to be its reflected
 /// light (reflected_light_density.h): 400 rays, a relative error of about 5 %.
 constexpr double kEnoughRays = 400;
+
+/// The final gather's rays at the nodes whose elements hold fewer
+/// (reflected_light_gather.h): 64 a node, fewer (down to 16) where the
+/// nodes are many, so that it costs at most about this many rays.
+constexpr size_t kGatherRays = 16'000'000;
 
 }  // namespace
 
@@ -333,7 +339,30 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
     // elements' as nodeRadiosity would be; the display adds ρ̄·H_direct.
     std::vector<Bands> reflectedPower(n);
     for (size_t e = 0; e < n; ++e) reflectedPower[e] = (s.irradiance[e] - elementDirect[e]) * s.mesh.elements[e].area;
-    s.nodeIndirectIrradiance = reflectedIrradianceAtNodes(s, reflectedPower, raysArrived, kEnoughRays, options.threads);
+    // Where a node's elements hold too few rays (a tessellated model's
+    // facets), a final gather at the node (reflected_light_gather.h), within
+    // a budget of rays; a mesh too large for it (more than 4·10⁶ nodes, where
+    // 16 rays a node would be over budget) takes the density estimate instead.
+    Vec3 lo = s.mesh.nodes.front(), hi = lo;
+    for (const Vec3 &p : s.mesh.nodes)
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)},
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    const double sceneExtent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    SparseNodeEstimate gather = [&](const std::vector<uint32_t> &nodes) {
+      const auto gatherStart = std::chrono::steady_clock::now();
+      const int raysPerNode = int(std::clamp<size_t>(kGatherRays / std::max<size_t>(1, nodes.size()), 16, 64));
+      std::vector<Bands> gathered =
+          gatherReflectedIrradiance(tracer, s, nodes, raysPerNode, sceneExtent / 256, options.seed, options.threads);
+      s.stats.formFactorRays += nodes.size() * size_t(raysPerNode);
+      if (timing)
+        std::fprintf(stderr, "  %-28s %.3f s (%zu nodes, %d rays each)\n", "gathering at the nodes",
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - gatherStart).count(),
+                     nodes.size(), raysPerNode);
+      return gathered;
+    };
+    if (s.mesh.nodes.size() > kGatherRays / 4) gather = nullptr;
+    s.nodeIndirectIrradiance =
+        reflectedIrradianceAtNodes(s, reflectedPower, raysArrived, kEnoughRays, options.threads, gather);
   }
 }
 
