@@ -139,7 +139,9 @@ CommandRunner addRenderCommand(CLI::App &app) {
       ->default_val("radiance")
       ->check(CLI::IsMember({"radiance", "irradiance"}));
   app.add_option("--variance", o->variancePath, "Also write the variance of each pixel's mean (.exr or .pfm)");
-  app.add_option("--spp", o->spp, "Samples per pixel (default: the scene's render.spp, else 64)");
+  app.add_option("--spp", o->spp,
+                 "Samples per pixel (default: the scene's render.spp, else 64; flat and interpolate at least 1024, "
+                 "their smooth pixels stopping after 8)");
   app.add_option("--time", o->time,
                  "Time budget in seconds: stop after the sampling round that reaches it (--spp still caps it)");
   app.add_option("--seed", o->seed, "Random seed; the same seed and sample count give the same image")
@@ -221,6 +223,9 @@ CommandRunner addRenderCommand(CLI::App &app) {
     if (o->time) scene.render.timeBudgetSeconds = *o->time;
     if (o->seed) scene.render.seed = *o->seed;
     if (o->time && !o->spp) scene.render.samplesPerPixel = kMaxSamplesPerPixel;  // the budget decides
+    if (!o->time && !o->spp)  // a method whose samples only antialias takes more (RendererInfo)
+      scene.render.samplesPerPixel =
+          std::max(scene.render.samplesPerPixel, findRenderer(o->method).defaultSamplesPerPixel);
 
     // Command-line values get the same checks as the scene file's, before any allocation.
     const RenderSettings &r = scene.render;

@@ -649,6 +649,17 @@ TEST(SceneLoaderObj, MissingTextureNamesTheMtlLine) {
   EXPECT_NEAR(m.bumpScale, 0.25, 1e-6);
 }
 
+TEST(SceneLoaderObj, TexturePathsWithWindowsSeparatorsAreFound) {
+  // MTL files written on Windows (assimp's spider: `map_Kd .\SpiderTex.jpg`).
+  TempDir dir;
+  fs::create_directories(dir.file("textures"));
+  dir.write("textures/wood.png", kTinyPng);
+  dir.write("t.mtl", "newmtl a\nKd 0.5 0.5 0.5\nmap_Kd .\\textures\\wood.png\n");
+  std::string obj = dir.write("t.obj", "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n");
+  Scene s = loadScene(obj);
+  EXPECT_EQ(fs::path(s.materials[s.faces[0].material].diffuseTexture), fs::path(dir.file("textures/wood.png")));
+}
+
 TEST(SceneLoaderObj, BareObjGetsAFramingCameraAndWarnings) {
   TempDir dir;
   std::string obj = dir.write("box.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nv 9 9 9\nf 1 2 3 4\n");

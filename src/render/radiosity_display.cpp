@@ -94,8 +94,16 @@ std::unique_ptr<Renderer> createInterpolated(const RayTracer &tracer, const Rend
 
 }  // namespace
 
+/// The radiosity displays' samples only antialias: their default is at
+/// least this many, so that a light's outline converges (cornell-knots at
+/// 256²: RMSE 0.011 at the scene's 64 spp, 0.0021 at 1024, for 2 s more).
+constexpr int kDisplaySamplesPerPixel = 1024;
+
 RendererInfo flatMethod() {
-  return {"flat", "the radiosity solution, constant per element", {}, &createFlat, nullptr, true, true};
+  return {"flat",  "the radiosity solution, constant per element",
+          {},      &createFlat,
+          nullptr, true,
+          true,    kDisplaySamplesPerPixel};
 }
 
 RendererInfo interpolateMethod() {
@@ -105,7 +113,8 @@ RendererInfo interpolateMethod() {
           &createInterpolated,
           nullptr,
           true,
-          true};
+          true,
+          kDisplaySamplesPerPixel};
 }
 
 }  // namespace radiant

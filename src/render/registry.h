@@ -58,6 +58,11 @@ struct RendererInfo {
   void (*render)(const ImageJob &, const Parameters &) = nullptr;
   bool needsSolution = false;       ///< the driver must solve (or load) radiosity first
   bool supportsIrradiance = false;  ///< honours RenderContext::irradiance
+  /// Samples per pixel when neither --spp nor --time is given, if more than
+  /// the scene's render.spp (0: the scene's). For the radiosity displays,
+  /// whose samples only antialias (one ray each; a smooth pixel stops after
+  /// 8): the edges, a light's outline above all, need hundreds.
+  int defaultSamplesPerPixel = 0;
 };
 
 /// Every rendering method, by name (render/registry.cpp).

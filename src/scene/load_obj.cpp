@@ -22,6 +22,7 @@
 #include <fmt/format.h>
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <charconv>
 #include <filesystem>
 #include <fstream>
@@ -246,10 +247,20 @@ Vec3 toVec3(const std::vector<tinyobj::real_t> &values, size_t i) {
   return {widen(values[i]), widen(values[i + 1]), widen(values[i + 2])};
 }
 
-/// The texture path from an MTL statement, relative to the MTL file; it must exist.
+/// The texture path from an MTL statement, relative to the MTL file; it must
+/// exist. MTL files written on Windows separate folders with '\' (assimp's
+/// spider: `map_Kd .\SpiderTex.jpg`): where the name as given is not a file,
+/// it is read with '/' instead.
 std::string resolveTexture(const std::string &name, const MtlSource &source, int line, const char *statement) {
   fs::path path = fs::path(source.file).parent_path() / name;
   std::error_code ec;
+  if (!fs::is_regular_file(path, ec) && name.find('\\') != std::string::npos) {
+    std::string forward = name;
+    std::replace(forward.begin(), forward.end(), '\\', '/');
+    if (const fs::path alternative = fs::path(source.file).parent_path() / forward;
+        fs::is_regular_file(alternative, ec))
+      path = alternative;
+  }
   if (!fs::is_regular_file(path, ec))
     fileError(source.file, line > 0 ? line : source.newmtlLine,
               std::string("cannot open texture '") + path.string() + "' named by " + statement);
