@@ -46,6 +46,10 @@ inline void expectSameTopology(const Solution &written, const Solution &back) {
   EXPECT_EQ(b.patchOfFace, a.patchOfFace);
   EXPECT_EQ(b.facePatchCount, a.facePatchCount);
   EXPECT_EQ(b.nodeOnCut, a.nodeOnCut);
+  // Derived from the scene's vertex normals on reading, as the builder did; the pools depend on them.
+  EXPECT_EQ(b.patchCornerNormals, a.patchCornerNormals);
+  EXPECT_EQ(b.nodeShadingNormals, a.nodeShadingNormals);
+  EXPECT_EQ(back.nodePools(), written.nodePools());
   ASSERT_EQ(b.tVertices.size(), a.tVertices.size());
   for (size_t t = 0; t < a.tVertices.size(); ++t) {
     EXPECT_EQ(b.tVertices[t].node, a.tVertices[t].node);

@@ -583,9 +583,9 @@ Solution getSolution(Reader &r, const Scene &scene) {
   for (const Element &e : m.elements)
     if (!isFinite(e.centre) || !std::isfinite(e.area)) r.fail("an element's centre or area is not finite");
   m.buildPatchLookup();
+  m.setShadingNormals(scene);  // not stored: from the scene's vertex normals, as buildMesh; the pools use them
   // One value per pool, in the order of the pools' first nodes (the writer's: same mesh, same pools).
-  if (pooled)
-    if (const std::string wrong = spreadPooledNodeIrradiance(s); !wrong.empty()) r.fail(wrong);
+  if (const std::string wrong = pooled ? spreadPooledNodeIrradiance(s) : std::string(); !wrong.empty()) r.fail(wrong);
   // Derived, not stored, and only after the checks above: the node values (ambient included) and
   // the error estimates, as the solver's last step made them (solveRadiosity).
   s.updateNodesAndErrors();

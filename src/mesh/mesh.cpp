@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <unordered_map>
 
@@ -52,6 +53,37 @@ void inverseBilinear(const Patch &patch, const Vec3 &p, double &u, double &v) {
     v = outside(v1) <= outside(v2) ? v1 : v2;
   }
   u = solveU(v);
+}
+
+/// Barycentric weights of `p` in triangle a, b, c (in its plane), as locate() computes them.
+std::array<double, 3> barycentric(const Vec3 &a, const Vec3 &b, const Vec3 &c, const Vec3 &p) {
+  const Vec3 n = cross(b - a, c - a);
+  const double n2 = dot(n, n);
+  const double b1 = dot(cross(p - a, c - a), n) / n2, b2 = dot(cross(b - a, p - a), n) / n2;
+  return {1 - b1 - b2, b1, b2};
+}
+
+Vec3 toVec3(const ShadingNormal &n) {
+  return Vec3{n[0], n[1], n[2]};
+}
+
+/// The face's vertex normals interpolated at `p` (a point of the face) as the
+/// ray tracer does: linearly over the fan triangle (0, k, k + 1) holding it.
+/// Not normalised, so that a patch's corners interpolate on to its nodes.
+Vec3 vertexNormalAt(const Scene &scene, const Face &face, const Vec3 &p) {
+  Vec3 best;
+  double bestOutside = INFINITY;
+  for (int k = 1; k + 1 < face.vertexCount; ++k) {
+    const int corner[3] = {0, k, k + 1};
+    const std::array<double, 3> w = barycentric(scene.positions[face.vertices[0]], scene.positions[face.vertices[k]],
+                                                scene.positions[face.vertices[k + 1]], p);
+    const double outside = std::max({0.0, -w[0], -w[1], -w[2]});
+    if (!(outside < bestOutside)) continue;
+    bestOutside = outside;
+    best = Vec3{};
+    for (int j = 0; j < 3; ++j) best += scene.normals[size_t(face.normals[corner[j]])] * w[j];
+  }
+  return best;
 }
 
 }  // namespace
@@ -200,7 +232,6 @@ void RadiosityMesh::addCrossPatchTVertices() {
       for (int64_t y = std::min(ka[1], kb[1]); y <= std::max(ka[1], kb[1]); ++y)
         for (int64_t z = std::min(ka[2], kb[2]); z <= std::max(ka[2], kb[2]); ++z) grid[{x, y, z}].push_back(i);
   }
-  constexpr double kCos2Degrees = 0.99939;
   std::vector<std::pair<double, TVertex>> found;
   for (uint32_t v = 0; v < nodes.size(); ++v) {
     if (!nodeOnCut.empty() && nodeOnCut[v]) continue;
@@ -211,12 +242,23 @@ void RadiosityMesh::addCrossPatchTVertices() {
       const Edge &e = edges[i];
       if (e.patch == nodePatch[v]) continue;
       const Patch &pe = patches[e.patch];
-      if (pe.material != pv.material || dot(pe.normal, pv.normal) <= kCos2Degrees) continue;
+      if (pe.material != pv.material) continue;
       const Vec3 &a = nodes[e.start], &b = nodes[e.end];
       const Vec3 d = b - a;
       const double t = dot(nodes[v] - a, d) / (e.length * e.length);
       if (!(t > 1e-6 && t < 1 - 1e-6)) continue;
       if (length(nodes[v] - (a + d * t)) > 1e-7 * e.length) continue;
+      // One smooth surface: the patches' normals within 2°, or (a tessellated
+      // model's facets) the node's shading normal within 2° of the edge's there.
+      if (dot(pe.normal, pv.normal) <= kSmoothSurfaceCosine) {
+        if (nodeShadingNormals.empty()) continue;
+        const Vec3 ends = toVec3(nodeShadingNormals[e.start]) * (1 - t) + toVec3(nodeShadingNormals[e.end]) * t;
+        const double len = length(ends);
+        if (!(len > 0) || toVec3(nodeShadingNormals[e.start]) == Vec3{} || toVec3(nodeShadingNormals[e.end]) == Vec3{})
+          continue;
+        const Vec3 there = ends / len;
+        if (!sameShadingNormal(nodeShadingNormals[v], {float(there.x), float(there.y), float(there.z)})) continue;
+      }
       if ((!nodeOnCut.empty() && (nodeOnCut[e.start] || nodeOnCut[e.end]))) continue;
       found.push_back({e.length, {v, e.start, e.end, float(t)}});
       break;
@@ -227,6 +269,63 @@ void RadiosityMesh::addCrossPatchTVertices() {
   std::stable_sort(found.begin(), found.end(), [](const auto &a, const auto &b) { return a.first > b.first; });
   tVertices.clear();
   for (const auto &[length, t] : found) tVertices.push_back(t);
+}
+
+void RadiosityMesh::setShadingNormals(const Scene &scene) {
+  patchCornerNormals.clear();
+  nodeShadingNormals.clear();
+  auto hasVertexNormals = [&](uint32_t f) {
+    if (f >= scene.faces.size()) return false;
+    const Face &face = scene.faces[f];
+    for (int k = 0; k < face.vertexCount; ++k)
+      if (face.normals[k] < 0 || size_t(face.normals[k]) >= scene.normals.size()) return false;
+    return true;
+  };
+  // Nothing stored for a scene without vertex normals (most rooms).
+  if (std::none_of(patches.begin(), patches.end(), [&](const Patch &p) { return hasVertexNormals(p.face); })) return;
+  patchCornerNormals.assign(patches.size(), {});
+  for (size_t p = 0; p < patches.size(); ++p) {
+    const Patch &patch = patches[p];
+    if (!hasVertexNormals(patch.face)) continue;
+    for (int k = 0; k < patch.vertexCount; ++k) {
+      const Vec3 n = vertexNormalAt(scene, scene.faces[patch.face], patch.corners[k]);
+      if (isFinite(n)) patchCornerNormals[p][k] = {float(n.x), float(n.y), float(n.z)};
+    }
+  }
+  interpolateNodeShadingNormals();
+}
+
+void RadiosityMesh::interpolateNodeShadingNormals() {
+  nodeShadingNormals.clear();
+  if (patchCornerNormals.empty() || patchCornerNormals.size() != patches.size()) return;
+  nodeShadingNormals.assign(nodes.size(), ShadingNormal{});
+  for (size_t v = 0; v < nodes.size(); ++v) {
+    const Patch &patch = patches[nodePatch[v]];
+    const std::array<ShadingNormal, 4> &corner = patchCornerNormals[nodePatch[v]];
+    std::array<double, 4> w{};
+    if (patch.vertexCount == 4) {
+      double u = 0, t = 0;
+      inverseBilinear(patch, nodes[v], u, t);
+      w = {(1 - u) * (1 - t), u * (1 - t), u * t, (1 - u) * t};
+    } else {
+      const std::array<double, 3> b = barycentric(patch.corners[0], patch.corners[1], patch.corners[2], nodes[v]);
+      w = {b[0], b[1], b[2], 0.0};
+    }
+    Vec3 n;
+    for (int k = 0; k < patch.vertexCount; ++k) n += toVec3(corner[k]) * w[k];
+    const double len = length(n);
+    if (!(len > 0) || !std::isfinite(len)) continue;  // no vertex normals (all corners zero)
+    n = n / len;
+    if (dot(n, patch.normal) < 0) n = -n;  // the ray tracer's rule: on the geometric normal's side
+    nodeShadingNormals[v] = {float(n.x), float(n.y), float(n.z)};
+  }
+}
+
+bool RadiosityMesh::sameSmoothSurface(uint32_t a, uint32_t b) const {
+  const Patch &pa = patches[nodePatch[a]], &pb = patches[nodePatch[b]];
+  if (pa.material != pb.material) return false;
+  if (dot(pa.normal, pb.normal) > kSmoothSurfaceCosine) return true;
+  return !nodeShadingNormals.empty() && sameShadingNormal(nodeShadingNormals[a], nodeShadingNormals[b]);
 }
 
 void RadiosityMesh::markNodesOnCuts() {
@@ -484,6 +583,7 @@ RadiosityMesh buildMesh(const Scene &scene, const MeshOptions &options) {
       mesh.patches.push_back(patch);
     }
   mesh.markNodesOnCuts();
+  mesh.setShadingNormals(scene);
   mesh.addCrossPatchTVertices();
   mesh.buildPatchLookup();
   return mesh;

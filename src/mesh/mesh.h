@@ -24,6 +24,20 @@
 
 namespace radiant {
 
+/// A shading normal in single precision (a model's vertex normals, OBJ `vn`,
+/// glTF NORMAL): unit, or zero where there is none.
+using ShadingNormal = std::array<float, 3>;
+
+/// cos 2°: two patches' normals (or two nodes' shading normals) closer than
+/// this belong to one smooth surface, whose nodes share their values.
+constexpr double kSmoothSurfaceCosine = 0.99939;
+
+/// Whether two shading normals are both present and within 2° of each other.
+inline bool sameShadingNormal(const ShadingNormal &a, const ShadingNormal &b) {
+  const double d = double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2];
+  return d > kSmoothSurfaceCosine;  // false when either is zero
+}
+
 struct MeshOptions {
   /// Target element edge length, metres; 0 chooses defaultEdgeFraction of
   /// the scene's largest bounding-box side.
@@ -110,6 +124,22 @@ struct RadiosityMesh {
   /// The cuts of each face (empty when no face is cut); what nodeOnCut is computed from.
   std::vector<std::vector<CutSegment>> faceCuts;
   std::vector<MeshTreeNode> tree;  ///< subdivision trees of hierarchical patches
+  /// Per patch: its face's vertex normals (Scene::normals, as the scene gives
+  /// them, not flipped) interpolated at the patch's corners: the face's own
+  /// for a whole face, the fan's linear interpolation (the ray tracer's) at
+  /// the corners of a cut face's piece; zero for a face without them. Set by
+  /// setShadingNormals; empty when no face has vertex normals.
+  std::vector<std::array<ShadingNormal, 4>> patchCornerNormals;
+  /// Per node: the shading normal of the surface there, unit, on its patch's
+  /// front side (the ray tracer's rule: interpolated, normalised, flipped to
+  /// the geometric normal's side); its patch's corner normals interpolated at
+  /// the node (barycentric on triangles, bilinear on quads: along an edge
+  /// both are the linear blend of its ends, as on the neighbour across it).
+  /// Zero where the face has none. Nodes of two faces that share a vertex's
+  /// normal get the same one, so they pool (Solution::nodePools) although the
+  /// faces' own normals differ: a tessellated smooth surface is shown smooth.
+  /// Empty when patchCornerNormals is.
+  std::vector<ShadingNormal> nodeShadingNormals;
   /// Nodes inside a coarser neighbour's edge, in coarse-to-fine order: their
   /// value must be the edge's interpolation between its ends, (1 − t)·start +
   /// t·end, or interpolation would crack there. Within a patch's tree t is ½
@@ -135,9 +165,20 @@ struct RadiosityMesh {
   int32_t patchAt(uint32_t face, const Vec3 &position) const;
   /// Recomputes nodeOnCut from faceCuts and the nodes.
   void markNodesOnCuts();
+  /// The scene's vertex normals at the patches' corners (patchCornerNormals)
+  /// and at the nodes (nodeShadingNormals); both empty when no face of the
+  /// patches has vertex normals. buildMesh and the solution file's reader call it.
+  void setShadingNormals(const Scene &scene);
+  /// Recomputes nodeShadingNormals from patchCornerNormals and the nodes
+  /// (rebuildElementsFromTrees calls it, before addCrossPatchTVertices).
+  void interpolateNodeShadingNormals();
+  /// Whether two nodes lie on one smooth surface: same material, and their
+  /// patches' normals within 2° or both their shading normals within 2°.
+  bool sameSmoothSurface(uint32_t nodeA, uint32_t nodeB) const;
   /// Adds the T-vertices across patches: a node of one patch strictly inside
   /// a boundary edge of an element of another patch of the same smooth
-  /// surface (same material, normals within 2°), not on a cut. Sorts all
+  /// surface (same material, normals within 2°, or the node's shading normal
+  /// within 2° of the edge's there), not on a cut. Sorts all
   /// T-vertices coarse to fine. Called by the mesh builders.
   void addCrossPatchTVertices();
   /// Builds the lookup patchAt uses on faces with several patches (buildMesh

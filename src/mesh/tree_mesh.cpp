@@ -134,6 +134,7 @@ void rebuildElementsFromTrees(RadiosityMesh &mesh) {
     patch.nodeCount = static_cast<uint32_t>(mesh.nodes.size()) - patch.firstNode;
   }
   mesh.markNodesOnCuts();
+  mesh.interpolateNodeShadingNormals();
   mesh.addCrossPatchTVertices();
 }
 

@@ -442,6 +442,7 @@ void Hierarchy::writeTo(Solution &s) const {
   RadiosityMesh mesh;
   mesh.patchOfFace = s.mesh.patchOfFace;
   mesh.patches = s.mesh.patches;
+  mesh.patchCornerNormals = s.mesh.patchCornerNormals;
   mesh.tree.resize(nodes_.size());
   for (uint32_t n = 0; n < nodes_.size(); ++n) {
     const Node &node = nodes_[n];

@@ -66,6 +66,11 @@ MeshDirectLight directLightOfMesh(const RayTracer &tracer, const Solution &solut
 
   // At the nodes: one evaluation per pool, with the mean of its patches'
   // normals (the smooth surface the facets stand for), shared by all of them.
+  // Also for a pool joined by its shading normals (a low-poly model's
+  // vertex, RadiosityMesh::nodeShadingNormals), not the shading normal
+  // itself: the facets' mean is what the pool's elements receive light
+  // over, and what the reflected light's gather (reflected_light_gather.cpp)
+  // looks along, so direct and reflected light at a node keep one direction.
   const std::vector<uint32_t> pool = solution.nodePools();
   std::vector<Vec3> normalSum(mesh.nodes.size());
   for (uint32_t v = 0; v < pool.size(); ++v) normalSum[pool[v]] += mesh.patches[mesh.nodePatch[v]].normal;

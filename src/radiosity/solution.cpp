@@ -53,8 +53,9 @@ Bands Solution::interpolate(const std::vector<Bands> &values, const MeshLocation
 
 namespace {
 
-/// FNV-1a over what the pools depend on: the nodes' places and patches, the
-/// cuts, and each patch's material and normal (a few ms at 2·10⁶ nodes).
+/// FNV-1a over what the pools depend on: the nodes' places, patches and
+/// shading normals, the cuts, and each patch's material and normal (a few ms
+/// at 2·10⁶ nodes).
 uint64_t poolFingerprint(const RadiosityMesh &mesh) {
   uint64_t hash = 0xcbf29ce484222325ULL;
   auto add = [&](const void *data, size_t bytes) {
@@ -72,8 +73,10 @@ uint64_t poolFingerprint(const RadiosityMesh &mesh) {
     }
     add(p + i, bytes - i);
   };
-  const size_t sizes[] = {mesh.nodes.size(), mesh.nodePatch.size(), mesh.nodeOnCut.size(), mesh.patches.size()};
+  const size_t sizes[] = {mesh.nodes.size(), mesh.nodePatch.size(), mesh.nodeOnCut.size(), mesh.patches.size(),
+                          mesh.nodeShadingNormals.size()};
   add(sizes, sizeof sizes);
+  addWords(mesh.nodeShadingNormals.data(), mesh.nodeShadingNormals.size() * sizeof(ShadingNormal));
   addWords(mesh.nodes.data(), mesh.nodes.size() * sizeof(Vec3));
   addWords(mesh.nodePatch.data(), mesh.nodePatch.size() * sizeof(uint32_t));
   addWords(mesh.nodeOnCut.data(), mesh.nodeOnCut.size());
@@ -98,9 +101,12 @@ std::vector<uint32_t> Solution::nodePools() const {
 
 std::vector<uint32_t> Solution::findNodePools() const {
   // Nodes at the same place on neighbouring patches of one smooth surface
-  // (same material, normals within 2°: a quad the input split in two, a
-  // floor modelled as tiles, the facets of a tessellated model) form a pool.
-  // Creases (normals further apart) keep their jump.
+  // form a pool (RadiosityMesh::sameSmoothSurface): the same material, and
+  // either normals within 2° (a quad the input split in two, a floor
+  // modelled as tiles, a finely tessellated model) or, where the model gives
+  // vertex normals, shading normals within 2° (a low-poly smooth model whose
+  // facets meet at 10–20° but share the vertex's normal). Creases (normals
+  // further apart and no shared vertex normal) keep their jump.
   // Positions are matched on a grid of 10⁻⁶ of the scene's size: the two
   // patches computed their nodes with different arithmetic.
   std::vector<uint32_t> pool(mesh.nodes.size());
@@ -126,7 +132,6 @@ std::vector<uint32_t> Solution::findNodePools() const {
     keyed.push_back({std::llround(p.x / cell), std::llround(p.y / cell), std::llround(p.z / cell), v});
   }
   std::sort(keyed.begin(), keyed.end());
-  constexpr double kCos2Degrees = 0.99939;
   std::vector<uint32_t> nodes;
   std::vector<bool> used;
   for (size_t start = 0; start < keyed.size();) {
@@ -135,14 +140,12 @@ std::vector<uint32_t> Solution::findNodePools() const {
     if (end - start >= 2) {
       nodes.clear();
       for (size_t i = start; i < end; ++i) nodes.push_back(keyed[i].node);
-      // A pool: the nodes of the same material and nearly the same normal as its first.
+      // A pool: the nodes on one smooth surface with its first.
       used.assign(nodes.size(), false);
       for (size_t a = 0; a < nodes.size(); ++a) {
         if (used[a]) continue;
-        const Patch &pa = mesh.patches[mesh.nodePatch[nodes[a]]];
         for (size_t b = a + 1; b < nodes.size(); ++b) {
-          const Patch &pb = mesh.patches[mesh.nodePatch[nodes[b]]];
-          if (!used[b] && pb.material == pa.material && dot(pa.normal, pb.normal) > kCos2Degrees) {
+          if (!used[b] && mesh.sameSmoothSurface(nodes[a], nodes[b])) {
             used[b] = true;
             pool[nodes[b]] = nodes[a];
           }
@@ -188,6 +191,35 @@ std::vector<Bands> Solution::nodeValues(const std::vector<Bands> &perElement,
 void Solution::applyTVertices(std::vector<Bands> &values) const {
   for (const RadiosityMesh::TVertex &t : mesh.tVertices)
     values[t.node] = values[t.edgeStart] * (1.0 - t.t) + values[t.edgeEnd] * double(t.t);
+}
+
+void Solution::poolNodeIrradiance() {
+  if (!hasNodeIrradiance()) return;
+  // Only the pools of facets (some patch's normal more than 2° from the
+  // first's: joined by their shading normals): in the others every node is
+  // the same point on nearly the same plane, whose exact values already
+  // agree to round-off, and they keep them.
+  const std::vector<uint32_t> pools = nodePools();
+  std::vector<uint8_t> facets(pools.size(), 0), pooled(pools.size(), 0);
+  for (uint32_t v = 0; v < pools.size(); ++v)
+    if (pools[v] != v && dot(mesh.patches[mesh.nodePatch[v]].normal, mesh.patches[mesh.nodePatch[pools[v]]].normal) <=
+                             kSmoothSurfaceCosine)
+      facets[pools[v]] = 1;
+  for (uint32_t v = 0; v < pools.size(); ++v) pooled[v] = facets[pools[v]];
+  bool any = false;
+  for (uint8_t f : facets) any = any || f;
+  if (!any) return;
+  std::vector<double> area(mesh.nodes.size(), 0.0);
+  for (const Element &element : mesh.elements)
+    for (int k = 0; k < element.vertexCount; ++k) area[element.nodes[k]] += element.area;
+  for (std::vector<Bands> *values : {&nodeDirectIrradiance, &nodeIndirectIrradiance}) {
+    std::vector<Bands> sums(values->size());
+    std::vector<double> weight = area;
+    for (size_t v = 0; v < sums.size(); ++v) sums[v] = (*values)[v] * area[v];
+    shareNodesAcrossPatches(sums, weight, pools);
+    for (size_t v = 0; v < sums.size(); ++v)
+      if (pooled[v] && weight[v] > 0) (*values)[v] = sums[v] / weight[v];
+  }
 }
 
 void Solution::updateNodesAndErrors() {

@@ -125,9 +125,17 @@ struct Solution {
   Bands interpolate(const std::vector<Bands> &values, const MeshLocation &location) const;
   /// Recomputes nodeRadiosity, nodeReflectance and errorEstimate from the element radiosities (including ambient).
   void updateNodesAndErrors();
+  /// Gives every node of a pool of facets (nodePools; some patch's normal
+  /// more than 2° from the first's, joined by their shading normals) the
+  /// same node irradiances, the area-weighted mean of its nodes' (weighted
+  /// as nodeValues weighs them), for a solver that computed them per patch
+  /// (hierarchical-exact), so the display has no seam where the facets
+  /// meet. Every other node keeps its own bit for bit.
+  void poolNodeIrradiance();
   /// For every node, the first node of its pool: the nodes at one place on
-  /// neighbouring patches of one smooth surface (same material, normals
-  /// within 2°; none on a cut), which share their values so that the
+  /// neighbouring patches of one smooth surface (same material, normals or
+  /// shading normals within 2°: RadiosityMesh::sameSmoothSurface; none on a
+  /// cut), which share their values so that the
   /// interpolation has no seam there. A node alone is its own. Kept for the
   /// mesh it was found on (a sort of the nodes: 0.3 s at 2·10⁶, asked for by
   /// the solver's every node field) and found again when the mesh changes.
