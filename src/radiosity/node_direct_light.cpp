@@ -8,6 +8,7 @@
 
 #include "cluster/cluster.h"
 #include "radiosity/backprojection.h"
+#include "util/phase.h"
 #include "util/sampling.h"
 
 namespace radiant {
@@ -16,14 +17,17 @@ namespace {
 
 /// Evaluates f(i) → Bands for i < count, each on one MPI rank (i mod N), in
 /// parallel, and sums the ranks' results: every rank gets every value, and
-/// x + 0 = x keeps them bit for bit one process's.
+/// x + 0 = x keeps them bit for bit one process's. Reported as the phase
+/// `phaseName` (util/phase.h: a bar with an ETA on the command line).
 template <typename F>
-std::vector<Bands> evaluateSplit(size_t count, int threads, const F &f) {
+std::vector<Bands> evaluateSplit(const char *phaseName, size_t count, int threads, const F &f) {
+  Phase phase(phaseName, count);
   const size_t ranks = size_t(cluster::size()), rank = size_t(cluster::rank());
   std::vector<double> values(count * kBandCount, 0.0);
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   arena.execute([&] {
     tbb::parallel_for(size_t(0), count, [&](size_t i) {
+      phase.advance();
       if (i % ranks != rank) return;
       const Bands h = f(i);
       for (int b = 0; b < kBandCount; ++b) values[i * kBandCount + b] = h[b];
@@ -77,7 +81,7 @@ MeshDirectLight directLightOfMesh(const RayTracer &tracer, const Solution &solut
   std::vector<uint32_t> heads;
   for (uint32_t v = 0; v < pool.size(); ++v)
     if (pool[v] == v) heads.push_back(v);
-  const std::vector<Bands> atHeads = evaluateSplit(heads.size(), threads, [&](size_t i) {
+  const std::vector<Bands> atHeads = evaluateSplit("direct light at the nodes", heads.size(), threads, [&](size_t i) {
     const uint32_t v = heads[i];
     const Patch &patch = mesh.patches[mesh.nodePatch[v]];
     // A node on the patch's boundary may lie in the plane of a wall that
@@ -120,13 +124,14 @@ MeshDirectLight directLightOfMesh(const RayTracer &tracer, const Solution &solut
       large.push_back(e);
     }
   }
-  const std::vector<Bands> means = evaluateSplit(large.size(), threads, [&](size_t i) {
-    const uint32_t e = large[i];
-    // The midpoint rule, as meanPointLightIrradiance, with every light.
-    const std::vector<Vec3> polygon = mesh.polygon(e);
-    const Vec3 &normal = mesh.normalOf(e);
-    return latticeMean(polygon, lattice[e], [&](const Vec3 &x) { return direct.irradiance(x, normal); });
-  });
+  const std::vector<Bands> means =
+      evaluateSplit("direct light over the elements", large.size(), threads, [&](size_t i) {
+        const uint32_t e = large[i];
+        // The midpoint rule, as meanPointLightIrradiance, with every light.
+        const std::vector<Vec3> polygon = mesh.polygon(e);
+        const Vec3 &normal = mesh.normalOf(e);
+        return latticeMean(polygon, lattice[e], [&](const Vec3 &x) { return direct.irradiance(x, normal); });
+      });
   for (size_t i = 0; i < large.size(); ++i) light.ofElements[large[i]] = means[i];
   return light;
 }

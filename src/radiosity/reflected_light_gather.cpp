@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "cluster/cluster.h"
+#include "util/phase.h"
 #include "util/random.h"
 #include "util/sampling.h"
 
@@ -107,9 +108,11 @@ std::vector<Bands> gatherReflectedIrradiance(const RayTracer &tracer, const Solu
   const size_t ranks = size_t(cluster::size()), rank = size_t(cluster::rank());
   auto owns = [&](size_t i) { return i % ranks == rank; };
 
+  Phase phase("gathering the reflected light at the nodes", nodes.size());
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, nodes.size(), 64), [&](const tbb::blocked_range<size_t> &range) {
+      phase.advance(range.size());
       for (size_t i = range.begin(); i != range.end(); ++i) {
         if (!owns(i)) continue;
         const uint32_t v = nodes[i];
