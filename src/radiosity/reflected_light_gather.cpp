@@ -23,13 +23,12 @@ namespace {
 /// within one object: the noise falls with the neighbours' count, the blur
 /// stays within the radius, and the two sides of a thin part never mix.
 std::vector<Bands> smoothOverNeighbours(const RadiosityMesh &mesh, const std::vector<uint32_t> &nodes,
-                                        const std::vector<Vec3> &poolNormal, const std::vector<uint32_t> &pool,
-                                        const std::vector<Bands> &gathered, double radius, int threads) {
-  Vec3 lo = mesh.nodes[nodes[0]], hi = lo;
+                                        const std::vector<Vec3> &normal, const std::vector<Bands> &gathered,
+                                        double radius, int threads) {
+  Vec3 lo = mesh.nodes[nodes[0]];
   for (uint32_t v : nodes) {
     const Vec3 &p = mesh.nodes[v];
     lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
   }
   // The gathered nodes sorted by their cell of a grid of the radius.
   struct Keyed {
@@ -44,11 +43,6 @@ std::vector<Bands> smoothOverNeighbours(const RadiosityMesh &mesh, const std::ve
   std::vector<Keyed> keyed(nodes.size());
   for (uint32_t i = 0; i < nodes.size(); ++i) keyed[i] = cellOf(mesh.nodes[nodes[i]], i);
   std::sort(keyed.begin(), keyed.end());
-  std::vector<Vec3> normal(nodes.size());
-  for (size_t i = 0; i < nodes.size(); ++i) {
-    const double len = length(poolNormal[pool[nodes[i]]]);
-    normal[i] = len > 0 ? poolNormal[pool[nodes[i]]] / len : mesh.patches[mesh.nodePatch[nodes[i]]].normal;
-  }
   std::vector<Bands> smoothed(nodes.size());
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   arena.execute([&] {
@@ -91,10 +85,15 @@ std::vector<Bands> gatherReflectedIrradiance(const RayTracer &tracer, const Solu
   if (nodes.empty()) return gathered;
 
   // Each pool's direction: the mean of its nodes' patch normals (a pool is
-  // one smooth surface's nodes at one place, normals within 2°).
+  // one smooth surface's nodes at one place), as node_direct_light.cpp's.
   const std::vector<uint32_t> pool = solution.nodePools();
   std::vector<Vec3> poolNormal(mesh.nodes.size());
   for (uint32_t v = 0; v < mesh.nodes.size(); ++v) poolNormal[pool[v]] += mesh.patches[mesh.nodePatch[v]].normal;
+  std::vector<Vec3> normal(nodes.size());
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    const double len = length(poolNormal[pool[nodes[i]]]);
+    normal[i] = len > 0 ? poolNormal[pool[nodes[i]]] / len : mesh.patches[mesh.nodePatch[nodes[i]]].normal;
+  }
 
   // What a ray reads where it lands: the element's radiosity less its
   // emission, the light leaving it after at least one reflection (W·m⁻²).
@@ -116,16 +115,14 @@ std::vector<Bands> gatherReflectedIrradiance(const RayTracer &tracer, const Solu
       for (size_t i = range.begin(); i != range.end(); ++i) {
         if (!owns(i)) continue;
         const uint32_t v = nodes[i];
-        const double len = length(poolNormal[pool[v]]);
-        const Vec3 normal = len > 0 ? poolNormal[pool[v]] / len : mesh.patches[mesh.nodePatch[v]].normal;
-        const Frame frame = Frame::fromNormal(normal);
+        const Frame frame = Frame::fromNormal(normal[i]);
         Pcg32 rng = sampleGenerator(seed, v, 0x6a7468);
         Bands sum(0.0);
         for (int a = 0; a < k; ++a)
           for (int b = 0; b < k; ++b) {
             const Vec3 direction = frame.toWorld(sampleCosineHemisphere((a + rng.next()) / k, (b + rng.next()) / k));
             Hit hit;
-            if (!tracer.intersectPosition(tracer.spawnRay(mesh.nodes[v], normal, direction), hit)) continue;
+            if (!tracer.intersectPosition(tracer.spawnRay(mesh.nodes[v], normal[i], direction), hit)) continue;
             // A back side (of a one-sided face) holds no light in the solution.
             if (dot(hit.geometricNormal, direction) >= 0) continue;
             if (mesh.patchOfFace[hit.face] < 0) continue;  // a face left out of the mesh (hidden)
@@ -139,7 +136,7 @@ std::vector<Bands> gatherReflectedIrradiance(const RayTracer &tracer, const Solu
   for (size_t i = 0; i < all.size(); ++i) all[i] = i;
   cluster::shareOwnedEntries(gathered, all, owns);
   if (smoothingRadius <= 0) return gathered;
-  return smoothOverNeighbours(mesh, nodes, poolNormal, pool, gathered, smoothingRadius, threads);
+  return smoothOverNeighbours(mesh, nodes, normal, gathered, smoothingRadius, threads);
 }
 
 }  // namespace radiant
