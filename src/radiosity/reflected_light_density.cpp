@@ -140,9 +140,19 @@ std::vector<Bands> reflectedIrradianceAtNodes(const Solution &solution, const st
     objectIsSparse[object] = true;
   }
 
-  if (!sparse.empty() && estimateSparse) {
-    const std::vector<Bands> estimates = estimateSparse(sparse);
-    for (size_t i = 0; i < sparse.size(); ++i) atNodes[sparse[i]] = estimates[i];
+  if (estimateSparse) {
+    // The estimator takes every node: those with too few rays, and those
+    // with enough, whose own elements' mean misses what varies within them
+    // (a room's corners, the floor beside a model).
+    std::vector<uint32_t> dense;
+    for (uint32_t v = 0; v < nodeCount; ++v)
+      if (pool[v] == v && raysAround[v] >= enoughRays) dense.push_back(v);
+    for (const bool enough : {false, true}) {
+      const std::vector<uint32_t> &nodes = enough ? dense : sparse;
+      if (nodes.empty()) continue;
+      const std::vector<Bands> estimates = estimateSparse(nodes, enough);
+      for (size_t i = 0; i < nodes.size(); ++i) atNodes[nodes[i]] = estimates[i];
+    }
   } else if (!sparse.empty()) {
     // The ladder of grids over the objects that need them.
     Vec3 lo = mesh.nodes[0], hi = mesh.nodes[0];

@@ -38,9 +38,10 @@ namespace radiant {
 /// at least `enoughRays` keeps their area-weighted mean (Solution::nodeValues);
 /// any other takes the density estimate over the smallest neighbourhood that
 /// holds that many, or the largest there is. Deterministic, in parallel.
-/// With `estimateSparse`, the nodes with too few rays take its estimates
-/// (reflected_light_gather.h) instead of the density estimate.
-using SparseNodeEstimate = std::function<std::vector<Bands>(const std::vector<uint32_t> &nodes)>;
+/// With `estimateSparse`, every node takes its estimates instead
+/// (reflected_light_gather.h): it is called once for the nodes with too
+/// few rays and once for those with enough (`enoughRays` true).
+using SparseNodeEstimate = std::function<std::vector<Bands>(const std::vector<uint32_t> &nodes, bool enoughRays)>;
 std::vector<Bands> reflectedIrradianceAtNodes(const Solution &solution, const std::vector<Bands> &power,
                                               const std::vector<double> &rays, double enoughRays, int threads,
                                               const SparseNodeEstimate &estimateSparse = {});
