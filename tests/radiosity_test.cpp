@@ -568,6 +568,23 @@ SolverChoice chooseFor(const Scene &scene, const std::string &solver, bool impor
 
 }  // namespace
 
+TEST(Radiosity, ASceneWithoutFacesIsRefusedNotSolved) {
+  Scene empty;
+  empty.sourceFile = "empty.obj";
+  const RayTracer tracer(empty);
+  for (const char *solver : {"auto", "stochastic", "hierarchical-exact"}) {
+    SolverOptions options;
+    options.solver = solver;
+    try {
+      meshAndSolve(empty, tracer, MeshOptions{}, options);
+      ADD_FAILURE() << solver << ": no error";
+    } catch (const InputError &e) {
+      EXPECT_EQ(e.location().file, "empty.obj");
+      EXPECT_NE(std::string(e.what()).find("no faces"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(Radiosity, AutoPicksHierarchicalExactUpTo2000PatchesAndStochasticBeyond) {
   EXPECT_EQ(chooseFor(sceneOfFaces(2000, 1), "auto").solver, "hierarchical-exact");
   EXPECT_EQ(chooseFor(sceneOfFaces(2001, 1), "auto").solver, "stochastic");

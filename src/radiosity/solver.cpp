@@ -121,6 +121,10 @@ bool directLightAtNodes(const SolverOptions &options, const Scene &scene) {
 
 Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOptions &meshOptions,
                       const SolverOptions &given, const SolverProgressCallback &progress) {
+  // Every solve comes through here: a scene of no faces (an empty OBJ, one
+  // of points or lines only) has nothing to mesh, and the solvers assume a mesh.
+  if (scene.faces.empty())
+    throw InputError(InputLocation{scene.sourceFile, 0, 0, ""}, "the scene has no faces: there is nothing to solve");
   // "auto" decided once, here, for the meshing and the solve alike.
   SolverOptions options = given;
   options.solver = chooseSolver(scene, given).solver;
