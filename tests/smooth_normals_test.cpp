@@ -157,6 +157,16 @@ double largestJumpAcrossEdges(const Solution &s, const Scene &scene) {
   return jump / largest;
 }
 
+/// `solver`'s solution of `scene` on a mesh of 0.25 m elements.
+Solution solveOnQuarterMetres(const Scene &scene, const RayTracer &tracer, const char *solver, double tolerance) {
+  MeshOptions mesh;
+  mesh.maxEdgeLength = 0.25;
+  SolverOptions options;
+  options.solver = solver;
+  options.tolerance = tolerance;
+  return meshAndSolve(scene, tracer, mesh, options);
+}
+
 TEST(SmoothNormals, TheRadiosityIsContinuousAcrossSmoothEdges) {
   // A 24-segment cylinder lit from the side, solved by both solvers that
   // compute the light at the nodes. Seen from either facet, the display at
@@ -175,12 +185,7 @@ TEST(SmoothNormals, TheRadiosityIsContinuousAcrossSmoothEdges) {
     for (Normals normals : {Normals::Radial, Normals::None}) {
       const Scene scene = cylinder(normals, 0, kSegments, true);
       const RayTracer tracer(scene);
-      MeshOptions mesh;
-      mesh.maxEdgeLength = 0.25;
-      SolverOptions options;
-      options.solver = solver;
-      options.tolerance = 1e-3;
-      const Solution s = meshAndSolve(scene, tracer, mesh, options);
+      const Solution s = solveOnQuarterMetres(scene, tracer, solver, 1e-3);
       const double jump = largestJumpAcrossEdges(s, scene);
       if (normals == Normals::Radial) {
         EXPECT_LE(jump, 1e-12);
@@ -204,12 +209,7 @@ TEST(SmoothNormals, TheSolutionFileKeepsThePools) {
   const RayTracer tracer(scene);
   for (const char *solver : {"stochastic", "hierarchical-exact"}) {
     SCOPED_TRACE(solver);
-    MeshOptions mesh;
-    mesh.maxEdgeLength = 0.25;
-    SolverOptions options;
-    options.solver = solver;
-    options.tolerance = 1e-2;
-    const Solution s = meshAndSolve(scene, tracer, mesh, options);
+    const Solution s = solveOnQuarterMetres(scene, tracer, solver, 1e-2);
     ASSERT_GT(pooledNodes(s.nodePools()), 0u);
     const std::string path = (std::filesystem::temp_directory_path() / "radiant-smooth-normals-test.rad").string();
     writeSolution(s, scene, path);
