@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "util/error.h"
+#include "util/input_file.h"
 
 namespace radiant {
 
@@ -38,6 +39,7 @@ void refuseExistingCheckpoints(const CheckpointCommandOptions &o, const std::vec
 
 std::string fileFingerprint(const std::string &path) {
   if (path.empty()) return "";
+  if (!checkInputFile(path).ok()) return "unreadable";  // a FIFO would block the open below
   std::ifstream in(path, std::ios::binary);
   if (!in) return "unreadable";
   uint64_t hash = 0xcbf29ce484222325ULL;

@@ -18,6 +18,7 @@
 #include "interrupt_handler.h"
 #include "util/error.h"
 #include "util/file_extension.h"
+#include "util/input_file.h"
 #include "util/interrupt.h"
 
 namespace radiant {
@@ -33,10 +34,7 @@ struct ServeCommandOptions {
 };
 
 std::string readWholeFile(const std::string &path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (!in.good() && !in.eof()) throw InputError(InputLocation{path}, "cannot read the file");
-  return bytes;
+  return readInputFile(path, InputLocation{path}, "file");
 }
 
 }  // namespace

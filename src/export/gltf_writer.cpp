@@ -14,6 +14,7 @@
 #include "util/atomic_file.h"
 #include "util/error.h"
 #include "util/file_extension.h"
+#include "util/input_file.h"
 
 namespace radiant {
 
@@ -94,10 +95,8 @@ std::pair<std::vector<unsigned char>, std::string> textureImage(const Scene &sce
   const std::string &path = material.diffuseTexture;
   const std::string extension = lowercaseExtension(path);
   if (extension == ".png" || extension == ".jpg" || extension == ".jpeg") {
-    std::ifstream in(path, std::ios::binary);
-    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (!in.good() && !in.eof()) throw InputError(material.diffuseTextureFrom, "cannot read texture '" + path + "'");
-    return {std::move(bytes), extension == ".png" ? "image/png" : "image/jpeg"};
+    const std::string file = readInputFile(path, material.diffuseTextureFrom, "texture");
+    return {std::vector<unsigned char>(file.begin(), file.end()), extension == ".png" ? "image/png" : "image/jpeg"};
   }
   const Texture &texture = scene.textures[size_t(material.diffuseTextureIndex)];
   std::span<const float> texels = texture.finestTexels();

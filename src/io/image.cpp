@@ -21,12 +21,14 @@
 #include <iterator>
 #include <optional>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 
 #include "util/atomic_file.h"
 #include "util/error.h"
 #include "util/exr_header.h"
 #include "util/file_extension.h"
+#include "util/input_file.h"
 
 namespace radiant {
 
@@ -191,8 +193,7 @@ void writePng(const Image &image, const std::string &path, double exposureStops)
 
 static Image readPfm(const std::string &path) {
   InputLocation where{path};
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(where, "cannot open the file");
+  std::istringstream in(readInputFile(path, where, "PFM image"));
   std::string magic;
   long long width = 0, height = 0;
   double scale = 0;
@@ -237,11 +238,13 @@ static Image readPfm(const std::string &path) {
 static Image readExr(const std::string &path) {
   InputLocation where{path};
   // Before OpenEXR allocates for what the headers claim (checkExrHeaders).
-  const ExrDataWindow claimed = checkExrHeaders(path);
+  std::string bytes;
+  const ExrDataWindow claimed = checkExrHeaders(path, bytes);
   // Divided, not multiplied: each side may be up to 2^32, and the product overflow.
   if (claimed.width() > (1LL << 28) / claimed.height()) throw InputError(where, "EXR data window is too large");
   try {
-    Imf::InputFile file(path.c_str());
+    ExrMemoryStream stream(bytes, path);
+    Imf::InputFile file(stream);
     Imath::Box2i window = file.header().dataWindow();
     long long width = static_cast<long long>(window.max.x) - window.min.x + 1;
     long long height = static_cast<long long>(window.max.y) - window.min.y + 1;
@@ -304,12 +307,13 @@ static Image readExr(const std::string &path) {
 namespace {
 /// Radiance RGBE (.hdr) through stb_image: the values as stored, EXPOSURE not applied (Radiant writes 1).
 Image readHdr(const std::string &path) {
-  std::FILE *in = std::fopen(path.c_str(), "rb");
-  if (!in) throw InputError(InputLocation{path}, "cannot open");
-  const bool isHdr = stbi_is_hdr_from_file(in) != 0;
+  const std::string bytes = readInputFile(path, InputLocation{path}, "Radiance HDR image");
+  const auto *data = reinterpret_cast<const stbi_uc *>(bytes.data());
+  // stb_image takes an int length: a file of 2 GiB and more is refused as not an HDR image.
+  const int length = bytes.size() < size_t(INT32_MAX) ? int(bytes.size()) : 0;
+  const bool isHdr = length > 0 && stbi_is_hdr_from_memory(data, length) != 0;
   int width = 0, height = 0, channels = 0;
-  float *pixels = isHdr ? stbi_loadf_from_file(in, &width, &height, &channels, 3) : nullptr;
-  std::fclose(in);
+  float *pixels = isHdr ? stbi_loadf_from_memory(data, length, &width, &height, &channels, 3) : nullptr;
   if (!isHdr) throw InputError(InputLocation{path}, "not a Radiance HDR (RGBE) image: no '#?RADIANCE' header");
   if (!pixels)
     throw InputError(InputLocation{path}, std::string("cannot read Radiance HDR image: ") + stbi_failure_reason());
@@ -321,7 +325,8 @@ Image readHdr(const std::string &path) {
 }  // namespace
 
 Image readImage(const std::string &path) {
-  if (!std::filesystem::exists(path)) throw InputError(InputLocation{path}, "no such file");
+  if (checkInputFile(path).status == InputFileRead::Status::Missing)
+    throw InputError(InputLocation{path}, "no such file");
   std::string ext = lowercaseExtension(path);
   if (ext == ".exr") return readExr(path);
   if (ext == ".pfm") return readPfm(path);

@@ -13,6 +13,7 @@
 #include "io/solution_geometry.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
+#include "util/input_file.h"
 
 namespace radiant {
 
@@ -302,9 +303,7 @@ Solution getSolution(Reader &r, const Scene &scene);
 }  // namespace
 
 std::vector<Solution> readSolutionPasses(const std::string &path, const Scene &scene) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(InputLocation{path}, "cannot open the solution file");
-  Reader r(std::string(std::istreambuf_iterator<char>(in), {}), path);
+  Reader r(readInputFile(path, InputLocation{path}, "the solution file"), path);
   if (!r.startsWith(kMagic, sizeof kMagic)) r.fail("not a Radiant solution file (written by `radiant solve -o`)");
   for (size_t i = 0; i < sizeof kMagic; ++i) r.get<char>();
   uint32_t version = r.get<uint32_t>();

@@ -8,6 +8,7 @@
 #include "render/checkpoint_io.h"
 #include "util/atomic_file.h"
 #include "util/error.h"
+#include "util/input_file.h"
 
 namespace radiant {
 
@@ -40,6 +41,9 @@ void writeRenderCheckpoint(const std::string &path, const RenderCheckpoint &c, c
 }
 
 void readRenderCheckpoint(const std::string &path, const std::string &job, RenderCheckpoint &c, Film &film) {
+  // Checked first: opening a FIFO by name would block until something wrote to it.
+  if (const InputFileRead file = checkInputFile(path); !file.ok())
+    throw InputError(InputLocation{path}, inputFileProblem(file, "the checkpoint '" + path + "'"));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(InputLocation{path}, "cannot open the checkpoint");
   CheckpointReader r(in, path);

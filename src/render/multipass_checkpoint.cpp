@@ -6,6 +6,7 @@
 
 #include "render/checkpoint_io.h"
 #include "util/atomic_file.h"
+#include "util/input_file.h"
 
 namespace radiant {
 
@@ -40,6 +41,9 @@ void writeMultipassCheckpoint(const std::string &path, const MultipassCheckpoint
 }
 
 MultipassCheckpoint readMultipassCheckpoint(const std::string &path, const std::string &job, int width, int height) {
+  // Checked first: opening a FIFO by name would block until something wrote to it.
+  if (const InputFileRead file = checkInputFile(path); !file.ok())
+    throw InputError(InputLocation{path}, inputFileProblem(file, "the checkpoint '" + path + "'"));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(InputLocation{path}, "cannot open the checkpoint");
   CheckpointReader r(in, path, "multipass checkpoint");

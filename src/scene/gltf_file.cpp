@@ -13,9 +13,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstring>
-#include <fstream>
 #include <set>
+
+#include "util/input_file.h"
 
 namespace radiant::gltf {
 
@@ -35,6 +37,20 @@ size_t componentSize(int type) {
     default:
       return 0;
   }
+}
+
+std::string decodeUri(const std::string &uri) {
+  std::string out;
+  for (size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+      out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
 }
 
 namespace {
@@ -102,14 +118,35 @@ bool keepImageBytes(tinygltf::Image *image, const int, std::string *, std::strin
   return true;
 }
 
+/// tinygltf's file access (external buffers and images) through
+/// readInputFile: its own opens a name with fopen and ifstream, which block
+/// forever on a FIFO. Only reading is allowed.
+bool gltfFileExists(const std::string &path, void *) {
+  return checkInputFile(path).status != InputFileRead::Status::Missing;
+}
+std::string gltfExpandFilePath(const std::string &path, void *) {
+  return path;
+}
+bool gltfReadWholeFile(std::vector<unsigned char> *out, std::string *error, const std::string &path, void *) {
+  InputFileRead read = tryReadInputFile(path);
+  if (!read.ok()) {
+    if (error) *error += inputFileProblem(read, "file '" + path + "'");
+    return false;
+  }
+  out->assign(read.bytes.begin(), read.bytes.end());
+  return true;
+}
+bool gltfRefuseWrite(std::string *error, const std::string &path, const std::vector<unsigned char> &, void *) {
+  if (error) *error += "not writing '" + path + "' while reading";
+  return false;
+}
+
 }  // namespace
 
 GltfFile::GltfFile(std::string path, const InputLocation &fileFrom, std::vector<std::string> &warnings)
     : path_(std::move(path)), directory_(fs::path(path_).parent_path()) {
-  std::error_code ec;
-  std::ifstream in(path_, std::ios::binary);
-  if (!fs::is_regular_file(path_, ec) || !in) throw InputError(fileFrom, "cannot open glTF file '" + path_ + "'");
-  bytes_.assign(std::istreambuf_iterator<char>(in), {});
+  const std::string bytes = readInputFile(path_, fileFrom, "glTF file");
+  bytes_.assign(bytes.begin(), bytes.end());
   binary_ = bytes_.size() >= 4 && std::memcmp(bytes_.data(), "glTF", 4) == 0;
   const std::string text =
       binary_ ? glbJson(bytes_, at("")) : std::string(reinterpret_cast<const char *>(bytes_.data()), bytes_.size());
@@ -178,8 +215,18 @@ void GltfFile::checkBufferViews() {
 }
 
 void GltfFile::loadBuffers(std::vector<std::string> &warnings) {
+  // A buffer file that is not a regular file is named with its JSON path here;
+  // tinygltf, through gltfReadWholeFile, would refuse it too, without the path.
+  const std::vector<JsonNode> buffers = list("buffers");
+  for (const JsonNode &buffer : buffers) {
+    if (!buffer.has("uri") || buffer.child("uri").asString().rfind("data:", 0) == 0) continue;
+    const std::string file = (directory_ / decodeUri(buffer.child("uri").asString())).string();
+    if (const InputFileRead read = checkInputFile(file); read.status == InputFileRead::Status::NotRegular)
+      buffer.child("uri").fail(inputFileProblem(read, "buffer file '" + file + "'"));
+  }
   tinygltf::TinyGLTF gltf;
   gltf.SetImageLoader(&keepImageBytes, nullptr);
+  gltf.SetFsCallbacks({&gltfFileExists, &gltfExpandFilePath, &gltfReadWholeFile, &gltfRefuseWrite, nullptr});
   std::string error, warning;
   const std::string base = directory_.string();
   const bool ok =
@@ -194,7 +241,6 @@ void GltfFile::loadBuffers(std::vector<std::string> &warnings) {
   };
   if (!ok || !error.empty()) throw InputError(at(""), "cannot read the glTF data (tinygltf: " + trimmed(error) + ")");
   if (!warning.empty()) warnings.push_back(path_ + ": tinygltf: " + trimmed(warning));
-  std::vector<JsonNode> buffers = list("buffers");
   if (model_.buffers.size() != buffers.size())
     throw InputError(at("/buffers"), "tinygltf read a different number of buffers than the file lists");
   for (size_t b = 0; b < buffers.size(); ++b)

@@ -25,6 +25,9 @@ inline constexpr int kComponentByte = 5120, kComponentUnsignedByte = 5121, kComp
 /// Bytes per component of a glTF componentType, 0 for one Radiant does not read.
 size_t componentSize(int type);
 
+/// A URI's percent-escapes (%20 → space), as glTF writes relative file names.
+std::string decodeUri(const std::string &uri);
+
 /// The elements of an accessor, checked to lie inside their buffer view and buffer.
 struct AccessorView {
   std::string path;  ///< "/accessors/N"

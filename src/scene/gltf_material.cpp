@@ -12,6 +12,7 @@
 
 #include "scene/gltf_file.h"
 #include "scene/load_detail.h"
+#include "util/input_file.h"
 
 namespace radiant::gltf {
 
@@ -34,21 +35,6 @@ Bands colour(const JsonNode &node, const char *key, size_t size, double fallback
     if (result[b] < 0) values[size_t(b)].fail("a colour factor must be ≥ 0");
   }
   return result;
-}
-
-/// A URI's percent-escapes (%20 → space), as glTF writes relative file names.
-std::string decodeUri(const std::string &uri) {
-  std::string out;
-  for (size_t i = 0; i < uri.size(); ++i) {
-    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
-        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
-      out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-      i += 2;
-    } else {
-      out += uri[i];
-    }
-  }
-  return out;
 }
 
 /// extras.radiant, written by radiant export (docs/export.md): the material as Radiant defines it.
@@ -102,8 +88,8 @@ void setTexture(const GltfFile &file, const JsonNode &info, Material &m, Scene &
     // An image file beside the glTF: loaded with the scene's other textures.
     const std::string uri = image.child("uri").asString();
     const fs::path imageFile = file.directory() / decodeUri(uri);
-    std::error_code ec;
-    if (!fs::is_regular_file(imageFile, ec)) image.child("uri").fail("cannot open image '" + imageFile.string() + "'");
+    if (const InputFileRead read = checkInputFile(imageFile.string()); !read.ok())
+      image.child("uri").fail(inputFileProblem(read, "image '" + imageFile.string() + "'"));
     m.diffuseTexture = imageFile.lexically_normal().string();
     m.diffuseTextureFrom = image.child("uri").location();
     return;

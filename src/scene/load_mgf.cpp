@@ -14,13 +14,13 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
 
 #include "scene/load_detail.h"
 #include "scene/mgf_detail.h"
+#include "util/input_file.h"
 
 namespace radiant::detail {
 namespace {
@@ -41,10 +41,7 @@ struct Entity {
 };
 
 std::vector<Entity> readEntities(const std::string &path, const InputLocation &fileFrom) {
-  std::error_code ec;
-  std::ifstream in(path, std::ios::binary);
-  if (!fs::is_regular_file(path, ec) || !in) throw InputError(fileFrom, "cannot open MGF file '" + path + "'");
-  if (fs::file_size(path, ec) > kMaxFileBytes) throw InputError({path, 0, 0, ""}, "the MGF file is larger than 1 GiB");
+  std::istringstream in(readInputFile(path, fileFrom, "MGF file", kMaxFileBytes));
   std::vector<Entity> entities;
   std::string line;
   int lineNumber = 0;

@@ -25,7 +25,6 @@
 #include <algorithm>
 #include <charconv>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <regex>
 #include <sstream>
@@ -33,6 +32,7 @@
 #include "scene/json_reader.h"
 #include "scene/load_detail.h"
 #include "scene/load_scene.h"
+#include "util/input_file.h"
 #include "util/parse_number.h"
 
 namespace radiant {
@@ -43,17 +43,6 @@ namespace {
 
 [[noreturn]] void fileError(const std::string &file, int line, const std::string &message) {
   throw InputError(InputLocation{file, line, 0, ""}, message);
-}
-
-bool readText(const std::string &path, std::string &text) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) return false;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  text = buffer.str();
-  return true;
 }
 
 std::vector<std::string> splitWords(const std::string &line) {
@@ -164,9 +153,8 @@ ObjScan scanObj(const std::string &objPath, const std::string &text) {
     } else if (keyword == "mtllib") {
       for (size_t k = 1; k < words.size(); ++k) {
         fs::path mtl = directory / words[k];
-        std::error_code ec;
-        if (!fs::is_regular_file(mtl, ec))
-          fileError(objPath, line, "cannot open material library '" + mtl.string() + "'");
+        if (std::optional<std::string> problem = inputFileCheck(mtl.string(), "material library"))
+          fileError(objPath, line, *problem);
         scan.mtlFiles.push_back(mtl.string());
       }
     }
@@ -189,11 +177,13 @@ struct MtlSource {
   std::map<std::string, int> lines;  ///< the line of each value statement (Kd, Ks, …) in this material
 };
 
-std::map<std::string, MtlSource> scanMtlFiles(const std::vector<std::string> &mtlFiles) {
+/// Scans every MTL file, whose text it keeps in `texts` (by path) for tinyobjloader.
+std::map<std::string, MtlSource> scanMtlFiles(const std::vector<std::string> &mtlFiles,
+                                              std::map<std::string, std::string> &texts) {
   std::map<std::string, MtlSource> sources;
   for (const std::string &file : mtlFiles) {
-    std::string text;
-    if (!readText(file, text)) fileError(file, 0, "cannot open material library '" + file + "'");
+    if (texts.count(file)) continue;
+    const std::string &text = texts[file] = readInputFile(file, InputLocation{file, 0, 0, ""}, "material library");
     std::vector<std::string> lines = splitLines(text);
     MtlSource *current = nullptr;
     for (size_t i = 0; i < lines.size(); ++i) {
@@ -261,9 +251,9 @@ std::string resolveTexture(const std::string &name, const MtlSource &source, int
         fs::is_regular_file(alternative, ec))
       path = alternative;
   }
-  if (!fs::is_regular_file(path, ec))
+  if (const InputFileRead file = checkInputFile(path.string()); !file.ok())
     fileError(source.file, line > 0 ? line : source.newmtlLine,
-              std::string("cannot open texture '") + path.string() + "' named by " + statement);
+              inputFileProblem(file, "texture '" + path.string() + "' named by " + statement));
   return path.lexically_normal().string();
 }
 
@@ -367,6 +357,38 @@ Material convertMtlMaterial(const tinyobj::material_t &m, const MtlSource &sourc
   return out;
 }
 
+/// tinyobjloader's MTL reader over the texts scanMtlFiles read: its own
+/// (MaterialFileReader) opens each file again by name, with no check of what
+/// the name is. A name the scan did not see (tinyobjloader reads a backslash in
+/// mtllib names as an escape) is read here, through readInputFile's checks.
+class MtlTextReader : public tinyobj::MaterialReader {
+ public:
+  MtlTextReader(fs::path directory, const std::map<std::string, std::string> &texts)
+      : directory_(std::move(directory)), texts_(texts) {}
+  bool operator()(const std::string &name, std::vector<tinyobj::material_t> *materials,
+                  std::map<std::string, int> *materialMap, std::string *warning, std::string *error) override {
+    const std::string path = (directory_ / name).string();
+    std::string text;
+    if (auto known = texts_.find(path); known != texts_.end()) {
+      text = known->second;
+    } else {
+      InputFileRead read = tryReadInputFile(path);
+      if (!read.ok()) {
+        *warning += inputFileProblem(read, "material library '" + path + "'") + "\n";
+        return false;
+      }
+      text = std::move(read.bytes);
+    }
+    std::istringstream in(text);
+    tinyobj::LoadMtl(materialMap, materials, &in, warning, error);
+    return true;
+  }
+
+ private:
+  fs::path directory_;
+  const std::map<std::string, std::string> &texts_;
+};
+
 /// A line number quoted in a tinyobjloader message ("line 12" / "line: 12"), or 0.
 int lineInMessage(const std::string &message) {
   std::smatch match;
@@ -380,28 +402,31 @@ void detail::appendObjFromScene(Scene &scene, const std::string &objPath, const 
                                 const std::string &objectName, int defaultMaterial,
                                 const std::string &defaultMaterialName, const InputLocation &fileFrom,
                                 const InputLocation &materialFrom) {
-  std::string text;
-  if (!readText(objPath, text)) throw InputError(fileFrom, "cannot open OBJ file '" + objPath + "'");
+  const std::string text = readInputFile(objPath, fileFrom, "OBJ file");
   ObjScan scan = scanObj(objPath, text);
-  std::map<std::string, MtlSource> mtlSources = scanMtlFiles(scan.mtlFiles);
+  std::map<std::string, std::string> mtlTexts;
+  std::map<std::string, MtlSource> mtlSources = scanMtlFiles(scan.mtlFiles, mtlTexts);
 
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = false;  // quads stay quads for the radiosity mesher
-  config.vertex_color = false;
-  config.mtl_search_path = fs::path(objPath).parent_path().string();
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(objPath, config) || !reader.Error().empty()) {
-    const std::string &error = reader.Error();
-    fileError(objPath, lineInMessage(error), "OBJ parse error: " + error);
+  // tinyobjloader parses the text read above, not the file again by name.
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> mtlMaterials;
+  std::string parseWarning, parseError;
+  {
+    std::istringstream objStream(text);
+    MtlTextReader mtlReader(fs::path(objPath).parent_path(), mtlTexts);
+    const bool parsed = tinyobj::LoadObj(&attrib, &shapes, &mtlMaterials, &parseWarning, &parseError, &objStream,
+                                         &mtlReader, /*triangulate=*/false,  // quads stay quads for the mesher
+                                         /*default_vcols_fallback=*/false);
+    if (!parsed || !parseError.empty()) fileError(objPath, lineInMessage(parseError), "OBJ parse error: " + parseError);
   }
-  std::istringstream warnings(reader.Warning());
+  std::istringstream warnings(parseWarning);
   for (std::string w; std::getline(warnings, w);) {
     // Unknown usemtl names are resolved below (they may name JSON materials).
     if (w.empty() || w.find("not found in .mtl") != std::string::npos) continue;
     scene.warnings.push_back(objPath + ": " + w);
   }
 
-  const std::vector<tinyobj::material_t> &mtlMaterials = reader.GetMaterials();
   std::map<std::string, size_t> mtlByName;
   for (size_t i = 0; i < mtlMaterials.size(); ++i) mtlByName.emplace(mtlMaterials[i].name, i);
 
@@ -436,7 +461,6 @@ void detail::appendObjFromScene(Scene &scene, const std::string &objPath, const 
   }
 
   // Geometry: every OBJ vertex once, transformed into the world.
-  const tinyobj::attrib_t &attrib = reader.GetAttrib();
   const uint32_t positionOffset = static_cast<uint32_t>(scene.positions.size());
   const int32_t normalOffset = static_cast<int32_t>(scene.normals.size());
   const int32_t uvOffset = static_cast<int32_t>(scene.uvs.size() / 2);
@@ -459,7 +483,7 @@ void detail::appendObjFromScene(Scene &scene, const std::string &objPath, const 
   }
 
   size_t faceCount = 0;
-  for (const tinyobj::shape_t &shape : reader.GetShapes()) faceCount += shape.mesh.num_face_vertices.size();
+  for (const tinyobj::shape_t &shape : shapes) faceCount += shape.mesh.num_face_vertices.size();
   if (faceCount != scan.faceMaterialName.size())
     fileError(objPath, 0,
               "read " + std::to_string(faceCount) + " faces but the file has " +
@@ -469,7 +493,7 @@ void detail::appendObjFromScene(Scene &scene, const std::string &objPath, const 
   std::map<std::string, uint32_t> objectByGroup;
   std::map<std::string, int> unknownMaterialFaces;
   size_t faceNumber = 0;
-  for (const tinyobj::shape_t &shape : reader.GetShapes()) {
+  for (const tinyobj::shape_t &shape : shapes) {
     size_t next = 0;
     for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f, ++faceNumber) {
       auto [groupIt, inserted] = objectByGroup.try_emplace(shape.name, static_cast<uint32_t>(scene.objects.size()));

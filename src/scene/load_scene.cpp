@@ -26,6 +26,7 @@
 #include "scene/load_detail.h"
 #include "scene/mgf_detail.h"
 #include "util/file_extension.h"
+#include "util/input_file.h"
 #include "util/phase.h"
 
 namespace radiant {
@@ -98,8 +99,8 @@ std::string parseType(const JsonNode &node, const std::vector<std::string> &type
 /// A path named in the scene file, relative to the scene's folder; it must exist.
 std::string resolveExistingFile(const JsonNode &node, const fs::path &sceneDirectory, const char *what) {
   fs::path path = sceneDirectory / node.asString();
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) node.fail(std::string("cannot open ") + what + " '" + path.string() + "'");
+  if (const InputFileRead read = checkInputFile(path.string()); !read.ok())
+    node.fail(inputFileProblem(read, std::string(what) + " '" + path.string() + "'"));
   return path.lexically_normal().string();
 }
 
@@ -484,9 +485,7 @@ std::string unreadFormat(const std::string &extension, const std::string &head) 
 
 /// True for a file that starts like a GLB ("glTF"), whatever its name.
 bool startsWithGlbMagic(const std::string &path) {
-  char head[4] = {};
-  std::ifstream in(path, std::ios::binary);
-  return in.read(head, 4) && std::string(head, 4) == "glTF";
+  return readInputFilePrefix(path, 4) == "glTF";
 }
 
 /// A bare .gltf/.glb: its default scene in metres (glTF's unit), viewed from
@@ -552,13 +551,8 @@ Scene loadScene(const std::string &path) {
     validateScene(scene);
     return scene;
   }
-  std::error_code ec;
-  std::ifstream in(path, std::ios::binary);
-  if (!fs::is_regular_file(path, ec) || !in)
-    throw InputError(InputLocation{path, 0, 0, ""}, "cannot open scene file '" + path + "'");
-  std::ostringstream text;
-  text << in.rdbuf();
-  const std::string head = text.str().substr(0, 32);
+  const std::string text = readInputFile(path, InputLocation{path, 0, 0, ""}, "scene file");
+  const std::string head = text.substr(0, 32);
   if (head.rfind("RADIANT-SOLUTION", 0) == 0)
     throw InputError(InputLocation{path, 0, 0, ""},
                      "this is a Radiant solution file (from radiant solve -o), not a scene: give the scene, and "
@@ -572,7 +566,7 @@ Scene loadScene(const std::string &path) {
             "(docs/scene-format.md), a Wavefront OBJ model (.obj), a glTF 2.0 file (.gltf, .glb) or an MGF "
             "file (.mgf)");
   try {
-    return parseSceneJson(text.str(), path);
+    return parseSceneJson(text, path);
   } catch (const InputError &e) {
     // A file that is not JSON at all, under a name that does not say JSON: say
     // what Radiant expected rather than only where the JSON broke.

@@ -25,6 +25,7 @@
 
 #include "scene/photometry_detail.h"
 #include "util/file_extension.h"
+#include "util/input_file.h"
 #include "util/parse_number.h"
 
 namespace radiant {
@@ -309,18 +310,8 @@ double PhotometricDistribution::pdf(const Vec3 &local) const {
 namespace photometry_detail {
 
 std::string readBoundedFile(const std::string &path, const std::string &format, const InputLocation &from) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  InputLocation at = from.file.empty() ? InputLocation{path, 0, 0, ""} : from;
-  if (!fs::is_regular_file(path, ec)) throw InputError(at, "cannot open " + format + " file '" + path + "'");
-  uintmax_t size = fs::file_size(path, ec);
-  if (ec) throw InputError(at, "cannot read " + format + " file '" + path + "'");
-  if (size > kMaxPhotometricFileBytes)
-    throw InputError({path, 0, 0, ""}, "the " + format + " file is larger than 64 MiB");
-  std::ifstream in(path, std::ios::binary);
-  std::string text(size, '\0');
-  if (!in || !in.read(text.data(), static_cast<std::streamsize>(size)))
-    throw InputError(at, "cannot read " + format + " file '" + path + "'");
+  const InputLocation at = from.file.empty() ? InputLocation{path, 0, 0, ""} : from;
+  std::string text = readInputFile(path, at, format + " file", kMaxPhotometricFileBytes);
   if (text.starts_with("\xEF\xBB\xBF")) text.erase(0, 3);  // a UTF-8 byte-order mark
   return text;
 }

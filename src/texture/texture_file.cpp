@@ -34,6 +34,7 @@
 #include "texture/texture.h"
 #include "util/error.h"
 #include "util/exr_header.h"
+#include "util/input_file.h"
 
 namespace radiant {
 
@@ -55,14 +56,6 @@ FileFormat sniffFormat(std::span<const unsigned char> head) {
   if (got >= 3 && head[0] == 0xFF && head[1] == 0xD8 && head[2] == 0xFF) return FileFormat::Jpeg;
   if (got >= 4 && head[0] == 0x76 && head[1] == 0x2F && head[2] == 0x31 && head[3] == 0x01) return FileFormat::Exr;
   return FileFormat::Unknown;
-}
-
-FileFormat sniffFormat(const InputLocation &where) {
-  std::array<unsigned char, 8> head{};
-  std::ifstream in(where.file, std::ios::binary);
-  if (!in.is_open()) throw InputError(where, "cannot open the file (permissions?)");
-  in.read(reinterpret_cast<char *>(head.data()), head.size());
-  return sniffFormat(std::span<const unsigned char>(head.data(), size_t(in.gcount())));
 }
 
 /// Refuses a texture above the limit before its pixels are allocated.
@@ -208,10 +201,12 @@ Decoded decodeStbImage(const InputLocation &where, std::span<const unsigned char
 /// data window (read by checkExrHeaders) before anything is allocated for it.
 Decoded readExr(const InputLocation &where) {
   // The size, before OpenEXR allocates for what the headers claim (util/exr_header.h).
-  const ExrDataWindow claimed = checkExrHeaders(where.file);
+  std::string bytes;
+  const ExrDataWindow claimed = checkExrHeaders(where.file, bytes);
   checkSize(where, claimed.width(), claimed.height());
   try {
-    Imf::InputFile file(where.file.c_str());
+    ExrMemoryStream stream(bytes, where.file);
+    Imf::InputFile file(stream);
     const Imath::Box2i window = file.header().dataWindow();
     const long long width = static_cast<long long>(window.max.x) - window.min.x + 1;
     const long long height = static_cast<long long>(window.max.y) - window.min.y + 1;
@@ -266,21 +261,18 @@ void finish(const InputLocation &where, Decoded &image, TextureEncoding encoding
 
 Texture Texture::load(const std::string &path, TextureEncoding encoding, TextureWrap wrap) {
   const InputLocation where{path};
-  std::error_code error;
-  const auto status = std::filesystem::status(path, error);
-  if (!std::filesystem::exists(status)) throw InputError(where, "no such file");
-  if (!std::filesystem::is_regular_file(status)) throw InputError(where, "not a regular file");
-  if (std::filesystem::file_size(path, error) == 0 && !error)
-    throw InputError(where, "the file is empty (expected a PNG, JPEG or OpenEXR image)");
+  InputFileRead file = tryReadInputFile(path);
+  if (file.status == InputFileRead::Status::Missing) throw InputError(where, "no such file");
+  if (!file.ok()) throw InputError(where, inputFileProblem(file, "texture '" + path + "'"));
+  if (file.bytes.empty()) throw InputError(where, "the file is empty (expected a PNG, JPEG or OpenEXR image)");
+  const auto *bytes = reinterpret_cast<const unsigned char *>(file.bytes.data());
+  const std::span<const unsigned char> contents(bytes, file.bytes.size());
   Decoded image;
-  switch (sniffFormat(where)) {
+  switch (sniffFormat(contents)) {
     case FileFormat::Jpeg:
-    case FileFormat::Png: {
-      std::ifstream in(path, std::ios::binary);
-      const std::vector<unsigned char> bytes{std::istreambuf_iterator<char>(in), {}};
-      image = decodeStbImage(where, bytes, encoding);
+    case FileFormat::Png:
+      image = decodeStbImage(where, contents, encoding);
       break;
-    }
     case FileFormat::Exr:
       image = readExr(where);
       break;

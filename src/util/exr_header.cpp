@@ -2,24 +2,34 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <optional>
+#include <stdexcept>
 
 #include "util/error.h"
+#include "util/input_file.h"
 
 namespace radiant {
 
-ExrDataWindow checkExrHeaders(const std::string &path) {
+ExrMemoryStream::ExrMemoryStream(const std::string &bytes, const std::string &path)
+    : Imf::IStream(path.c_str()), bytes_(bytes) {}
+
+bool ExrMemoryStream::read(char c[], int n) {
+  if (n < 0 || position_ > bytes_.size() || uint64_t(n) > bytes_.size() - position_)
+    throw std::runtime_error("the file ends before byte " + std::to_string(position_ + uint64_t(std::max(n, 0))));
+  std::memcpy(c, bytes_.data() + position_, size_t(n));
+  position_ += uint64_t(n);
+  return position_ < bytes_.size();
+}
+
+ExrDataWindow checkExrHeaders(const std::string &path, std::string &data) {
   const InputLocation where{path};
   auto refuse = [&](const std::string &why) {
     return InputError(where, "cannot read OpenEXR image: " + why);  // the wording of readExr's other refusals
   };
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(where, "cannot open the file");
-  const std::string data{std::istreambuf_iterator<char>(in), {}};
+  data = readInputFile(path, where, "OpenEXR image");
   if (data.size() < 8 || data.compare(0, 4, "\x76\x2f\x31\x01") != 0)
     throw refuse("not an OpenEXR file (it does not start with OpenEXR's signature)");
   size_t at = 8;                                   // signature, version and flags
