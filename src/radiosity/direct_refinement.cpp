@@ -135,6 +135,36 @@ double DirectLightField::interpolationError(const MeshTreeNode &node, const Band
   return worst;
 }
 
+std::vector<Bands> directRefinementWeights(const Scene &scene, const RadiosityMesh &mesh) {
+  std::vector<Bands> weights(mesh.patches.size());
+  for (uint32_t p = 0; p < mesh.patches.size(); ++p) {
+    const Material &m = scene.materials[mesh.patches[p].material];
+    weights[p] = m.kind == MaterialKind::Lambertian || m.kind == MaterialKind::Glossy ? m.diffuse : Bands(0.0);
+    for (int b = 0; b < kBandCount; ++b) weights[p][b] = std::max(weights[p][b], m.transmittance[b]);
+  }
+  return weights;
+}
+
+double meanFirstBounce(const RadiosityMesh &mesh, DirectLightField &field, const std::vector<Bands> &weights,
+                       int threads, bool weightedOnly) {
+  auto counts = [&](const MeshTreeNode &t) { return t.isLeaf() && (!weightedOnly || weights[t.patch].max() > 0); };
+  std::vector<std::pair<uint32_t, Vec3>> points;
+  std::vector<Vec3> nodePoints;
+  for (const MeshTreeNode &t : mesh.tree) {
+    if (!counts(t)) continue;
+    field.testPointsOf(t, nodePoints);
+    for (const Vec3 &p : nodePoints) points.push_back({t.patch, p});
+  }
+  field.evaluate(mesh, points, threads);
+  double sum = 0, area = 0;
+  for (const MeshTreeNode &t : mesh.tree) {
+    if (!counts(t)) continue;
+    sum += (weights[t.patch] * field.nodeAverage(t)).max() * t.area;
+    area += t.area;
+  }
+  return area > 0 ? sum / area : 0;
+}
+
 size_t refineForDirectLight(RadiosityMesh &mesh, const std::vector<Bands> &patchReflectance, DirectLightField &field,
                             const DirectRefinementOptions &options) {
   std::vector<uint32_t> candidates;

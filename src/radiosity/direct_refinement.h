@@ -82,6 +82,19 @@ struct DirectRefinementOptions {
   int threads = 0;
 };
 
+/// What a patch's direct-light error weighs in the refinement: its diffuse
+/// reflectance ρ, or its transmittance τ where larger (a translucent face
+/// passes τ of its direct light to its other side); 0 for a material that
+/// reflects nothing diffusely.
+std::vector<Bands> directRefinementWeights(const Scene &scene, const RadiosityMesh &mesh);
+
+/// The area mean of ρ·H_direct (max band, W·m⁻²) over the trees' leaves, the
+/// scale the refinement's tolerances are relative to. Evaluates the leaves'
+/// test points into `field`. With `weightedOnly`, over the leaves of
+/// patches of non-zero weight only (and only their points are evaluated).
+double meanFirstBounce(const RadiosityMesh &mesh, DirectLightField &field, const std::vector<Bands> &weights,
+                       int threads, bool weightedOnly = false);
+
 /// Splits the leaves of `mesh`'s trees (buildTreeMesh) until each passes the
 /// interpolation test, and fills `field` with every point tested. Patches
 /// that reflect nothing (ρ = 0) are not refined. Rebuilds the elements.

@@ -30,30 +30,6 @@
 
 namespace radiant {
 
-namespace {
-
-/// The area mean of ρ·H_direct (max band) over the trees' leaves, W·m⁻².
-double meanFirstBounce(const RadiosityMesh &mesh, DirectLightField &field, const std::vector<Bands> &patchReflectance,
-                       int threads) {
-  std::vector<std::pair<uint32_t, Vec3>> points;
-  std::vector<Vec3> nodePoints;
-  for (const MeshTreeNode &t : mesh.tree) {
-    if (!t.isLeaf()) continue;
-    field.testPointsOf(t, nodePoints);
-    for (const Vec3 &p : nodePoints) points.push_back({t.patch, p});
-  }
-  field.evaluate(mesh, points, threads);
-  double sum = 0, area = 0;
-  for (const MeshTreeNode &t : mesh.tree) {
-    if (!t.isLeaf()) continue;
-    sum += (patchReflectance[t.patch] * field.nodeAverage(t)).max() * t.area;
-    area += t.area;
-  }
-  return area > 0 ? sum / area : 0;
-}
-
-}  // namespace
-
 void solveHierarchicalExact(const RayTracer &tracer, Solution &s, const SolverOptions &options,
                             const SolverProgressCallback &progress) {
   const auto start = std::chrono::steady_clock::now();
@@ -73,14 +49,8 @@ void solveHierarchicalExact(const RayTracer &tracer, Solution &s, const SolverOp
   constexpr size_t kMaxExactOccluders = 48;
   DirectIrradiance direct(scene, tracer, kMaxExactOccluders);
   DirectLightField field(scene, direct);
-  std::vector<Bands> patchReflectance(mesh.patches.size());
-  for (uint32_t p = 0; p < mesh.patches.size(); ++p) {
-    const Material &m = scene.materials[mesh.patches[p].material];
-    patchReflectance[p] = m.kind == MaterialKind::Lambertian || m.kind == MaterialKind::Glossy ? m.diffuse : Bands(0.0);
-    // A translucent face passes τ of its direct light to its other side: its
-    // error there counts as much (the refinement's weight is max(ρ, τ)).
-    for (int b = 0; b < kBandCount; ++b) patchReflectance[p][b] = std::max(patchReflectance[p][b], m.transmittance[b]);
-  }
+  // ρ, or τ where a translucent face passes more of its direct light to its other side.
+  const std::vector<Bands> patchReflectance = directRefinementWeights(scene, mesh);
   const double extent = [&] {
     Box3 b;
     for (const Vec3 &p : scene.positions) b.extend(p);

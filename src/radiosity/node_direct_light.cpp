@@ -78,9 +78,16 @@ MeshDirectLight directLightOfMesh(const RayTracer &tracer, const Solution &solut
   const std::vector<uint32_t> pool = solution.nodePools();
   std::vector<Vec3> normalSum(mesh.nodes.size());
   for (uint32_t v = 0; v < pool.size(); ++v) normalSum[pool[v]] += mesh.patches[mesh.nodePatch[v]].normal;
+  // The meshing may have evaluated some already (direct_light_mesh.h).
+  auto knownAt = [](const std::vector<Bands> &known, size_t i) { return i < known.size() && !std::isnan(known[i][0]); };
   std::vector<uint32_t> heads;
   for (uint32_t v = 0; v < pool.size(); ++v)
-    if (pool[v] == v) heads.push_back(v);
+    if (pool[v] == v) {
+      if (knownAt(solution.knownNodeDirect, v))
+        light.atNodes[v] = solution.knownNodeDirect[v];
+      else
+        heads.push_back(v);
+    }
   const std::vector<Bands> atHeads = evaluateSplit("direct light at the nodes", heads.size(), threads, [&](size_t i) {
     const uint32_t v = heads[i];
     const Patch &patch = mesh.patches[mesh.nodePatch[v]];
@@ -109,6 +116,10 @@ MeshDirectLight directLightOfMesh(const RayTracer &tracer, const Solution &solut
   std::vector<uint32_t> large;
   std::vector<int> lattice(mesh.elements.size(), 0);
   for (uint32_t e = 0; e < mesh.elements.size(); ++e) {
+    if (knownAt(solution.knownElementDirect, e)) {
+      light.ofElements[e] = solution.knownElementDirect[e];
+      continue;
+    }
     const Element &element = mesh.elements[e];
     double size = 0;
     for (int k = 0; k < element.vertexCount; ++k)

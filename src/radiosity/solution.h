@@ -79,6 +79,11 @@ struct Solution {
   /// is then E + ρ̄(direct + indirect) at each node instead of an average of
   /// the elements around it. Both empty otherwise.
   std::vector<Bands> nodeDirectIrradiance, nodeIndirectIrradiance;
+  /// The direct irradiance the meshing already computed exactly, at nodes
+  /// and as elements' means (radiosity/direct_light_mesh.h), NaN where it
+  /// did not: the stochastic solver evaluates only the rest. Empty
+  /// otherwise; not kept in the solution file.
+  std::vector<Bands> knownNodeDirect, knownElementDirect;
   bool hasNodeIrradiance() const {
     return !mesh.nodes.empty() && nodeDirectIrradiance.size() == mesh.nodes.size() &&
            nodeIndirectIrradiance.size() == mesh.nodes.size();

@@ -4,6 +4,7 @@
 
 #include <chrono>
 
+#include "radiosity/direct_light_mesh.h"
 #include "scene/overlapping_faces.h"
 #include "util/error.h"
 #include "util/sampling.h"
@@ -148,18 +149,28 @@ Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOpt
     // The large-scene solver meshes the cut faces too (no leaks, nothing hidden meshed).
     std::vector<FaceSplit> splits;
     MeshOptions uniform = meshOptions;
+    bool followDirectLight = false;
     if (options.solver == "stochastic") {
       splits = splitFaces(scene, tracer);
       uniform.faceSplits = &splits;
       // With the direct light exact at the nodes, the display interpolates
       // it between them: the walls' elements must be small enough to follow
-      // a shadow's penumbra and the light's falloff, which 1/8 of the scene
-      // is not (the 10⁶-triangle sphere in a room: RMSE 0.0057 at 1/8, 0.0023
-      // at 1/32; docs/PERFORMANCE.md). A large scene's elements are its
-      // model's facets, so this adds little.
-      if (directLightAtNodes(options, scene)) uniform.defaultEdgeFraction = 1.0 / 32;
+      // the light's falloff, which 1/8 of the scene is not (the
+      // 10⁶-triangle sphere in a room: RMSE 0.0057 at 1/8, 0.0023 at 1/32;
+      // docs/PERFORMANCE.md), and a model's contact shadow on the floor is
+      // narrower still: the large surfaces start at 1/32 and are refined to
+      // the direct light (direct_light_mesh.h). A large scene's elements are
+      // its model's facets, so this adds little.
+      if (directLightAtNodes(options, scene)) uniform.defaultEdgeFraction = 1.0 / 32, followDirectLight = true;
     }
-    Solution s = initialSolution(scene, buildMesh(scene, uniform));
+    Solution s;
+    if (followDirectLight) {
+      DirectLightMesh refined = buildDirectLightMesh(scene, tracer, uniform, options);
+      s = initialSolution(scene, std::move(refined.mesh));
+      s.knownNodeDirect = std::move(refined.nodeDirect), s.knownElementDirect = std::move(refined.elementDirect);
+    } else {
+      s = initialSolution(scene, buildMesh(scene, uniform));
+    }
     solveRadiosity(tracer, s, options, progress);
     return s;
   }
