@@ -146,8 +146,21 @@ void printSolveSummary(const Solution &s) {
   if (st.links > 0)
     fmt::print(stderr, "radiant: {} links, {} of them with a cluster of patches at an end\n", st.links,
                st.clusterLinks);
-  fmt::print(stderr, "radiant: power (W, band average): emitted {:.6g}, absorbed {:.6g}, escaped {:.6g}\n",
+  fmt::print(stderr, "radiant: power (W, band average): emitted {:.6g}, absorbed {:.6g}, escaped {:.6g}",
              st.emittedPower.average(), st.absorbedPower.average(), st.escapedPower.average());
+  if (st.escapedToBackSides.average() > 0)
+    fmt::print(stderr, " ({:.3g} of it onto one-sided faces' backs)", st.escapedToBackSides.average());
+  if (st.unshotPower.average() > 0) fmt::print(stderr, ", unshot {:.6g}", st.unshotPower.average());
+  fmt::print(stderr, "; imbalance {:.3g}\n", st.powerImbalance());
+  // The escaped power is measured by rays (radiosity/power_balance.h), not
+  // inferred: an imbalance beyond what the solver's own error allows is a bug.
+  if (std::abs(st.powerImbalance()) > st.powerBalanceTolerance && st.powerBalanceTolerance > 0)
+    fmt::print(stderr,
+               "radiant: warning: the {} solution does not balance: emitted {:.6g} W, absorbed {:.6g} W, escaped "
+               "{:.6g} W, unshot {:.6g} W leave {:+.4g} W, beyond its tolerance of {:.3g} W; please report this "
+               "scene\n",
+               st.solver, st.emittedPower.average(), st.absorbedPower.average(), st.escapedPower.average(),
+               st.unshotPower.average(), st.powerImbalance(), st.powerBalanceTolerance);
 }
 
 }  // namespace radiant

@@ -26,7 +26,15 @@ struct SolveStats {
   double seconds = 0;
   Bands emittedPower;   ///< Σ A E, W
   Bands absorbedPower;  ///< Σ A (1−ρ) H, W
-  Bands escapedPower;   ///< emitted − absorbed − still unshot (open scenes), W
+  /// Measured by rays (radiosity/power_balance.h): what left the surfaces
+  /// and lights and reached no surface's front (the open, a one-sided face's back), W.
+  Bands escapedPower;
+  /// Not kept in the solution file: the rest of the balance (power_balance.h).
+  Bands unshotPower;                 ///< received, not yet sent on (progressive, stochastic), W
+  Bands escapedToBackSides;          ///< of escapedPower, onto one-sided faces' backs or hidden parts, W
+  double escapedStandardError = 0;   ///< of escapedPower's band average, W
+  double powerBalanceTolerance = 0;  ///< |emitted − absorbed − escaped − unshot| this solver may reach, W
+  double powerImbalance() const { return (emittedPower - absorbedPower - escapedPower - unshotPower).average(); }
   size_t formFactorRays = 0;
   /// Hierarchical solvers: the links at the end, and how many of them have a
   /// cluster at one end (not kept in the solution file).

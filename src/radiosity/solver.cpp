@@ -5,6 +5,7 @@
 #include <chrono>
 
 #include "radiosity/direct_light_mesh.h"
+#include "radiosity/power_balance.h"
 #include "scene/overlapping_faces.h"
 #include "util/error.h"
 #include "util/sampling.h"
@@ -214,6 +215,17 @@ namespace {
                                          ", and each is given all the light of the plane: keep one copy"));
 }
 
+/// The escaped power measured (power_balance.h), and the imbalance this solver may show.
+void measureBalance(const RayTracer &tracer, Solution &solution, const SolverOptions &options) {
+  const PowerBalance balance = measurePowerBalance(tracer, solution, kPowerBalanceRays, options.seed);
+  SolveStats &stats = solution.stats;
+  stats.escapedPower = balance.escaped;
+  stats.escapedToBackSides = balance.escapedToBackSides;
+  stats.unshotPower = balance.unshot;
+  stats.escapedStandardError = balance.escapedStandardError;
+  stats.powerBalanceTolerance = powerBalanceTolerance(solution, options, balance);
+}
+
 }  // namespace
 
 void solveRadiosity(const RayTracer &tracer, Solution &solution, const SolverOptions &options,
@@ -257,6 +269,8 @@ void solveRadiosity(const RayTracer &tracer, Solution &solution, const SolverOpt
                                        chosen->name, absorbed, emitted));
   solution.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   solution.updateNodesAndErrors();
+  // After the node values: the tolerance reads H at the nodes.
+  measureBalance(tracer, solution, options);
 }
 
 double visibleFraction(const RayTracer &tracer, const Vec3 &p, const Vec3 &n, const std::vector<Vec3> &polygon,
