@@ -7,6 +7,7 @@
 
 #include "radiosity/backprojection.h"
 #include "radiosity/direct_refinement.h"
+#include "util/phase.h"
 
 namespace radiant {
 
@@ -45,6 +46,7 @@ DirectLightMesh buildDirectLightMesh(const Scene &scene, const RayTracer &tracer
   refinement.threads = options.threads;
   refinement.tolerance =
       options.directTolerance * meanFirstBounce(mesh, field, weights, options.threads, /*weightedOnly=*/true);
+  const Phase phase("refining the mesh to the direct light");
   const size_t split = refineForDirectLight(mesh, weights, field, refinement);
   if (std::getenv("RADIANT_TIMING"))
     std::fprintf(stderr, "  direct-light mesh: %zu leaves split, %zu elements, %zu points evaluated\n", split,

@@ -27,6 +27,7 @@
 #include "radiosity/direct_refinement.h"
 #include "radiosity/reflected_light_hierarchy.h"
 #include "radiosity/solver.h"
+#include "util/phase.h"
 
 namespace radiant {
 
@@ -65,7 +66,10 @@ void solveHierarchicalExact(const RayTracer &tracer, Solution &s, const SolverOp
   // the area mean of ρ·H_direct, measured on the starting mesh.
   const double firstBounce = meanFirstBounce(mesh, field, patchReflectance, options.threads);
   refinement.tolerance = options.directTolerance * firstBounce;
-  refineForDirectLight(mesh, patchReflectance, field, refinement);
+  {
+    const Phase phase("refining the mesh to the direct light");
+    refineForDirectLight(mesh, patchReflectance, field, refinement);
+  }
   const bool timing = std::getenv("RADIANT_TIMING") != nullptr;
   auto lap = [&, last = start](const char *what) mutable {
     if (!timing) return;
@@ -80,7 +84,12 @@ void solveHierarchicalExact(const RayTracer &tracer, Solution &s, const SolverOp
   ReflectedLightHierarchy hierarchy(scene, tracer, mesh, field, options, minimumEdge);
   hierarchy.initialiseFromDirectLight();
   hierarchy.setThreshold(options.linkError * firstBounce);
-  hierarchy.link();
+  {
+    // How many links the refinement will make is known only at its end: the
+    // phase says what runs and for how long, without an ETA.
+    const Phase phase("linking the reflected light");
+    hierarchy.link();
+  }
   lap("linking");
   const int maxSweeps = options.maxIterations > 0 ? options.maxIterations : 1000;
   int total = 0;
