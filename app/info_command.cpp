@@ -158,6 +158,80 @@ std::string plural(size_t n, const char *one, const char *many) {
 /// The most objects listed one by one in the text output (--json lists all).
 constexpr size_t kListedObjects = 20;
 
+std::string objectNameOf(const Scene &scene, uint32_t object) {
+  return object < scene.objects.size() ? scene.objects[object].name : fmt::format("#{}", object);
+}
+
+/// What the loaders dropped and merged (scene/load_changes.h), kind by kind:
+/// the count, and the first few by object and position in scene units.
+Json jsonLoadChanges(const Scene &scene, double metresPerUnit) {
+  Json j;
+  for (size_t k = 0; k < kLoadChangeKinds; ++k) {
+    const auto kind = LoadChangeKind(k);
+    Json listed = Json::array();
+    for (const LoadChange &c : scene.loadChanges.listed)
+      if (c.kind == kind)
+        listed.push_back({{"object", objectNameOf(scene, c.object)},
+                          {"position", isFinite(c.position) ? jsonVec(c.position / metresPerUnit) : Json(nullptr)},
+                          {"position_metres", isFinite(c.position) ? jsonVec(c.position) : Json(nullptr)},
+                          {"reason", c.reason}});
+    j[loadChangeKey(kind)] = {{"what", loadChangeName(kind)},
+                              {"action", loadChangeAction(kind)},
+                              {"count", scene.loadChanges.count(kind)},
+                              {"listed", listed}};
+  }
+  // No loader welds vertices (faces keep the indices they were given), so
+  // there is nothing to list; said so that a script need not guess.
+  j["welded_vertices"] = {{"what", "welded vertices"}, {"action", "merged"}, {"count", 0}, {"listed", Json::array()}};
+  return j;
+}
+
+/// A kind's count for a person: "2 degenerate faces".
+std::string describeCount(LoadChangeKind kind, size_t n) {
+  switch (kind) {
+    case LoadChangeKind::DegenerateFace:
+      return plural(n, "degenerate face", "degenerate faces");
+    case LoadChangeKind::RepeatedFace:
+      return plural(n, "repeated face", "repeated faces");
+    case LoadChangeKind::CollinearQuad:
+      return plural(n, "quad with three corners on a line, kept as a triangle",
+                    "quads with three corners on a line, kept as triangles");
+    case LoadChangeKind::BackToBack:
+      return plural(n, "pair of faces back to back, made one two-sided surface",
+                    "pairs of faces back to back, each made one two-sided surface");
+  }
+  return "?";
+}
+
+/// The "dropped:" and "merged:" rows, each change listed below by object and position.
+void printLoadChanges(const Scene &scene, double metresPerUnit, const std::string &label) {
+  for (const std::string action : {"dropped", "merged"}) {
+    std::string summary;
+    for (size_t k = 0; k < kLoadChangeKinds; ++k) {
+      const auto kind = LoadChangeKind(k);
+      if (loadChangeAction(kind) == action && scene.loadChanges.count(kind) > 0)
+        summary += (summary.empty() ? "" : ", ") + describeCount(kind, scene.loadChanges.count(kind));
+    }
+    if (summary.empty())
+      summary = action == "dropped" ? "no degenerate or repeated faces" : "nothing (no vertices are welded either)";
+    fmt::print("{:<11}{}\n", action + ":", summary);
+    for (size_t k = 0; k < kLoadChangeKinds; ++k) {
+      const auto kind = LoadChangeKind(k);
+      if (loadChangeAction(kind) != action) continue;
+      for (const LoadChange &c : scene.loadChanges.listed)
+        if (c.kind == kind)
+          fmt::print("  {} in '{}' at {}: {}\n", loadChangeName(kind), objectNameOf(scene, c.object),
+                     isFinite(c.position) ? formatPoint(c.position / metresPerUnit) + " " + label
+                                          : std::string("no finite corner"),
+                     c.reason);
+      const size_t count = scene.loadChanges.count(kind);
+      if (count > LoadChanges::kListedPerKind)
+        fmt::print("  … and {} more ({} in all; the first {} of each kind are listed)\n",
+                   count - LoadChanges::kListedPerKind, describeCount(kind, count), LoadChanges::kListedPerKind);
+    }
+  }
+}
+
 }  // namespace
 
 CommandRunner addInfoCommand(CLI::App &app) {
@@ -257,6 +331,7 @@ CommandRunner addInfoCommand(CLI::App &app) {
         grids.push_back({{"name", g.name}, {"points", g.pointCount()}, {"nu", g.nu}, {"nv", g.nv}});
       j["grids"] = grids;
       j["dropped_degenerate_faces"] = scene.droppedDegenerateFaces;
+      j["load_changes"] = jsonLoadChanges(scene, unit);
       j["warnings"] = scene.warnings;
       j["nothing_to_solve"] = nothingToSolve;
       j["solver"] = nothingToSolve ? Json(nullptr)
@@ -327,11 +402,7 @@ CommandRunner addInfoCommand(CLI::App &app) {
                              plural(size_t(scene.spectral.passCount()), "pass", "passes")));
     else
       fmt::print(kRow, "spectral:", "no (RGB)");
-    fmt::print(kRow, "dropped:",
-               scene.droppedDegenerateFaces == 0
-                   ? std::string("no degenerate faces")
-                   : fmt::format("{} (zero area or not finite)",
-                                 plural(scene.droppedDegenerateFaces, "degenerate face", "degenerate faces")));
+    printLoadChanges(scene, unit, label);
     if (scene.warnings.empty() && sizeNote.empty()) fmt::print(kRow, "warnings:", "none");
     if (!sizeNote.empty()) fmt::print("warning: {}\n", sizeNote);
     for (const std::string &warning : scene.warnings) fmt::print("warning: {}\n", warning);

@@ -198,6 +198,78 @@ OBJ
 check "--json on dropped.obj" "info['faces'] == 1 and info['dropped_degenerate_faces'] == 1" \
   "any('repeat another face' in w for w in info['warnings'])" "any('degenerate' in w for w in info['warnings'])"
 
+# --- What loading dropped or merged, by object and position (not face number). ---
+# Two named objects. The floor: a quad, the same quad again (repeated), a
+# triangle of three points on a line (zero area) and one of two distinct
+# corners. The wall: a quad, one that collapses to two corners, and, apart
+# at z = 6, a quad with three corners on a line (kept as the triangle it is).
+# Each position is the centroid of the face's corners, derived here.
+cat >named.obj <<'OBJ'
+v 0 0 0
+v 2 0 0
+v 2 0 2
+v 0 0 2
+v 1 0 1
+v 5 1 5
+v 6 1 5
+v 6 2 5
+v 5 2 5
+v 5 1 6
+v 6 1 6
+v 7 1 6
+v 6 2 6
+o floor
+f 1 4 3 2
+f 1 4 3 2
+f 1 5 3
+f 1 1 2
+o wall
+f 6 7 8 9
+f 6 7 7 6
+f 10 11 12 13
+OBJ
+"$radiant" info named.obj -q >info.txt && "$radiant" info named.obj --json -q >info.json && pass || fail "info named.obj"
+cat >expected.json <<'JSON'
+{"degenerate": [["named/floor", [1, 0, 1], "zero area"],
+                ["named/floor", [0.6666666666666666, 0, 0], "fewer than three distinct corners"],
+                ["named/wall", [5.5, 1, 5], "fewer than three distinct corners"]],
+ "repeated": [["named/floor", [1, 0, 1]]],
+ "collinear": [["named/wall", [6, 1.25, 6]]]}
+JSON
+check "--json lists what named.obj lost, by object and position" \
+  "info['dropped_degenerate_faces'] == 3" \
+  "{k: (c['count'], c['action']) for k, c in info['load_changes'].items()} == {'degenerate_faces': (3, 'dropped'), 'repeated_faces': (1, 'dropped'), 'collinear_quads': (1, 'merged'), 'back_to_back_pairs': (0, 'merged'), 'welded_vertices': (0, 'merged')}" \
+  "all(c['object'] == e[0] and close(c['position'], e[1]) and close(c['position_metres'], e[1]) and c['reason'] == e[2] for c, e in zip(info['load_changes']['degenerate_faces']['listed'], expected['degenerate']))" \
+  "len(info['load_changes']['degenerate_faces']['listed']) == 3" \
+  "[(c['object'], c['position']) for c in info['load_changes']['repeated_faces']['listed']] == [tuple(e) for e in expected['repeated']]" \
+  "[(c['object'], c['position']) for c in info['load_changes']['collinear_quads']['listed']] == [tuple(e) for e in expected['collinear']]"
+grep -qxF 'dropped:   3 degenerate faces, 1 repeated face' info.txt && pass || { fail "named.obj dropped row:"; cat info.txt; }
+grep -qxF "  degenerate face in 'named/wall' at (5.5, 1, 5) m: fewer than three distinct corners" info.txt && pass ||
+  { fail "named.obj: the wall's degenerate face by object and position:"; cat info.txt; }
+grep -qxF "  quad made a triangle in 'named/wall' at (6, 1.25, 6) m: three of its corners on one line" info.txt && pass ||
+  { fail "named.obj: the merged quad:"; cat info.txt; }
+# In a JSON scene in millimetres the positions are in its units, and in metres beside.
+cat >named-mm.json <<'JSON'
+{"version": 1, "units": "mm", "objects": [{"name": "model", "type": "obj", "file": "named.obj"}]}
+JSON
+"$radiant" info named-mm.json --json -q >info.json && pass || fail "info named-mm.json"
+check "--json positions in millimetres" \
+  "close(info['load_changes']['degenerate_faces']['listed'][2]['position'], [5.5, 1, 5])" \
+  "close(info['load_changes']['degenerate_faces']['listed'][2]['position_metres'], [0.0055, 0.001, 0.005])"
+# The list is bounded: the first 20 of a kind, then a count of the rest.
+{
+  echo "v 0 0 0"; echo "v 1 0 0"; echo "v 0 0 1"
+  echo "o sheet"; echo "f 1 3 2"
+  for i in $(seq 1 25); do echo "v $i 5 0"; echo "f 1 1 $((3 + i))"; done
+} >many.obj
+"$radiant" info many.obj -q >info.txt && "$radiant" info many.obj --json -q >info.json && pass || fail "info many.obj"
+check "--json lists 20 of 25 degenerate faces" "info['load_changes']['degenerate_faces']['count'] == 25" \
+  "len(info['load_changes']['degenerate_faces']['listed']) == 20"
+[ "$(grep -c "^  degenerate face in 'many/sheet'" info.txt)" = 20 ] && pass || { fail "many.obj: 20 listed:"; cat info.txt; }
+grep -qxF '  … and 5 more (25 degenerate faces in all; the first 20 of each kind are listed)' info.txt && pass ||
+  { fail "many.obj: the rest counted:"; cat info.txt; }
+rm expected.json
+
 # --- Lights, grids, spectral: counted from the scene files. ---
 cp "$source_dir/scenes/office/scene.json" scene.json
 "$radiant" info "$source_dir/scenes/office/scene.json" --json -q >info.json && pass || fail "info office"

@@ -138,7 +138,9 @@ void mgfAddFace(const MgfTarget &target, const std::vector<MgfPoint> &outline,
     newell = newell + Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
   }
   if (!(length(newell) > 0)) {
-    ++target.scene.droppedDegenerateFaces;
+    std::vector<Vec3> corners;
+    for (const MgfPoint &p : outline) corners.push_back(p.position);
+    target.scene.dropDegenerateFace(corners, target.object, "zero area");
     return;
   }
   const int drop = std::abs(newell.x) >= std::abs(newell.y) && std::abs(newell.x) >= std::abs(newell.z) ? 0

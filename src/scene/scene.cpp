@@ -45,13 +45,20 @@ bool Scene::addFace(const Face &face) {
     t.material = face.material;
     kept.push_back(t);
   }
+  std::array<Vec3, 4> corners;
+  for (int k = 0; k < face.vertexCount; ++k) corners[size_t(k)] = positions[face.vertices[k]];
+  const std::span<const Vec3> cornerSpan(corners.data(), size_t(face.vertexCount));
   if (kept.empty()) {
-    ++droppedDegenerateFaces;
+    bool finite = true;
+    for (const Vec3 &p : cornerSpan) finite = finite && isFinite(p);
+    dropDegenerateFace(cornerSpan, face.object, finite ? "zero area" : "a corner is not finite");
     return false;
   }
   if (face.vertexCount == 4 && kept.size() == 1) {
     // Three corners of the quad on one line: its area is one triangle, and a
     // quad with a straight corner would give the mesher zero-area elements.
+    loadChanges.record(LoadChangeKind::CollinearQuad, face.object, finiteCentroid(cornerSpan),
+                       "three of its corners on one line");
     Face triangle = face;
     triangle.vertexCount = 3;
     for (int j = 0; j < 3; ++j) {
@@ -66,6 +73,11 @@ bool Scene::addFace(const Face &face) {
   faces.push_back(face);
   triangles.insert(triangles.end(), kept.begin(), kept.end());
   return true;
+}
+
+void Scene::dropDegenerateFace(std::span<const Vec3> corners, uint32_t object, std::string reason) {
+  ++droppedDegenerateFaces;
+  loadChanges.record(LoadChangeKind::DegenerateFace, object, finiteCentroid(corners), std::move(reason));
 }
 
 std::vector<std::array<double, 3>> Scene::cornerKey(const Face &f, bool reversed) const {
@@ -85,6 +97,14 @@ void Scene::addBackFaces() {
   for (uint32_t f = 0; f < faces.size(); ++f) {
     if (faces[f].twin >= 0) continue;
     if (auto it = unpaired.find(cornerKey(faces[f], true)); it != unpaired.end()) {
+      std::array<Vec3, 4> corners;
+      for (int k = 0; k < faces[f].vertexCount; ++k) corners[size_t(k)] = positions[faces[f].vertices[k]];
+      const uint32_t first = faces[it->second].object, second = faces[f].object;
+      loadChanges.record(LoadChangeKind::BackToBack, second,
+                         finiteCentroid(std::span<const Vec3>(corners.data(), size_t(faces[f].vertexCount))),
+                         first == second || first >= objects.size()
+                             ? std::string("the two sides of one surface")
+                             : "the back of a face of '" + objects[first].name + "'");
       faces[it->second].twin = int32_t(f);
       faces[f].twin = int32_t(it->second);
       faces[f].back = true;

@@ -10,11 +10,13 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "scene/camera.h"
 #include "scene/light.h"
+#include "scene/load_changes.h"
 #include "scene/material.h"
 #include "util/math.h"
 
@@ -131,6 +133,11 @@ struct Scene {
 
   /// Degenerate faces dropped while loading (counted for the warning).
   size_t droppedDegenerateFaces = 0;
+  /// What the loaders dropped or merged, by object and position (scene/load_changes.h).
+  LoadChanges loadChanges;
+  /// Counts a degenerate face as dropped and records where it was (`corners`
+  /// in metres, as read: some may not be finite).
+  void dropDegenerateFace(std::span<const Vec3> corners, uint32_t object, std::string reason);
   std::vector<std::string> warnings;
 
   /// Geometric normal of a triangle from its winding (front side).

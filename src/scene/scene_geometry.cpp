@@ -60,8 +60,13 @@ void addPiece(Scene &scene, const std::vector<uint32_t> &vertices, const std::ve
 void addPolygon(Scene &scene, const std::vector<uint32_t> &verticesIn, const std::vector<int32_t> &uvsIn,
                 const std::vector<int32_t> &normalsIn, uint32_t material, uint32_t object, bool flipWinding) {
   const size_t n = verticesIn.size();
+  auto drop = [&](const std::vector<uint32_t> &corners, const char *reason) {
+    std::vector<Vec3> points;
+    for (uint32_t v : corners) points.push_back(scene.positions[v]);
+    scene.dropDegenerateFace(points, object, reason);
+  };
   if (n < 3) {
-    ++scene.droppedDegenerateFaces;
+    drop(verticesIn, "fewer than three corners");
     return;
   }
   // Reversing all but the first vertex turns the front to the back. A vertex
@@ -81,7 +86,7 @@ void addPolygon(Scene &scene, const std::vector<uint32_t> &verticesIn, const std
     vertices.pop_back(), uvs.pop_back(), normals.pop_back();
   }
   if (vertices.size() < 3) {
-    ++scene.droppedDegenerateFaces;
+    drop(verticesIn, "fewer than three distinct corners");
     return;
   }
   const size_t m = vertices.size();
@@ -190,6 +195,14 @@ void dropRepeatedFaces(Scene &scene) {
   for (size_t i = 0; i < scene.faces.size(); ++i) {
     auto [at, inserted] = firstWithKey.emplace(scene.cornerKey(scene.faces[i]), uint32_t(kept.size()));
     if (!inserted) {
+      const Face &face = scene.faces[i];
+      std::array<Vec3, 4> corners;
+      for (int k = 0; k < face.vertexCount; ++k) corners[size_t(k)] = scene.positions[face.vertices[k]];
+      const uint32_t firstObject = kept[at->second].object;
+      scene.loadChanges.record(
+          LoadChangeKind::RepeatedFace, face.object,
+          finiteCentroid(std::span<const Vec3>(corners.data(), size_t(face.vertexCount))),
+          "the same corners as a face of '" + scene.objects[firstObject].name + "', facing the same way");
       if (repeated++ == 0) {
         const Face &first = kept[at->second];
         example = "object '" + scene.objects[scene.faces[i].object].name + "' repeats a face of '" +
