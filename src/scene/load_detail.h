@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "scene/json_reader.h"
@@ -19,6 +20,35 @@ uint32_t defaultMaterialIndex(Scene &scene);
 
 /// Index of the material called `name`, or −1.
 int findMaterial(const Scene &scene, const std::string &name);
+
+/// Items (materials, lights) by name, for a loader that looks names up per
+/// face or per entry: a scan of every name (findMaterial) made an OBJ of 10⁵
+/// usemtl materials, or a scene of 10⁵ luminaires, quadratic (issue 38). The
+/// index catches up with the items appended since its last lookup, so a
+/// loader that pushes to the scene's vector keeps no second list; of two
+/// equal names the first wins, as in findMaterial.
+template <typename Item>
+class NameIndex {
+ public:
+  explicit NameIndex(const std::vector<Item> &items) : items_(items) {}
+  /// Index of the item called `name`, or −1.
+  int find(const std::string &name) {
+    if (items_.size() < indexed_) byName_.clear(), indexed_ = 0;  // items were removed: start over
+    for (; indexed_ < items_.size(); ++indexed_, ++namesHashed_) byName_.emplace(items_[indexed_].name, int(indexed_));
+    const auto it = byName_.find(name);
+    return it == byName_.end() ? -1 : it->second;
+  }
+  /// The names put into the index so far: the work done, linear in the items
+  /// however many lookups were made (tests count it).
+  size_t namesHashed() const { return namesHashed_; }
+
+ private:
+  const std::vector<Item> &items_;
+  std::unordered_map<std::string, int> byName_;
+  size_t indexed_ = 0, namesHashed_ = 0;
+};
+using MaterialNames = NameIndex<Material>;
+using LightNames = NameIndex<PointLight>;
 
 /// Throws InputError at `where` for a value the later stages cannot use:
 /// non-finite or negative values, a diffuse reflectance ≥ 1 in any band

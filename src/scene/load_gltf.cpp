@@ -394,13 +394,13 @@ class GltfReader {
     // A material of the same name in the JSON scene wins, as over an MTL material.
     const std::string base = material.string("name", "");
     const std::string name = base.empty() ? "material-" + std::to_string(index) : base;
-    const int existing = detail::findMaterial(scene_, name);
+    const int existing = materialNames_.find(name);
     if (existing >= 0 && size_t(existing) < overridableMaterials_) return materials_[index] = uint32_t(existing);
     Material converted = convertMaterial(file_, material, scene_, textures_);
     converted.name = name;
     // Another file's material of the same name (Blender names every first material "Material") stays its own.
     if (existing >= 0) converted.name = objectName_ + "/" + name;
-    while (detail::findMaterial(scene_, converted.name) >= 0) converted.name += "#" + std::to_string(index);
+    while (materialNames_.find(converted.name) >= 0) converted.name += "#" + std::to_string(index);
     scene_.materials.push_back(std::move(converted));
     return materials_[index] = uint32_t(scene_.materials.size() - 1);
   }
@@ -415,6 +415,7 @@ class GltfReader {
   std::vector<size_t> rootIndices_;
   detail::GltfView view_;
   std::map<size_t, uint32_t> materials_;  ///< glTF material → scene material
+  detail::MaterialNames materialNames_{scene_.materials};
   TextureCache textures_;
   std::set<std::string> objectNames_;
   bool orthographicWarned_ = false;

@@ -2,6 +2,9 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <map>
+#include <memory>
+#include <utility>
 
 #include "scene/light.h"
 #include "scene/load_detail.h"
@@ -14,11 +17,13 @@ namespace {
 /// lighthouse is ~10⁷ cd), small enough that the watts stay finite.
 constexpr double kMaxCandela = 1e12;
 
-std::string uniqueLightName(const Scene &scene, const JsonNode &node, const std::string &fallback) {
+std::string uniqueLightName(LightNames &names, const JsonNode &node, const std::string &fallback) {
   const std::string name = node.string("name", fallback);
   if (name.empty()) node.child("name").fail("a light's name cannot be empty");
-  for (const PointLight &other : scene.lights)
-    if (other.name == name) node.child("name").fail("a second light named '" + name + "'");
+  if (names.find(name) >= 0) {
+    if (node.has("name")) node.child("name").fail("a second light named '" + name + "'");
+    node.fail("a second light named '" + name + "' (its default name): give it a \"name\"");
+  }
   return name;
 }
 
@@ -96,6 +101,7 @@ void parseOpening(PointLight &light, const JsonNode &node, double metres) {
 
 void parseLights(Scene &scene, const JsonNode &lights, double metres) {
   std::vector<JsonNode> entries = lights.asArray();
+  LightNames names(scene.lights);
   for (size_t index = 0; index < entries.size(); ++index) {
     const JsonNode &node = entries[index];
     node.expectObject();
@@ -113,7 +119,7 @@ void parseLights(Scene &scene, const JsonNode &lights, double metres) {
       node.child("type").fail("unknown light type '" + type + "'; known: point, spot" +
                               didYouMean(type, {"point", "spot"}) + " (photometric files go in \"luminaires\")");
     }
-    light.name = uniqueLightName(scene, node, fmt::format("{}-{}", type, index));
+    light.name = uniqueLightName(names, node, fmt::format("{}-{}", type, index));
     light.position = lightPosition(node, metres);
     lightFrame(light, node);
     if (light.kind == PointLightKind::Spot) {
@@ -147,6 +153,10 @@ void parseLights(Scene &scene, const JsonNode &lights, double metres) {
 
 void parseLuminaires(Scene &scene, const JsonNode &luminaires, double metres, const std::filesystem::path &directory) {
   std::vector<JsonNode> entries = luminaires.asArray();
+  LightNames names(scene.lights);
+  // A file named by many luminaires (a ceiling of one downlight) is read and
+  // tabulated once; the distribution is immutable and shared.
+  std::map<std::pair<std::string, bool>, std::shared_ptr<const PhotometricDistribution>> distributions;
   for (size_t index = 0; index < entries.size(); ++index) {
     const JsonNode &node = entries[index];
     node.expectObject();
@@ -159,13 +169,16 @@ void parseLuminaires(Scene &scene, const JsonNode &luminaires, double metres, co
       node.fail("give the luminaire's photometric file as \"ies\" (IES LM-63) or \"ldt\" (EULUMDAT), one of them");
     const JsonNode file = node.child(node.has("ies") ? "ies" : "ldt");
     const std::string path = (directory / file.asString()).string();
+    const bool asIes = node.has("ies");
+    auto &distribution = distributions[{path, asIes}];
     try {
-      light.photometry = node.has("ies") ? readIesFile(path) : readEulumdatFile(path);
+      if (!distribution) distribution = asIes ? readIesFile(path) : readEulumdatFile(path);
+      light.photometry = distribution;
     } catch (const InputError &e) {
       // The file's own error names its line; say which luminaire asked for it.
       throw InputError(e.location(), e.message() + fmt::format(" (the photometric file of {})", file.path()));
     }
-    light.name = uniqueLightName(scene, node, fmt::format("luminaire-{}", index));
+    light.name = uniqueLightName(names, node, fmt::format("luminaire-{}", index));
     light.position = lightPosition(node, metres);
     lightFrame(light, node);
     light.multiplier = node.number("multiplier", 1.0);

@@ -123,6 +123,8 @@ class MgfReader {
   std::vector<std::string> objectNames_;
   std::map<std::string, uint32_t> objectIndex_;
   std::map<std::pair<std::string, uint64_t>, uint32_t> materialIndex_;
+  MaterialNames materialNames_{scene_.materials};  ///< new names checked without a scan of every name
+  LightNames lightNames_{scene_.lights};
   uint64_t materialClock_ = 0;
   std::map<std::string, std::string> unknown_;
   std::set<std::string> warnedEntities_;
@@ -206,7 +208,7 @@ class MgfReader {
     if (it != materialIndex_.end()) return it->second;
     std::string name = currentMaterial_.empty() ? "mgf-unnamed" : currentMaterial_;
     // A material changed after faces used it is a new Radiant material.
-    for (int k = 2; findMaterial(scene_, name) >= 0; ++k)
+    for (int k = 2; materialNames_.find(name) >= 0; ++k)
       name = (currentMaterial_.empty() ? "mgf-unnamed" : currentMaterial_) + "#" + std::to_string(k);
     Material radiant = mgfToMaterial(m, name, here(), scene_.warnings, scene_.spectral.enabled());
     checkMaterial(radiant, here());
@@ -478,8 +480,7 @@ class MgfReader {
       throw InputError(error.location(), error.message() + " (the luminaire of " + here().toString() + ")");
     }
     light.name = fmt::format("{}ies-{}", objectNames_.empty() ? "" : objectNames_.back() + "/", ++luminaires_);
-    for (const PointLight &other : scene_.lights)
-      if (other.name == light.name) light.name += "@" + here().toString();
+    if (lightNames_.find(light.name) >= 0) light.name += "@" + here().toString();
     light.position = t.point(Vec3{0, 0, 0});
     if (!withinCoordinateRange(light.position)) fail("the luminaire lies beyond 10⁹ m");
     const Vec3 aim = t.vector(Vec3{0, 0, -1}), c0 = t.vector(Vec3{1, 0, 0});

@@ -432,8 +432,10 @@ void detail::appendObjFromScene(Scene &scene, const std::string &objPath, const 
 
   // A name already in the scene (a JSON material, or an earlier file's) wins
   // over the MTL definition; MTL materials are converted on first use only.
+  // resolve runs per face: findMaterial's scan of every name made 10⁵ usemtl materials quadratic.
+  detail::MaterialNames materialNames(scene.materials);
   auto resolve = [&](const std::string &name) -> int {
-    int index = detail::findMaterial(scene, name);
+    int index = materialNames.find(name);
     if (index >= 0) return index;
     auto it = mtlByName.find(name);
     if (it == mtlByName.end()) return -1;

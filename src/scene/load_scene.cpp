@@ -227,8 +227,9 @@ struct SceneParser {
   std::string file;
   fs::path directory;
   double metres = 1.0;
-  std::map<std::string, std::string> objectPathByName;  // for duplicate names
-  size_t jsonMaterialCount = 0;                         // the JSON's materials, which override glTF ones by name
+  std::map<std::string, std::string> objectPathByName;   // for duplicate names
+  size_t jsonMaterialCount = 0;                          // the JSON's materials, which override glTF ones by name
+  detail::MaterialNames materialNames{scene.materials};  // findMaterial per object was quadratic in 10⁵ objects
 
   /// Fails at `node` (the vertex, centre or radius that put them there) when a
   /// vertex added since `first` lies where the ray tracer cannot work
@@ -246,7 +247,7 @@ struct SceneParser {
     if (!object.has("material")) return detail::defaultMaterialIndex(scene);
     JsonNode node = object.child("material");
     std::string name = node.asString();
-    int index = detail::findMaterial(scene, name);
+    int index = materialNames.find(name);
     if (index < 0) {
       std::vector<std::string> known;
       for (const Material &m : scene.materials) known.push_back(m.name);
@@ -282,7 +283,7 @@ struct SceneParser {
       std::string materialName;
       if (node.has("material")) {
         materialName = node.child("material").asString();
-        material = detail::findMaterial(scene, materialName);
+        material = materialNames.find(materialName);
       }
       InputLocation fileLocation = node.child("file").location();
       InputLocation materialLocation = node.has("material") ? node.child("material").location() : fileLocation;
