@@ -81,6 +81,10 @@ class Fields {
 
 std::shared_ptr<const PhotometricDistribution> readEulumdatFile(const std::string &path) {
   const std::string text = readBoundedFile(path, "EULUMDAT", {});
+  if (photometricFormatOf(text) == PhotometricFormat::Ies)
+    throw InputError({path, 1, 0, ""},
+                     "this is an IES LM-63 file, not a EULUMDAT file (it has a TILT= line or an IESNA first line): "
+                     "read it as IES (\"ies\" in a JSON scene)");
   TextCursor in(path, text);
   Fields fields(in);
 

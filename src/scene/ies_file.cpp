@@ -68,6 +68,10 @@ std::string describe(const Keywords &k) {
 
 std::shared_ptr<const PhotometricDistribution> readIesFile(const std::string &path) {
   const std::string text = readBoundedFile(path, "IES", {});
+  if (photometricFormatOf(text) == PhotometricFormat::Eulumdat)
+    throw InputError({path, 1, 0, ""},
+                     "this is a EULUMDAT file, not an IES LM-63 file (it has no TILT= line, and its lines 2 to 6 are "
+                     "EULUMDAT's type, symmetry and counts): read it as EULUMDAT (\"ldt\" in a JSON scene)");
   TextCursor in(path, text);
   std::string_view line;
   if (!in.nextLine(line))

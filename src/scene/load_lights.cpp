@@ -171,6 +171,14 @@ void parseLuminaires(Scene &scene, const JsonNode &luminaires, double metres, co
     const std::string path = (directory / file.asString()).string();
     const bool asIes = node.has("ies");
     auto &distribution = distributions[{path, asIes}];
+    if (!distribution) {
+      // The key says what the file is; its content decides (a .ldt renamed, or named under the other key).
+      const PhotometricFormat format = photometricFormatOfFile(path);
+      if (asIes && format == PhotometricFormat::Eulumdat)
+        file.fail("this is a EULUMDAT file: give it as \"ldt\" ('" + path + "')");
+      if (!asIes && format == PhotometricFormat::Ies)
+        file.fail("this is an IES LM-63 file: give it as \"ies\" ('" + path + "')");
+    }
     try {
       if (!distribution) distribution = asIes ? readIesFile(path) : readEulumdatFile(path);
       light.photometry = distribution;

@@ -18,6 +18,7 @@
 // rounding.
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -457,6 +458,42 @@ void TextCursor::expectEnd(const std::string &after) {
 }
 
 }  // namespace photometry_detail
+
+PhotometricFormat photometricFormatOf(std::string_view text) {
+  std::vector<std::string_view> lines;
+  for (size_t start = 0; start < text.size() && lines.size() < 4096;) {
+    size_t end = text.find('\n', start);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(start, end - start);
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.front()))) line.remove_prefix(1);
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.remove_suffix(1);
+    lines.push_back(line);
+    start = end + 1;
+  }
+  auto startsWith = [](std::string_view line, std::string_view prefix) {
+    if (line.size() < prefix.size()) return false;
+    for (size_t i = 0; i < prefix.size(); ++i)
+      if (std::toupper(static_cast<unsigned char>(line[i])) != prefix[i]) return false;
+    return true;
+  };
+  if (!lines.empty() && startsWith(lines[0], "IESNA")) return PhotometricFormat::Ies;
+  for (std::string_view line : lines)
+    if (startsWith(line, "TILT")) return PhotometricFormat::Ies;
+  if (lines.size() < 7) return PhotometricFormat::Unknown;
+  auto integerIn = [&](size_t line, int64_t low, int64_t high) {
+    int64_t value = 0;
+    return parseInteger(lines[line], value) && value >= low && value <= high;
+  };
+  // Line 5, the distance between C planes, is a decimal (some files write a decimal comma).
+  if (integerIn(1, 0, 3) && integerIn(2, 0, 4) && integerIn(3, 0, 1 << 20) && !lines[4].empty() &&
+      integerIn(5, 0, 1 << 20))
+    return PhotometricFormat::Eulumdat;
+  return PhotometricFormat::Unknown;
+}
+
+PhotometricFormat photometricFormatOfFile(const std::string &path) {
+  return photometricFormatOf(readInputFilePrefix(path, 1 << 16));
+}
 
 std::shared_ptr<const PhotometricDistribution> readPhotometricFile(const std::string &path) {
   std::string extension = lowercaseExtension(path);

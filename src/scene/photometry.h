@@ -18,6 +18,7 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "util/error.h"
@@ -88,5 +89,15 @@ std::shared_ptr<const PhotometricDistribution> readIesFile(const std::string &pa
 std::shared_ptr<const PhotometricDistribution> readEulumdatFile(const std::string &path);
 /// By extension: .ies → IES, .ldt → EULUMDAT; anything else is refused.
 std::shared_ptr<const PhotometricDistribution> readPhotometricFile(const std::string &path);
+
+/// What a photometric file is by its content, whatever its name: Ies for a
+/// file with a TILT= line (every LM-63 version has one before its numbers)
+/// or an IESNA first line; Eulumdat for one without, whose lines 2 to 6 are
+/// EULUMDAT's type (0–3), symmetry (0–4), C-plane count, C-plane distance and
+/// intensity count; Unknown otherwise (a damaged file: its reader says why).
+enum class PhotometricFormat { Ies, Eulumdat, Unknown };
+PhotometricFormat photometricFormatOf(std::string_view text);
+/// photometricFormatOf the first 64 KiB of the file at `path` (Unknown when it cannot be read).
+PhotometricFormat photometricFormatOfFile(const std::string &path);
 
 }  // namespace radiant
