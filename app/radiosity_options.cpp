@@ -151,7 +151,9 @@ void printSolveSummary(const Solution &s) {
   if (st.escapedToBackSides.average() > 0)
     fmt::print(stderr, " ({:.3g} of it onto one-sided faces' backs)", st.escapedToBackSides.average());
   if (st.unshotPower.average() > 0) fmt::print(stderr, ", unshot {:.6g}", st.unshotPower.average());
-  fmt::print(stderr, "; imbalance {:.3g}\n", st.powerImbalance());
+  fmt::print(stderr, "; imbalance {:.3g}", st.powerImbalance());
+  if (st.powerBalanceTolerance > 0) fmt::print(stderr, " (tolerance {:.2g})", st.powerBalanceTolerance);
+  fmt::print(stderr, "\n");
   // The escaped power is measured by rays (radiosity/power_balance.h), not
   // inferred: an imbalance beyond what the solver's own error allows is a bug.
   if (std::abs(st.powerImbalance()) > st.powerBalanceTolerance && st.powerBalanceTolerance > 0)

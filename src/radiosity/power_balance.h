@@ -75,7 +75,9 @@ PowerBalance measurePowerBalance(const RayTracer &tracer, const Solution &soluti
 ///   (nodeValues, or the exact node irradiance of hierarchical-exact and
 ///   the stochastic solver's direct light), Σ A_e max_k |H(node_k) − H_e|.
 ///   This is the error estimate each element already reports (C&W ch. 6),
-///   in irradiance instead of radiosity; it falls as the mesh is refined.
+///   in irradiance instead of radiosity; it falls as the mesh is refined;
+/// - hierarchical-exact's stated tolerances: directTolerance of the emitted
+///   power (the direct light's) and linkError of all that arrives, Σ A H.
 double powerBalanceTolerance(const Solution &solution, const SolverOptions &options, const PowerBalance &balance);
 
 }  // namespace radiant
