@@ -378,8 +378,10 @@ CommandRunner addRenderCommand(CLI::App &app) {
       }
     };
     SpectralImages rendered = renderPasses(scene, r.width, r.height, balance, renderPass);
-    // A spectral image needs every pass's wavelengths: one cut short has no colour to write.
-    if (stats.interrupted && spectral) throw Interrupted();
+    // A spectral image needs every pass's wavelengths: one cut short has no colour to write. A render
+    // stopped in its first round (0 spp: some pixels without a sample) has no image either, and
+    // writing its film would replace an earlier file of that name with a black one (issue 38).
+    if (stats.interrupted && (spectral || stats.samplesPerPixel == 0)) throw Interrupted();
     Image &image = rendered.colour;
     image.quantity = o->quantity;
     image.samplesPerPixel = stats.samplesPerPixel;

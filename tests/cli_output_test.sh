@@ -147,5 +147,20 @@ status=$?
 if [ "$status" -eq 130 ] && [ -s int.exr ] && "$radiant" tonemap int.exr -o int.png -q; then pass; else
   fail "render; kill -INT: exit $status, int.exr $(ls -la int.exr 2>&1)"
 fi
+# Ctrl-C before every pixel has a sample (issue 38): nothing is written, and an earlier file of
+# that name stays as it was (it was replaced by a black image). The first round, 1 spp of 2000²
+# pixels on one thread, takes several seconds; the interrupt comes 1.5 s after the start.
+echo "an earlier image" > early.png
+"$radiant" render "$cornell" --spp 1000000 --width 2000 --height 2000 --threads 1 -o early.png 2> early.err &
+pid=$!
+sleep 1.5
+kill -INT $pid
+wait $pid
+status=$?
+if [ "$status" -eq 130 ] && [ "$(cat early.png)" = "an earlier image" ] && grep -q "nothing written" early.err; then
+  pass
+else
+  fail "render; kill -INT before the first sample: exit $status, early.png $(ls -la early.png), $(cat early.err)"
+fi
 
 finish
