@@ -522,6 +522,27 @@ TEST(GltfImportErrors, EachRefusalNamesTheFileAndJsonPath) {
   }
 }
 
+TEST(GltfImportErrors, GltfOneIsNamedAsSuchWithTheFile) {
+  // glTF 1.0 (CesiumMilkTruck) writes its version as the number 1 or as "1.0"; it was refused with
+  // "at /asset/version: expected a string, got the number 1" (issue 38).
+  TempDir dir;
+  for (const std::string version : {"1", "1.0", "\"1.0\"", "\"1.1\""}) {
+    const std::string path = dir.write("truck.gltf", R"({"asset": {"version": )" + version + R"(}, "scenes": []})");
+    const std::string error = loadError(path);
+    EXPECT_NE(error.find(path + ": at /asset/version: '" + path + "' is a glTF 1.0 file (" + version +
+                         "), which Radiant does not read: it reads glTF 2.0"),
+              std::string::npos)
+        << error;
+  }
+  const std::string three = dir.write("three.gltf", R"({"asset": {"version": "3.0"}})");
+  EXPECT_NE(loadError(three).find("is glTF version 3.0, which Radiant does not read: it reads glTF 2.0"),
+            std::string::npos);
+  std::string glb("glTF\x01\0\0\0\x14\0\0\0\0\0\0\0JSON", 20);
+  const std::string binary = dir.write("old.glb", glb);
+  EXPECT_NE(loadError(binary).find("is a GLB of version 1 (glTF 1.0), which Radiant does not read"), std::string::npos)
+      << loadError(binary);
+}
+
 TEST(GltfImportErrors, MissingFilesAreNamedWhereTheyAreReferenced) {
   TempDir dir;
   EXPECT_NE(loadError(dir.file("absent.glb")).find("cannot open glTF file"), std::string::npos);

@@ -97,7 +97,9 @@ std::string glbJson(const std::vector<unsigned char> &bytes, const InputLocation
     return value;
   };
   if (bytes.size() < 20) throw InputError(where, fmt::format("a GLB file of {} bytes is truncated", bytes.size()));
-  if (word(4) != 2) throw InputError(where, fmt::format("GLB version {}; Radiant reads glTF 2.0", word(4)));
+  if (word(4) != 2)
+    throw InputError(where, fmt::format("'{}' is a GLB of version {}{}, which Radiant does not read: it reads glTF 2.0",
+                                        where.file, word(4), word(4) == 1 ? " (glTF 1.0)" : ""));
   if (word(8) > bytes.size())
     throw InputError(where,
                      fmt::format("the GLB header says {} bytes, the file has {} (truncated?)", word(8), bytes.size()));
@@ -178,8 +180,19 @@ JsonNode GltfFile::entry(const std::string &key, const JsonNode &reference) cons
 
 void GltfFile::checkAsset() {
   JsonNode asset = root_->child("asset");
-  const std::string version = asset.child("version").asString();
-  if (version.rfind("2.", 0) != 0) asset.child("version").fail("glTF version " + version + "; Radiant reads glTF 2.0");
+  // glTF 1.0 wrote its version as a number or as "1.0" (CesiumMilkTruck); its
+  // materials (techniques and shaders) and buffer layout are not 2.0's.
+  const JsonNode versionNode = asset.child("version");
+  const Json &value = versionNode.value();
+  if (value.is_number() || (value.is_string() && value.get<std::string>().rfind("1.", 0) == 0))
+    versionNode.fail(
+        fmt::format("'{}' is a glTF 1.0 file ({}), which Radiant does not read: it reads glTF 2.0 "
+                    "(convert the file, e.g. with gltf-pipeline or Blender)",
+                    path_, value.dump()));
+  const std::string version = versionNode.asString();
+  if (version.rfind("2.", 0) != 0)
+    versionNode.fail(
+        fmt::format("'{}' is glTF version {}, which Radiant does not read: it reads glTF 2.0", path_, version));
   // An extension the file says it needs and Radiant does not read changes what the data means.
   static const std::set<std::string> kRead = {"KHR_materials_emissive_strength", "KHR_materials_transmission",
                                               "KHR_materials_ior", "KHR_materials_unlit", "KHR_mesh_quantization"};
