@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "scene/load_scene.h"
+#include "scene/overlapping_faces.h"
 #include "util/error.h"
 
 namespace radiant {
@@ -871,6 +872,15 @@ TEST(SceneLoaderMalformed, ExactRepeatsAreDroppedAndOverlapsNamed) {
   Scene overlapping = loadScene(dir.write("overlap.obj", quad + "f 1 2 3 4\nf 1 2 3\n"));
   EXPECT_EQ(overlapping.faces.size(), 2u);
   EXPECT_TRUE(hasWarning(overlapping, "1 pair of faces overlap in one plane")) << overlapping.warnings.size();
+  // Each face placed by its centroid, not only by its number (issue 38).
+  EXPECT_TRUE(hasWarning(overlapping,
+                         "face 0 of object 'overlap' at (0.5, 0.5, 0) m and face 1 of 'overlap' at "
+                         "(0.6667, 0.3333, 0) m"))
+      << (overlapping.warnings.empty() ? "" : overlapping.warnings.back());
+  overlapping.metresPerUnit = 0.001;  // a millimetre scene: scene units first, metres beside them
+  EXPECT_NE(describeOverlappingFaces(overlapping, findOverlappingFaces(overlapping))
+                .find("at (500, 500, 0) in scene units, (0.5, 0.5, 0) m"),
+            std::string::npos);
   // A tessellated floor only touches along edges.
   Scene floor = loadScene(dir.write("floor.obj", quad + "f 1 2 3\nf 1 3 4\n"));
   EXPECT_FALSE(hasWarning(floor, "overlap"));

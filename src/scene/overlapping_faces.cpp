@@ -125,11 +125,23 @@ std::string describeOverlappingFaces(const Scene &scene, const std::vector<FaceO
     const uint32_t object = scene.faces[face].object;
     return object < scene.objects.size() ? scene.objects[object].name : std::string("?");
   };
+  // A face number is nothing a modeller shows: each face is also placed by its centroid, in the
+  // scene's units (the JSON "units"; metres beside them when those are not metres).
+  auto centroidOf = [&](uint32_t face) {
+    const Face &f = scene.faces[face];
+    Vec3 sum;
+    for (int k = 0; k < f.vertexCount; ++k) sum = sum + scene.positions[f.vertices[k]];
+    const Vec3 metres = sum * (1.0 / f.vertexCount);
+    const Vec3 units = metres * (1.0 / scene.metresPerUnit);
+    if (scene.metresPerUnit == 1.0) return fmt::format("at ({:.4g}, {:.4g}, {:.4g}) m", metres.x, metres.y, metres.z);
+    return fmt::format("at ({:.4g}, {:.4g}, {:.4g}) in scene units, ({:.4g}, {:.4g}, {:.4g}) m", units.x, units.y,
+                       units.z, metres.x, metres.y, metres.z);
+  };
   return fmt::format(
       "{} pair{} of faces overlap in one plane, facing the same way (the first: face {} of object "
-      "'{}' and face {} of '{}', sharing {:.3g} m²)",
-      overlaps.size(), overlaps.size() == 1 ? "" : "s", o.first, objectOf(o.first), o.second, objectOf(o.second),
-      o.area);
+      "'{}' {} and face {} of '{}' {}, sharing {:.3g} m²)",
+      overlaps.size(), overlaps.size() == 1 ? "" : "s", o.first, objectOf(o.first), centroidOf(o.first), o.second,
+      objectOf(o.second), centroidOf(o.second), o.area);
 }
 
 }  // namespace radiant
