@@ -109,6 +109,13 @@ void writeFixtures(const std::string &folder) {
             "bump -bm 0.01 textures/egg-crate.png\n");
   // An IES tilt file (lamp-to-luminaire geometry, count, angles, factors).
   writeFile(inFolder(folder, "tilt.tlt"), "1\n3\n0 45 90\n1 0.9 0.8\n");
+  // A glTF buffer of one triangle's three float positions (uri "buffer.bin").
+  const float triangle[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  writeFile(inFolder(folder, "buffer.bin"), triangle, sizeof triangle);
+  // An MGF file to include (i part.mgf) and an isotropic IES file for MGF's ies entity.
+  writeFile(inFolder(folder, "part.mgf"), "v a =\n p 0 0 0\nv b =\n p 1 0 0\nv c =\n p 0 1 0\nf a b c\n");
+  writeFile(inFolder(folder, "isotropic.ies"),
+            "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n1 1 10\n0 180\n0\n100 100\n");
 }
 
 void feedSceneJson(std::span<const uint8_t> input, const std::string &folder) {
@@ -269,6 +276,29 @@ void feedPhotometry(std::span<const uint8_t> input, const std::string &folder) {
   if (!accepted) std::rethrow_exception(firstRefusal);
 }
 
+void feedGltf(std::span<const uint8_t> input, const std::string &folder) {
+  ensureFixtures(folder);
+  const bool glb = input.size() >= 4 && std::memcmp(input.data(), "glTF", 4) == 0;
+  const std::string path = inFolder(folder, glb ? "model.glb" : "model.gltf");
+  writeFile(path, input.data(), input.size());
+  loadScene(path);
+}
+
+void feedMgf(std::span<const uint8_t> input, const std::string &folder) {
+  ensureFixtures(folder);
+  const std::string path = inFolder(folder, "scene.mgf");
+  writeFile(path, input.data(), input.size());
+  loadScene(path);
+}
+
+void feedHdr(std::span<const uint8_t> input, const std::string &folder) {
+  const std::string path = inFolder(folder, "image.hdr");
+  writeFile(path, input.data(), input.size());
+  const Image image = readImage(path);
+  volatile float sink = image.rgb.empty() ? 0.0f : image.rgb.back();
+  static_cast<void>(sink);
+}
+
 std::span<const FuzzTarget> fuzzTargets() {
   static constexpr FuzzTarget kTargets[] = {
       {"scene_json", feedSceneJson, "scene.json"},
@@ -277,6 +307,9 @@ std::span<const FuzzTarget> fuzzTargets() {
       {"image", feedImage, "image."},
       {"solution_file", feedSolutionFile, "solution.rad"},
       {"photometry", feedPhotometry, "lamp.ies"},
+      {"gltf", feedGltf, "model."},
+      {"mgf", feedMgf, "scene.mgf"},
+      {"hdr", feedHdr, "image.hdr"},
   };
   return kTargets;
 }

@@ -90,6 +90,21 @@ void feedSolutionFile(std::span<const uint8_t> input, const std::string &folder)
 /// both refuse it: then the IES reader's InputError is rethrown.
 void feedPhotometry(std::span<const uint8_t> input, const std::string &folder);
 
+/// A glTF 2.0 file, through loadScene (load_gltf.cpp, gltf_file.cpp): written
+/// as model.glb when it starts with the GLB signature, else as model.gltf; the
+/// JSON and GLB chunks, accessors, buffer views, data: URIs, and the fixtures
+/// buffer.bin (one triangle's positions) and textures/checker.png as external
+/// files.
+void feedGltf(std::span<const uint8_t> input, const std::string &folder);
+
+/// An MGF file, through loadScene (load_mgf.cpp, mgf_geometry.cpp,
+/// mgf_material.cpp): written as scene.mgf; includes (the fixture part.mgf,
+/// and the file itself), transforms and arrays, and `ies isotropic.ies`.
+void feedMgf(std::span<const uint8_t> input, const std::string &folder);
+
+/// A Radiance RGBE image, through readImage: written as image.hdr.
+void feedHdr(std::span<const uint8_t> input, const std::string &folder);
+
 /// All targets, in the order tools/fuzz.sh runs them.
 std::span<const FuzzTarget> fuzzTargets();
 

@@ -6,7 +6,8 @@
 #
 #   tools/fuzz.sh [target…] [--runs N] [--seeds]
 #
-#   target   scene_json, obj_mtl, texture, image, solution_file, photometry
+#   target   scene_json, obj_mtl, texture, image, solution_file, photometry,
+#            gltf, mgf, hdr
 #            (default: all, in that order)
 #   --runs N executions per target (default 1000000)
 #   --seeds  first rewrite the generated seeds (fuzz/corpus/{texture,image,solution_file}/)
@@ -25,13 +26,13 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-all_targets=(scene_json obj_mtl texture image solution_file photometry)
+all_targets=(scene_json obj_mtl texture image solution_file photometry gltf mgf hdr)
 # The largest input libFuzzer makes, per format: a scene or model of a few
 # hundred lines, an image of a few kilobytes (the seeds are 5 × 3 texels), a
 # solution of a few hundred elements (the seeds are 1.5–12 kB), a photometric
 # file of a few hundred angles (the seeds are 0.1–3 kB).
 declare -A max_len=([scene_json]=16384 [obj_mtl]=16384 [texture]=32768 [image]=32768 [solution_file]=65536
-  [photometry]=16384)
+  [photometry]=16384 [gltf]=16384 [mgf]=16384 [hdr]=32768)
 
 usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; }
 
