@@ -417,6 +417,17 @@ TEST(SceneLoaderWarnings, DegenerateFacesAreDroppedAndCounted) {
   EXPECT_EQ(s.faces.size(), 1u);
   EXPECT_EQ(s.droppedDegenerateFaces, 3u);
   EXPECT_TRUE(hasWarning(s, "dropped 3 degenerate faces"));
+  // Each by its object and the centroid of its corners (scene/load_changes.h), the first in the warning.
+  EXPECT_TRUE(hasWarning(s, "the first in 'line' at (1, 0, 0) m: zero area"));
+  ASSERT_EQ(s.loadChanges.count(LoadChangeKind::DegenerateFace), 3u);
+  const char *names[] = {"line", "point", "flat"};
+  const Vec3 centroids[] = {{1, 0, 0}, {0, 0, 0}, {1.5, 0, 0}};
+  for (size_t i = 0; i < 3; ++i) {
+    const LoadChange &c = s.loadChanges.listed[i];
+    EXPECT_EQ(c.kind, LoadChangeKind::DegenerateFace);
+    EXPECT_EQ(s.objects[c.object].name, names[i]);
+    EXPECT_NEAR(length(c.position - centroids[i]), 0.0, 1e-12) << names[i];
+  }
 }
 
 TEST(SceneLoaderWarnings, NoEmitterIsAWarningNotAnError) {

@@ -212,9 +212,25 @@ void validateScene(Scene &scene) {
     if (std::find(scene.warnings.begin(), scene.warnings.end(), message) == scene.warnings.end())
       scene.warnings.push_back(message);
   };
-  if (scene.droppedDegenerateFaces > 0)
+  if (scene.droppedDegenerateFaces > 0) {
+    // The first by its object and place (scene/load_changes.h), which a
+    // modeller shows; `radiant info` lists more.
+    std::string first;
+    for (const LoadChange &c : scene.loadChanges.listed) {
+      if (c.kind != LoadChangeKind::DegenerateFace) continue;
+      first = "; the first in '" + (c.object < scene.objects.size() ? scene.objects[c.object].name : "?") + "'";
+      if (isFinite(c.position)) {
+        std::ostringstream at;
+        at.precision(6);  // a place to find, not a value to compute with
+        at << " at (" << c.position.x << ", " << c.position.y << ", " << c.position.z << ") m";
+        first += at.str();
+      }
+      first += ": " + c.reason + "; radiant info lists them";
+      break;
+    }
     warnOnce("dropped " + std::to_string(scene.droppedDegenerateFaces) + " degenerate face" +
-             (scene.droppedDegenerateFaces == 1 ? "" : "s") + " (zero area or not finite)");
+             (scene.droppedDegenerateFaces == 1 ? "" : "s") + " (zero area or not finite" + first + ")");
+  }
   if (scene.faces.empty()) warnOnce("the scene has no faces");
   if (const std::vector<FaceOverlap> overlaps = findOverlappingFaces(scene, kMaxReportedOverlaps); !overlaps.empty())
     warnOnce(describeOverlappingFaces(scene, overlaps) + (overlaps.size() >= kMaxReportedOverlaps ? " or more" : "") +
