@@ -217,6 +217,7 @@ namespace {
 
 /// The escaped power measured (power_balance.h), and the imbalance this solver may show.
 void measureBalance(const RayTracer &tracer, Solution &solution, const SolverOptions &options) {
+  const auto start = std::chrono::steady_clock::now();
   const PowerBalance balance = measurePowerBalance(tracer, solution, kPowerBalanceRays, options.seed);
   SolveStats &stats = solution.stats;
   stats.escapedPower = balance.escaped;
@@ -224,6 +225,9 @@ void measureBalance(const RayTracer &tracer, Solution &solution, const SolverOpt
   stats.unshotPower = balance.unshot;
   stats.escapedStandardError = balance.escapedStandardError;
   stats.powerBalanceTolerance = powerBalanceTolerance(solution, options, balance);
+  if (std::getenv("RADIANT_TIMING"))
+    std::fprintf(stderr, "  %-28s %.3f s\n", "power balance",
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
 }  // namespace
