@@ -145,5 +145,35 @@ TEST(DirectLightMesh, AModelsFacetsAreNotRefined) {
   EXPECT_TRUE(refined.nodeDirect.empty());
 }
 
+TEST(DirectLightMesh, EveryPointIsLocatedInItsElementByTheCompactDescent) {
+  // locateInTree descends RadiosityMesh::treeDescent, the children alone,
+  // while it matches the tree; the refined floor has leaves from 1/32 down
+  // to 1/256 m. Points inside each leaf (a fixed blend of its corners) must
+  // be found in it, and at the same (s, t) as by descending the full nodes.
+  const Scene scene = blockOnAFloor();
+  const RayTracer tracer(scene);
+  MeshOptions meshOptions;
+  meshOptions.maxEdgeLength = kElement;
+  RadiosityMesh mesh = buildDirectLightMesh(scene, tracer, meshOptions, SolverOptions{}).mesh;
+  ASSERT_EQ(mesh.treeDescent.size(), mesh.tree.size());
+  RadiosityMesh slow = mesh;
+  slow.treeDescent.clear();
+  size_t checked = 0;
+  for (uint32_t e = 0; e < mesh.elements.size(); ++e) {
+    const std::vector<Vec3> polygon = mesh.polygon(e);
+    const double w[4] = {0.4, 0.3, 0.2, 0.1};
+    Vec3 x;
+    for (size_t k = 0; k < polygon.size(); ++k) x += polygon[k] * (polygon.size() == 4 ? w[k] : 1.0 / 3);
+    const uint32_t face = mesh.patches[mesh.elements[e].patch].face;
+    const MeshLocation fast = mesh.locate(face, x), full = slow.locate(face, x);
+    EXPECT_EQ(fast.element, e);
+    EXPECT_EQ(fast.element, full.element);
+    EXPECT_EQ(fast.s, full.s);
+    EXPECT_EQ(fast.t, full.t);
+    ++checked;
+  }
+  EXPECT_GT(checked, 1000u);
+}
+
 }  // namespace
 }  // namespace radiant

@@ -413,31 +413,36 @@ MeshLocation RadiosityMesh::locateInTree(const Patch &patch, const Vec3 &positio
     b = dot(cross(p1 - p0, position - p0), n) / n2;
   }
   int32_t node = patch.treeRoot;
-  while (!tree[node].isLeaf()) {
-    const MeshTreeNode &t = tree[node];
-    if (t.vertexCount == 4) {
+  // Every node of a patch's tree has the patch's corner count.
+  const bool compact = treeDescent.size() == tree.size();
+  auto childrenOf = [&](int32_t n) -> const std::array<int32_t, 4> & {
+    return compact ? treeDescent[size_t(n)] : tree[size_t(n)].children;
+  };
+  while (childrenOf(node)[0] >= 0) {
+    const std::array<int32_t, 4> &children = childrenOf(node);
+    if (patch.vertexCount == 4) {
       a = std::clamp(a, 0.0, 1.0), b = std::clamp(b, 0.0, 1.0);
       int i = a >= 0.5 ? 1 : 0, j = b >= 0.5 ? 1 : 0;
-      node = t.children[j == 0 ? i : 3 - i];  // children: (0,0), (1,0), (1,1), (0,1)
+      node = children[j == 0 ? i : 3 - i];  // children: (0,0), (1,0), (1,1), (0,1)
       a = 2 * a - i, b = 2 * b - j;
     } else {
       a = std::clamp(a, 0.0, 1.0), b = std::clamp(b, 0.0, 1.0 - a);
       if (a >= 0.5)
-        node = t.children[1], a = 2 * a - 1, b = 2 * b;
+        node = children[1], a = 2 * a - 1, b = 2 * b;
       else if (b >= 0.5)
-        node = t.children[2], a = 2 * a, b = 2 * b - 1;
+        node = children[2], a = 2 * a, b = 2 * b - 1;
       else if (a + b <= 0.5)
-        node = t.children[0], a = 2 * a, b = 2 * b;
+        node = children[0], a = 2 * a, b = 2 * b;
       else {
         double s = 2 * a + 2 * b - 1, u = 1 - 2 * a;  // middle child (mab, mbc, mac)
-        node = t.children[3], a = s, b = u;
+        node = children[3], a = s, b = u;
       }
     }
   }
   MeshLocation location;
-  location.element = static_cast<uint32_t>(tree[node].element);
+  location.element = static_cast<uint32_t>(compact ? treeDescent[size_t(node)][1] : tree[size_t(node)].element);
   location.s = std::clamp(a, 0.0, 1.0);
-  location.t = std::clamp(b, 0.0, tree[node].vertexCount == 4 ? 1.0 : 1.0 - location.s);
+  location.t = std::clamp(b, 0.0, patch.vertexCount == 4 ? 1.0 : 1.0 - location.s);
   return location;
 }
 

@@ -136,10 +136,16 @@ void rebuildElementsFromTrees(RadiosityMesh &mesh) {
   mesh.markNodesOnCuts();
   mesh.interpolateNodeShadingNormals();
   mesh.addCrossPatchTVertices();
+  mesh.treeDescent.resize(mesh.tree.size());
+  for (size_t n = 0; n < mesh.tree.size(); ++n) {
+    const MeshTreeNode &t = mesh.tree[n];
+    mesh.treeDescent[n] = t.isLeaf() ? std::array<int32_t, 4>{-1, t.element, -1, -1} : t.children;
+  }
 }
 
 void makePatchTrees(RadiosityMesh &mesh) {
   mesh.tree.clear();
+  mesh.treeDescent.clear();
   for (uint32_t p = 0; p < mesh.patches.size(); ++p) {
     Patch &patch = mesh.patches[p];
     MeshTreeNode root;
