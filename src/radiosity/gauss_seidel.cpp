@@ -167,7 +167,7 @@ void solveGaussSeidel(const RayTracer &tracer, Solution &s, const SolverOptions 
     s.indirect[i] = s.radiosity[i] - s.emission[i] - s.direct[i];
     s.unshot[i] = Bands(0.0);
   }
-  s.stats.escapedPower = s.stats.emittedPower - s.stats.absorbedPower;
+  // The escaped power is measured by solveRadiosity (power_balance.h), not inferred from these.
   s.ambient = Bands(0.0);
 }
 

@@ -498,7 +498,7 @@ void Hierarchy::writeTo(Solution &s) const {
   s.stats.absorbedPower = Bands(0.0);
   for (size_t e = 0; e < s.elementCount(); ++e)
     s.stats.absorbedPower += s.absorptance(e) * s.irradiance[e] * s.mesh.elements[e].area;
-  s.stats.escapedPower = s.stats.emittedPower - s.stats.absorbedPower;
+  // The escaped power is measured by solveRadiosity (power_balance.h), not inferred from this.
 }
 
 }  // namespace

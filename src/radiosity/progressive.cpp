@@ -207,14 +207,9 @@ void solveProgressive(const RayTracer &tracer, Solution &s, const SolverOptions 
   }
 
   ambientTerms(s, unshotEmission);
-  Bands unshotPower(0.0);
+  // The escaped and unshot power are measured by solveRadiosity (power_balance.h), not inferred from this.
   s.stats.absorbedPower = Bands(0.0);
-  for (size_t j = 0; j < n; ++j) {
-    double a = s.mesh.elements[j].area;
-    s.stats.absorbedPower += s.absorptance(j) * irradiance[j] * a;
-    unshotPower += s.unshot[j] * a;
-  }
-  s.stats.escapedPower = s.stats.emittedPower - s.stats.absorbedPower - unshotPower;
+  for (size_t j = 0; j < n; ++j) s.stats.absorbedPower += s.absorptance(j) * irradiance[j] * s.mesh.elements[j].area;
 }
 
 }  // namespace radiant
