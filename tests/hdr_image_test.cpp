@@ -70,5 +70,22 @@ TEST(HdrImage, AnotherFileCalledHdrIsAnInputError) {
   EXPECT_TRUE(isLinearImageExtension("x.hdr"));
 }
 
+// Found by the hdr fuzz target (issue 38): a 105-byte file whose resolution
+// line claims 3 × 7777772 pixels was decoded, its missing scanlines filled,
+// in 9 s and 585 MB. Refused now before stb_image allocates anything.
+TEST(HdrImage, AFileShorterThanItsResolutionSaysIsRefusedUnread) {
+  const std::string path =
+      std::string(RADIANT_SOURCE_DIR) + "/tests/fuzz-regressions/hdr/timeout-hdr-claims-3x7777772-pixels-in-105-bytes";
+  const std::string copy = temporaryPath("radiant_truncated.hdr");
+  std::filesystem::copy_file(path, copy, std::filesystem::copy_options::overwrite_existing);
+  try {
+    readImage(copy);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError &e) {
+    EXPECT_NE(std::string(e.what()).find("truncated: the header says 7777772x3 pixels"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(copy);
+}
+
 }  // namespace
 }  // namespace radiant

@@ -312,9 +312,22 @@ Image readHdr(const std::string &path) {
   // stb_image takes an int length: a file of 2 GiB and more is refused as not an HDR image.
   const int length = bytes.size() < size_t(INT32_MAX) ? int(bytes.size()) : 0;
   const bool isHdr = length > 0 && stbi_is_hdr_from_memory(data, length) != 0;
-  int width = 0, height = 0, channels = 0;
-  float *pixels = isHdr ? stbi_loadf_from_memory(data, length, &width, &height, &channels, 3) : nullptr;
   if (!isHdr) throw InputError(InputLocation{path}, "not a Radiance HDR (RGBE) image: no '#?RADIANCE' header");
+  // stb_image allocates what the resolution line claims and fills a truncated
+  // file's missing scanlines without an error: a 105-byte file claiming
+  // 3 × 7777772 pixels took 9 s and 585 MB (fuzzed, issue 38). A scanline
+  // holds at least 4 bytes a pixel, or, run-length encoded (widths 8 to
+  // 32767), its 4-byte marker and a 2-byte run per 127 pixels of each channel.
+  int width = 0, height = 0, channels = 0;
+  if (!stbi_info_from_memory(data, length, &width, &height, &channels))
+    throw InputError(InputLocation{path}, std::string("cannot read Radiance HDR image: ") + stbi_failure_reason());
+  const long long scanlineBytes = width >= 8 && width < 32768 ? 4 + 8 * ((width + 126LL) / 127) : 4LL * width;
+  if (double(width) * height > double(1LL << 28) || scanlineBytes * height > length)
+    throw InputError(InputLocation{path},
+                     fmt::format("truncated: the header says {}x{} pixels, at least {} bytes of scanlines, and the "
+                                 "file has {} bytes in all",
+                                 width, height, scanlineBytes * height, length));
+  float *pixels = stbi_loadf_from_memory(data, length, &width, &height, &channels, 3);
   if (!pixels)
     throw InputError(InputLocation{path}, std::string("cannot read Radiance HDR image: ") + stbi_failure_reason());
   Image image(width, height);
