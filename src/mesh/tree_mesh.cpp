@@ -159,7 +159,7 @@ void makePatchTrees(RadiosityMesh &mesh) {
   }
 }
 
-RadiosityMesh buildTreeMesh(const Scene &scene, const MeshOptions &options) {
+RadiosityMesh buildTreeMesh(const Scene &scene, const MeshOptions &options, bool buildElements) {
   // The uniform mesh's patches (and its size checks), then trees split
   // until every leaf's longest edge is at most the element size.
   RadiosityMesh mesh = buildMesh(scene, options);
@@ -184,7 +184,7 @@ RadiosityMesh buildTreeMesh(const Scene &scene, const MeshOptions &options) {
     splitTreeNode(mesh, static_cast<uint32_t>(n));
     leaves += 3;
   }
-  rebuildElementsFromTrees(mesh);
+  if (buildElements) rebuildElementsFromTrees(mesh);
   return mesh;
 }
 

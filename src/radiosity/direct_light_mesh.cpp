@@ -13,7 +13,8 @@ namespace radiant {
 
 DirectLightMesh buildDirectLightMesh(const Scene &scene, const RayTracer &tracer, const MeshOptions &meshOptions,
                                      const SolverOptions &options) {
-  DirectLightMesh result{buildTreeMesh(scene, meshOptions), {}, {}};
+  // The trees only: the refinement below builds the elements once, at its end.
+  DirectLightMesh result{buildTreeMesh(scene, meshOptions, /*buildElements=*/false), {}, {}};
   RadiosityMesh &mesh = result.mesh;
   // The refinement's weight (ρ, or τ) on the patches of at least four
   // elements' area, none on the others: a model's facets, and the long
@@ -33,7 +34,10 @@ DirectLightMesh buildDirectLightMesh(const Scene &scene, const RayTracer &tracer
   // As hierarchical-exact: exact up to 48 faces in a point's shaft to a light, a grid of shadow rays beyond.
   constexpr size_t kMaxExactOccluders = 48;
   const DirectIrradiance direct(scene, tracer, kMaxExactOccluders);
-  if (!anyLarge || direct.empty()) return result;
+  if (!anyLarge || direct.empty()) {
+    rebuildElementsFromTrees(mesh);
+    return result;
+  }
   DirectLightField field(scene, direct);
   Box3 bounds;
   for (const Vec3 &p : scene.positions) bounds.extend(p);
