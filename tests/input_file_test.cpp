@@ -23,6 +23,7 @@
 #include "io/solution_file.h"
 #include "scene/load_scene.h"
 #include "scene/photometry.h"
+#include "temp_dir.h"
 #include "texture/texture.h"
 
 namespace radiant {
@@ -30,31 +31,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class TempDir {
- public:
-  TempDir() {
-    static std::atomic<int> counter{0};
-    path_ = fs::temp_directory_path() /
-            ("radiant-input-file-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string write(const std::string &name, const std::string &text) const {
-    std::ofstream(path_ / name, std::ios::binary) << text;
-    return file(name);
-  }
-  std::string fifo(const std::string &name) const {
-    EXPECT_EQ(::mkfifo(file(name).c_str(), 0600), 0) << name;
-    return file(name);
-  }
-  std::string file(const std::string &name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
+using test::TempDir;
 
 /// Runs `read`, which must refuse `fifo` with an error holding `expected`.
 /// A reader that blocks on the FIFO is released after 10 s (a writer opens
@@ -84,7 +61,7 @@ void expectRefusedWithoutBlocking(const std::string &fifo, const std::function<v
 constexpr const char *kNotRegular = "is not a regular file (it is a FIFO)";
 
 TEST(InputFile, ReadsRegularFilesAndNamesWhatElseItWasGiven) {
-  TempDir dir;
+  TempDir dir("input-file");
   const std::string text = dir.write("a.txt", "hello");
   InputFileRead read = tryReadInputFile(text);
   ASSERT_TRUE(read.ok());
@@ -110,7 +87,7 @@ TEST(InputFile, ReadsRegularFilesAndNamesWhatElseItWasGiven) {
 }
 
 TEST(InputFile, AGltfBufferThatIsAFifoIsRefusedAtItsUri) {
-  TempDir dir;
+  TempDir dir("input-file");
   const std::string fifo = dir.fifo("buffer.bin");
   const std::string gltf = dir.write("model.gltf", R"({"asset": {"version": "2.0"},
     "buffers": [{"uri": "buffer.bin", "byteLength": 36}],
@@ -126,7 +103,7 @@ TEST(InputFile, AGltfBufferThatIsAFifoIsRefusedAtItsUri) {
 }
 
 TEST(InputFile, AnMgfIncludeThatIsAFifoIsRefusedAtItsLine) {
-  TempDir dir;
+  TempDir dir("input-file");
   const std::string fifo = dir.fifo("part.mgf");
   const std::string mgf = dir.write("room.mgf", "# a room\ni part.mgf\n");
   expectRefusedWithoutBlocking(
@@ -134,7 +111,7 @@ TEST(InputFile, AnMgfIncludeThatIsAFifoIsRefusedAtItsLine) {
 }
 
 TEST(InputFile, ObjMtlAndTexturesThatAreFifosAreRefused) {
-  TempDir dir;
+  TempDir dir("input-file");
   const std::string mtl = dir.fifo("pipe.mtl");
   const std::string obj = dir.write("box.obj", "mtllib pipe.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   expectRefusedWithoutBlocking(
@@ -155,7 +132,7 @@ TEST(InputFile, ObjMtlAndTexturesThatAreFifosAreRefused) {
 }
 
 TEST(InputFile, SceneFilesThatAreFifosAreRefused) {
-  TempDir dir;
+  TempDir dir("input-file");
   for (const char *name : {"scene.json", "model.gltf", "model.glb", "room.mgf", "no-extension"}) {
     const std::string fifo = dir.fifo(name);
     expectRefusedWithoutBlocking(
@@ -164,7 +141,7 @@ TEST(InputFile, SceneFilesThatAreFifosAreRefused) {
 }
 
 TEST(InputFile, PhotometryImagesAndSolutionsThatAreFifosAreRefused) {
-  TempDir dir;
+  TempDir dir("input-file");
   const std::string ies = dir.fifo("lamp.ies"), ldt = dir.fifo("lamp.ldt");
   expectRefusedWithoutBlocking(
       ies, [&] { readIesFile(ies); }, kNotRegular);

@@ -16,32 +16,12 @@
 
 #include "scene/load_detail.h"
 #include "scene/load_scene.h"
+#include "temp_dir.h"
 
 namespace radiant {
 namespace {
 
-namespace fs = std::filesystem;
-
-class TempDir {
- public:
-  TempDir() {
-    static std::atomic<int> counter{0};
-    path_ = fs::temp_directory_path() /
-            ("radiant-input-scale-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string write(const std::string &name, const std::string &text) const {
-    std::ofstream(path_ / name, std::ios::binary) << text;
-    return (path_ / name).string();
-  }
-
- private:
-  fs::path path_;
-};
+using test::TempDir;
 
 TEST(InputScale, NameLookupsHashEachNameOnceHoweverManyLookups) {
   constexpr int kMaterials = 20000;
@@ -72,7 +52,7 @@ TEST(InputScale, AnObjOfThousandsOfMaterialsGivesEachFaceItsOwn) {
     const int v = 3 * i;
     obj += fmt::format("v {} 0 0\nv {} 0 0\nv {} 0 1\nusemtl m{}\nf {} {} {}\n", i, i + 1, i, i, v + 1, v + 3, v + 2);
   }
-  TempDir dir;
+  TempDir dir("input-scale");
   dir.write("many.mtl", mtl);
   const Scene scene = loadScene(dir.write("many.obj", obj));
   ASSERT_EQ(scene.faces.size(), size_t(kMaterials));
