@@ -8,6 +8,7 @@ packages=(
   libembree-dev libtbb-dev libopenexr-dev libstb-dev libpng-dev libtinyobjloader-dev
   nlohmann-json3-dev libcli11-dev libfmt-dev libtinygltf-dev libcpp-httplib-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libjemalloc-dev
   libopenmpi-dev openmpi-bin
   clang-format-14
   python3
