@@ -4,11 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 
 #include "mesh/patch_lattice.h"
 #include "util/error.h"
 #include "util/phase.h"
+#include "util/timing.h"
 
 namespace radiant {
 
@@ -61,10 +61,6 @@ std::array<double, 3> barycentric(const Vec3 &a, const Vec3 &b, const Vec3 &c, c
   const double n2 = dot(n, n);
   const double b1 = dot(cross(p - a, c - a), n) / n2, b2 = dot(cross(b - a, p - a), n) / n2;
   return {1 - b1 - b2, b1, b2};
-}
-
-Vec3 toVec3(const ShadingNormal &n) {
-  return Vec3{n[0], n[1], n[2]};
 }
 
 /// The face's vertex normals interpolated at `p` (a point of the face) as the
@@ -182,95 +178,6 @@ void RadiosityMesh::buildPatchLookup() {
   }
 }
 
-void RadiosityMesh::addCrossPatchTVertices() {
-  if (patches.size() < 2 || elements.empty()) return;
-  // Element edges on their patch's boundary, binned on a grid by their boxes.
-  struct Edge {
-    uint32_t start, end, patch;
-    double length;
-  };
-  std::vector<Edge> edges;
-  for (const Element &e : elements) {
-    const Patch &p = patches[e.patch];
-    for (int k = 0; k < e.vertexCount; ++k) {
-      const uint32_t a = e.nodes[k], b = e.nodes[(k + 1) % e.vertexCount];
-      // On the boundary: both ends on one edge line of the patch's polygon.
-      for (int v = 0; v < p.vertexCount; ++v) {
-        const Vec3 &c0 = p.corners[v], &c1 = p.corners[(v + 1) % p.vertexCount];
-        const Vec3 dir = c1 - c0;
-        const double l2 = dot(dir, dir), tol = 1e-9 * std::sqrt(l2);
-        auto off = [&](const Vec3 &x) { return length(cross(x - c0, dir)) / std::sqrt(l2); };
-        if (l2 > 0 && off(nodes[a]) <= tol && off(nodes[b]) <= tol) {
-          edges.push_back({a, b, e.patch, length(nodes[b] - nodes[a])});
-          break;
-        }
-      }
-    }
-  }
-  if (edges.empty()) return;
-  Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
-  double mean = 0;
-  for (const Vec3 &x : nodes)
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], x[k]), hi[k] = std::max(hi[k], x[k]);
-  for (const Edge &e : edges) mean += e.length;
-  const double cell = std::max(mean / double(edges.size()), 1e-9);
-  auto key = [&](const Vec3 &x) {
-    return std::array<int64_t, 3>{std::llround(std::floor((x.x - lo.x) / cell)),
-                                  std::llround(std::floor((x.y - lo.y) / cell)),
-                                  std::llround(std::floor((x.z - lo.z) / cell))};
-  };
-  struct KeyHash {
-    size_t operator()(const std::array<int64_t, 3> &k) const {
-      return std::hash<int64_t>()(k[0] * 73856093 ^ k[1] * 19349663 ^ k[2] * 83492791);
-    }
-  };
-  std::unordered_map<std::array<int64_t, 3>, std::vector<uint32_t>, KeyHash> grid;
-  for (uint32_t i = 0; i < edges.size(); ++i) {
-    const Vec3 &a = nodes[edges[i].start], &b = nodes[edges[i].end];
-    const auto ka = key(a), kb = key(b);
-    for (int64_t x = std::min(ka[0], kb[0]); x <= std::max(ka[0], kb[0]); ++x)
-      for (int64_t y = std::min(ka[1], kb[1]); y <= std::max(ka[1], kb[1]); ++y)
-        for (int64_t z = std::min(ka[2], kb[2]); z <= std::max(ka[2], kb[2]); ++z) grid[{x, y, z}].push_back(i);
-  }
-  std::vector<std::pair<double, TVertex>> found;
-  for (uint32_t v = 0; v < nodes.size(); ++v) {
-    if (!nodeOnCut.empty() && nodeOnCut[v]) continue;
-    const Patch &pv = patches[nodePatch[v]];
-    auto it = grid.find(key(nodes[v]));
-    if (it == grid.end()) continue;
-    for (uint32_t i : it->second) {
-      const Edge &e = edges[i];
-      if (e.patch == nodePatch[v]) continue;
-      const Patch &pe = patches[e.patch];
-      if (pe.material != pv.material) continue;
-      const Vec3 &a = nodes[e.start], &b = nodes[e.end];
-      const Vec3 d = b - a;
-      const double t = dot(nodes[v] - a, d) / (e.length * e.length);
-      if (!(t > 1e-6 && t < 1 - 1e-6)) continue;
-      if (length(nodes[v] - (a + d * t)) > 1e-7 * e.length) continue;
-      // One smooth surface: the patches' normals within 2°, or (a tessellated
-      // model's facets) the node's shading normal within 2° of the edge's there.
-      if (dot(pe.normal, pv.normal) <= kSmoothSurfaceCosine) {
-        if (nodeShadingNormals.empty()) continue;
-        const Vec3 ends = toVec3(nodeShadingNormals[e.start]) * (1 - t) + toVec3(nodeShadingNormals[e.end]) * t;
-        const double len = length(ends);
-        if (!(len > 0) || toVec3(nodeShadingNormals[e.start]) == Vec3{} || toVec3(nodeShadingNormals[e.end]) == Vec3{})
-          continue;
-        const Vec3 there = ends / len;
-        if (!sameShadingNormal(nodeShadingNormals[v], {float(there.x), float(there.y), float(there.z)})) continue;
-      }
-      if ((!nodeOnCut.empty() && (nodeOnCut[e.start] || nodeOnCut[e.end]))) continue;
-      found.push_back({e.length, {v, e.start, e.end, float(t)}});
-      break;
-    }
-  }
-  for (const TVertex &t : tVertices) found.push_back({length(nodes[t.edgeEnd] - nodes[t.edgeStart]), t});
-  // Coarse to fine: an edge's ends are final before a node inside it is set from them.
-  std::stable_sort(found.begin(), found.end(), [](const auto &a, const auto &b) { return a.first > b.first; });
-  tVertices.clear();
-  for (const auto &[length, t] : found) tVertices.push_back(t);
-}
-
 void RadiosityMesh::setShadingNormals(const Scene &scene) {
   patchCornerNormals.clear();
   nodeShadingNormals.clear();
@@ -352,10 +259,26 @@ void RadiosityMesh::markNodesOnCuts() {
   }
 }
 
+std::vector<int32_t> RadiosityMesh::wholeFaceElements() const {
+  std::vector<int32_t> element(patchOfFace.size(), kNoElement);
+  for (size_t f = 0; f < element.size(); ++f) {
+    const int32_t first = patchOfFace[f];
+    if (first < 0) continue;
+    const uint32_t count = facePatchCount.empty() ? 1 : facePatchCount[f];
+    const Patch &patch = patches[size_t(first)];
+    const bool whole =
+        count <= 1 && patch.elementCount == 1 &&
+        (patch.treeRoot < 0 || (size_t(patch.treeRoot) < tree.size() && tree[size_t(patch.treeRoot)].isLeaf()));
+    element[f] = whole ? int32_t(patch.firstElement) : kLocateElement;
+  }
+  return element;
+}
+
 MeshLocation RadiosityMesh::locate(uint32_t face, const Vec3 &position) const {
-  const Patch &patch = patches[patchAt(face, position)];
+  const uint32_t patchIndex = uint32_t(patchAt(face, position));
+  const Patch &patch = patches[patchIndex];
   MeshLocation location;
-  if (patch.treeRoot >= 0) return locateInTree(patch, position);
+  if (patch.treeRoot >= 0) return locateInTree(patchIndex, position);
   if (patch.vertexCount == 4) {
     double u, v;
     inverseBilinear(patch, position, u, v);
@@ -400,7 +323,8 @@ MeshLocation RadiosityMesh::locate(uint32_t face, const Vec3 &position) const {
   return location;
 }
 
-MeshLocation RadiosityMesh::locateInTree(const Patch &patch, const Vec3 &position) const {
+MeshLocation RadiosityMesh::locateInTree(uint32_t patchIndex, const Vec3 &position) const {
+  const Patch &patch = patches[patchIndex];
   // Parameters in the patch, then down the tree, re-expressing them in each child.
   double a, b;
   if (patch.vertexCount == 4) {
@@ -418,6 +342,21 @@ MeshLocation RadiosityMesh::locateInTree(const Patch &patch, const Vec3 &positio
   auto childrenOf = [&](int32_t n) -> const std::array<int32_t, 4> & {
     return compact ? treeDescent[size_t(n)] : tree[size_t(n)].children;
   };
+  if (compact && patchIndex < treeShortcutOfPatch.size() && treeShortcutOfPatch[patchIndex].level > 0) {
+    // Straight to the node of the shortcut's cell, with (a, b) re-expressed
+    // in it as the descent below would: scaling by 2^depth and dropping the
+    // integer part are exact, so is each of its halvings.
+    const TreeShortcut &shortcut = treeShortcutOfPatch[patchIndex];
+    const int cells = 1 << shortcut.level;
+    a = a >= 0 ? std::min(a, 1.0) : 0.0, b = b >= 0 ? std::min(b, 1.0) : 0.0;  // NaN to 0, as locate()
+    const int i = std::min(cells - 1, int(a * cells)), j = std::min(cells - 1, int(b * cells));
+    const std::array<int32_t, 2> &cell = treeShortcutNodes[shortcut.first + size_t(j) * size_t(cells) + size_t(i)];
+    node = cell[0];
+    const double scale = double(int64_t(1) << cell[1]);
+    const double sa = a * scale, sb = b * scale;
+    const double ia = std::min(std::floor(sa), scale - 1), ib = std::min(std::floor(sb), scale - 1);
+    a = sa - ia, b = sb - ib;
+  }
   while (childrenOf(node)[0] >= 0) {
     const std::array<int32_t, 4> &children = childrenOf(node);
     if (patch.vertexCount == 4) {
@@ -488,6 +427,7 @@ void appendPatchLattice(const Patch &patch, uint32_t patchIndex, RadiosityMesh &
 
 RadiosityMesh buildMesh(const Scene &scene, const MeshOptions &options) {
   Phase phase("meshing", scene.faces.size());
+  const ScopedTiming timing("meshing: the patches");
   RadiosityMesh mesh;
   double edge = options.maxEdgeLength;
   if (!(edge > 0)) {
@@ -589,7 +529,7 @@ RadiosityMesh buildMesh(const Scene &scene, const MeshOptions &options) {
     }
   mesh.markNodesOnCuts();
   mesh.setShadingNormals(scene);
-  mesh.addCrossPatchTVertices();
+  if (options.crossPatchTVertices) mesh.addCrossPatchTVertices();
   mesh.buildPatchLookup();
   return mesh;
 }

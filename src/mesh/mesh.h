@@ -32,6 +32,10 @@ using ShadingNormal = std::array<float, 3>;
 /// this belong to one smooth surface, whose nodes share their values.
 constexpr double kSmoothSurfaceCosine = 0.99939;
 
+inline Vec3 toVec3(const ShadingNormal &n) {
+  return Vec3{n[0], n[1], n[2]};
+}
+
 /// Whether two shading normals are both present and within 2° of each other.
 inline bool sameShadingNormal(const ShadingNormal &a, const ShadingNormal &b) {
   const double d = double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2];
@@ -49,6 +53,9 @@ struct MeshOptions {
   /// quad or triangle of its visible pieces, and its hidden pieces none.
   /// nullptr: every face is one patch.
   const std::vector<FaceSplit> *faceSplits = nullptr;
+  /// Join the lattices of neighbouring patches by T-vertices (false where the
+  /// caller rebuilds the elements anyway: buildTreeMesh).
+  bool crossPatchTVertices = true;
 };
 
 /// The deepest subdivision tree a solution may hold: far more levels than any
@@ -130,6 +137,19 @@ struct RadiosityMesh {
   /// whose walls are trees. Set by rebuildElementsFromTrees; ignored once
   /// the tree has changed size since.
   std::vector<std::array<int32_t, 4>> treeDescent;
+  /// Per patch (with treeDescent): a quad tree's nodes at depth `level` on
+  /// a 2^level × 2^level grid of the patch's (u, v) — or the leaf above a
+  /// cell where the tree is shallower — from which locateInTree descends
+  /// instead of from the root: a wall refined to 1/256 of the scene is 8
+  /// levels deep, a dependent load each, for every ray and pixel sample
+  /// that lands on it. level 0: none (triangles, shallow trees).
+  struct TreeShortcut {
+    uint32_t first = 0;  ///< into treeShortcutNodes, row by row (v), u within a row
+    int32_t level = 0;
+  };
+  std::vector<TreeShortcut> treeShortcutOfPatch;
+  /// The shortcut grids' cells: {node, its depth}.
+  std::vector<std::array<int32_t, 2>> treeShortcutNodes;
   /// Per patch: its face's vertex normals (Scene::normals, as the scene gives
   /// them, not flipped) interpolated at the patch's corners: the face's own
   /// for a whole face, the fan's linear interpolation (the ray tracer's) at
@@ -202,7 +222,13 @@ struct RadiosityMesh {
   };
   std::vector<int32_t> patchGridOfFace;  ///< index into patchGrids, −1 for faces with one patch
   std::vector<PatchGrid> patchGrids;
-  MeshLocation locateInTree(const Patch &patch, const Vec3 &position) const;
+  MeshLocation locateInTree(uint32_t patch, const Vec3 &position) const;
+  /// The element a ray's hit on `face` lands in, for each face: ≥ 0 where
+  /// the face is one patch meshed as one element (a model's facet), found
+  /// without reading the patch; kLocateElement where locate must find it;
+  /// kNoElement where the face has no patch (hidden).
+  static constexpr int32_t kLocateElement = -1, kNoElement = -2;
+  std::vector<int32_t> wholeFaceElements() const;
   /// Interpolation weights of the element's nodes at a location (sum to 1).
   std::array<double, 4> nodeWeights(const MeshLocation &location) const;
 };

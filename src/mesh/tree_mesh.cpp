@@ -6,6 +6,7 @@
 // triangle — the layout RadiosityMesh::locateInTree descends.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstring>
 #include <functional>
 #include <map>
@@ -13,6 +14,7 @@
 
 #include "mesh/mesh.h"
 #include "util/error.h"
+#include "util/timing.h"
 
 namespace radiant {
 
@@ -67,11 +69,43 @@ void splitTreeNode(RadiosityMesh &mesh, uint32_t n) {
   }
 }
 
+namespace {
+
+/// The patch's shortcut grid (RadiosityMesh::TreeShortcut) for a quad tree
+/// at least 3 levels deep: as many cells as about twice its nodes, at most
+/// 2^7 × 2^7 and no deeper than the tree; each cell's node found by the
+/// descent locateInTree makes, the cell index's bits giving each level's child.
+void addTreeShortcut(RadiosityMesh &mesh, uint32_t p, size_t treeNodes, int deepest) {
+  const Patch &patch = mesh.patches[p];
+  if (patch.vertexCount != 4 || deepest < 3) return;
+  int level = 1;
+  while (level < std::min(deepest, 7) && (size_t(1) << (2 * (level + 1))) <= 2 * treeNodes) ++level;
+  if (level < 3) return;
+  RadiosityMesh::TreeShortcut &shortcut = mesh.treeShortcutOfPatch[p];
+  shortcut.first = static_cast<uint32_t>(mesh.treeShortcutNodes.size());
+  shortcut.level = level;
+  const int cells = 1 << level;
+  for (int j = 0; j < cells; ++j)
+    for (int i = 0; i < cells; ++i) {
+      int32_t node = patch.treeRoot, depth = 0;
+      for (int bit = level - 1; bit >= 0 && !mesh.tree[size_t(node)].isLeaf(); --bit, ++depth) {
+        const int ci = (i >> bit) & 1, cj = (j >> bit) & 1;
+        node = mesh.tree[size_t(node)].children[cj == 0 ? ci : 3 - ci];  // (0,0), (1,0), (1,1), (0,1)
+      }
+      mesh.treeShortcutNodes.push_back({node, depth});
+    }
+}
+
+}  // namespace
+
 void rebuildElementsFromTrees(RadiosityMesh &mesh) {
+  const ScopedTiming timing("meshing: elements of the trees");
   mesh.elements.clear();
   mesh.nodes.clear();
   mesh.nodePatch.clear();
   mesh.tVertices.clear();
+  mesh.treeShortcutOfPatch.assign(mesh.patches.size(), {});
+  mesh.treeShortcutNodes.clear();
   for (MeshTreeNode &t : mesh.tree) t.element = -1;
   for (uint32_t p = 0; p < mesh.patches.size(); ++p) {
     Patch &patch = mesh.patches[p];
@@ -89,9 +123,12 @@ void rebuildElementsFromTrees(RadiosityMesh &mesh) {
     // Leaves in depth-first order, so a patch's elements are contiguous.
     std::vector<std::pair<uint32_t, int>> stack{{static_cast<uint32_t>(patch.treeRoot), 0}};
     std::vector<std::pair<uint32_t, int>> leaves;  // node, depth
+    size_t treeNodes = 0;
+    int deepest = 0;
     while (!stack.empty()) {
       auto [n, depth] = stack.back();
       stack.pop_back();
+      ++treeNodes, deepest = std::max(deepest, depth);
       const MeshTreeNode &node = mesh.tree[n];
       if (node.isLeaf()) {
         leaves.push_back({n, depth});
@@ -132,6 +169,7 @@ void rebuildElementsFromTrees(RadiosityMesh &mesh) {
     }
     patch.elementCount = static_cast<uint32_t>(mesh.elements.size()) - patch.firstElement;
     patch.nodeCount = static_cast<uint32_t>(mesh.nodes.size()) - patch.firstNode;
+    addTreeShortcut(mesh, p, treeNodes, deepest);
   }
   mesh.markNodesOnCuts();
   mesh.interpolateNodeShadingNormals();
@@ -146,6 +184,8 @@ void rebuildElementsFromTrees(RadiosityMesh &mesh) {
 void makePatchTrees(RadiosityMesh &mesh) {
   mesh.tree.clear();
   mesh.treeDescent.clear();
+  mesh.treeShortcutOfPatch.clear();
+  mesh.treeShortcutNodes.clear();
   for (uint32_t p = 0; p < mesh.patches.size(); ++p) {
     Patch &patch = mesh.patches[p];
     MeshTreeNode root;
@@ -162,7 +202,9 @@ void makePatchTrees(RadiosityMesh &mesh) {
 RadiosityMesh buildTreeMesh(const Scene &scene, const MeshOptions &options, bool buildElements) {
   // The uniform mesh's patches (and its size checks), then trees split
   // until every leaf's longest edge is at most the element size.
-  RadiosityMesh mesh = buildMesh(scene, options);
+  MeshOptions patchesOnly = options;
+  patchesOnly.crossPatchTVertices = false;  // the elements are rebuilt from the trees
+  RadiosityMesh mesh = buildMesh(scene, patchesOnly);
   double edge = 0;
   for (const Element &e : mesh.elements) {
     std::vector<Vec3> poly = mesh.polygon(static_cast<uint32_t>(&e - mesh.elements.data()));
