@@ -147,15 +147,18 @@ TEST(DirectLightMesh, AModelsFacetsAreNotRefined) {
 
 TEST(DirectLightMesh, EveryPointIsLocatedInItsElementByTheCompactDescent) {
   // locateInTree descends RadiosityMesh::treeDescent, the children alone,
-  // while it matches the tree; the refined floor has leaves from 1/32 down
-  // to 1/256 m. Points inside each leaf (a fixed blend of its corners) must
-  // be found in it, and at the same (s, t) as by descending the full nodes.
+  // from the patch's shortcut grid (RadiosityMesh::TreeShortcut), while they
+  // match the tree; the refined floor has leaves from 1/32 down to 1/256 m.
+  // Points inside each leaf (a fixed blend of its corners) must be found in
+  // it, and at the same (s, t) as by descending the full nodes from the root.
   const Scene scene = blockOnAFloor();
   const RayTracer tracer(scene);
   MeshOptions meshOptions;
   meshOptions.maxEdgeLength = kElement;
   RadiosityMesh mesh = buildDirectLightMesh(scene, tracer, meshOptions, SolverOptions{}).mesh;
   ASSERT_EQ(mesh.treeDescent.size(), mesh.tree.size());
+  const uint32_t floorPatch = uint32_t(mesh.patchOfFace[0]);
+  ASSERT_GE(mesh.treeShortcutOfPatch.at(floorPatch).level, 3);  // the floor's tree is 5 levels deep
   RadiosityMesh slow = mesh;
   slow.treeDescent.clear();
   size_t checked = 0;
@@ -173,6 +176,53 @@ TEST(DirectLightMesh, EveryPointIsLocatedInItsElementByTheCompactDescent) {
     ++checked;
   }
   EXPECT_GT(checked, 1000u);
+  // On the floor's lines of the shortcut grid and of every level below it,
+  // where a step of either descent could round the other way: the corners
+  // and edge midpoints of its leaves, its own corners and points just
+  // outside it (clamped).
+  size_t onLines = 0;
+  for (uint32_t e = 0; e < mesh.elements.size(); ++e) {
+    if (mesh.elements[e].patch != floorPatch) continue;
+    const std::vector<Vec3> polygon = mesh.polygon(e);
+    for (size_t k = 0; k < polygon.size(); ++k)
+      for (const Vec3 &x : {polygon[k], (polygon[k] + polygon[(k + 1) % polygon.size()]) * 0.5}) {
+        const MeshLocation fast = mesh.locate(0, x), full = slow.locate(0, x);
+        EXPECT_EQ(fast.element, full.element);
+        EXPECT_EQ(fast.s, full.s);
+        EXPECT_EQ(fast.t, full.t);
+        ++onLines;
+      }
+  }
+  EXPECT_GT(onLines, 4000u);
+  for (const Vec3 &x : {Vec3{-0.01, 0, -0.01}, Vec3{1.01, 0, 0.5}, Vec3{0.5, 0, 1.01}, Vec3{1, 0, 1}}) {
+    const MeshLocation fast = mesh.locate(0, x), full = slow.locate(0, x);
+    EXPECT_EQ(fast.element, full.element);
+    EXPECT_EQ(fast.s, full.s);
+    EXPECT_EQ(fast.t, full.t);
+  }
+}
+
+TEST(DirectLightMesh, AWholeFacetIsItsOwnElementWithoutLocating) {
+  // wholeFaceElements: the block's faces are smaller than four elements, so
+  // they stay one leaf each (a one-node tree); the floor is refined. What a
+  // ray's hit on each face reads is the element locate() finds there.
+  const Scene scene = blockOnAFloor();
+  const RayTracer tracer(scene);
+  MeshOptions meshOptions;
+  meshOptions.maxEdgeLength = kElement * 4;
+  const RadiosityMesh mesh = buildDirectLightMesh(scene, tracer, meshOptions, SolverOptions{}).mesh;
+  const std::vector<int32_t> whole = mesh.wholeFaceElements();
+  ASSERT_EQ(whole.size(), scene.faces.size());
+  EXPECT_EQ(whole[0], RadiosityMesh::kLocateElement);  // the floor: a tree of many leaves
+  size_t facets = 0;
+  for (uint32_t f = 1; f <= 5; ++f) {
+    if (whole[f] < 0) continue;
+    ++facets;
+    Vec3 centre;
+    for (int k = 0; k < 4; ++k) centre += scene.positions[scene.faces[f].vertices[k]] * 0.25;
+    EXPECT_EQ(uint32_t(whole[f]), mesh.locate(f, centre).element);
+  }
+  EXPECT_EQ(facets, 5u);
 }
 
 }  // namespace

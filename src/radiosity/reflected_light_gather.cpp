@@ -100,6 +100,9 @@ std::vector<Bands> gatherReflectedIrradiance(const RayTracer &tracer, const Solu
   std::vector<Bands> reflected(solution.elementCount());
   for (size_t e = 0; e < reflected.size(); ++e) reflected[e] = solution.radiosity[e] - solution.emission[e];
 
+  // A model's facet is its own element: found without reading its patch.
+  const std::vector<int32_t> wholeFaceElement = mesh.wholeFaceElements();
+
   // A k × k stratified grid over the unit square, mapped to the cosine-
   // weighted hemisphere by the concentric map (which keeps the strata's areas).
   const int k = std::max(1, int(std::lround(std::sqrt(double(std::max(1, raysPerNode))))));
@@ -137,8 +140,9 @@ std::vector<Bands> gatherReflectedIrradiance(const RayTracer &tracer, const Solu
             if (!tracer.intersectPosition(tracer.spawnRay(origin, normal[i], direction), hit)) continue;
             // A back side (of a one-sided face) holds no light in the solution.
             if (dot(hit.geometricNormal, direction) >= 0) continue;
-            if (mesh.patchOfFace[hit.face] < 0) continue;  // a face left out of the mesh (hidden)
-            sum += reflected[mesh.locate(hit.face, hit.position).element];
+            const int32_t whole = wholeFaceElement[hit.face];
+            if (whole == RadiosityMesh::kNoElement) continue;  // a face left out of the mesh (hidden)
+            sum += reflected[whole >= 0 ? uint32_t(whole) : mesh.locate(hit.face, hit.position).element];
           }
         gathered[i] = sum * perRay;
       }

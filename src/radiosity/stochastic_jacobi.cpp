@@ -104,16 +104,7 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
   // Where a ray lands: a face meshed as one element is that element, found
   // without reading its patch (4 bytes a face instead of a patch record and
   // its corners: most of a 10⁶-triangle model's faces).
-  constexpr int32_t kNotMeshed = -2, kLocate = -1;
-  std::vector<int32_t> wholeFaceElement(s.mesh.patchOfFace.size(), kNotMeshed);
-  for (size_t f = 0; f < wholeFaceElement.size(); ++f) {
-    const int32_t first = s.mesh.patchOfFace[f];
-    if (first < 0) continue;
-    const uint32_t patches = s.mesh.facePatchCount.empty() ? 1 : s.mesh.facePatchCount[f];
-    const Patch &patch = s.mesh.patches[size_t(first)];
-    wholeFaceElement[f] =
-        patches <= 1 && patch.treeRoot < 0 && patch.elementCount == 1 ? int32_t(patch.firstElement) : kLocate;
-  }
+  const std::vector<int32_t> wholeFaceElement = s.mesh.wholeFaceElements();
   std::vector<double> raysArrived(n, 0.0);  // per element, over the iterations
   const int maxIterations = options.maxIterations > 0 ? options.maxIterations : 1000;
 
@@ -282,7 +273,7 @@ void solveStochasticJacobi(const RayTracer &tracer, Solution &s, const SolverOpt
             if (!tracer.intersectPosition(tracer.spawnRay(origin, normal, direction), hit)) continue;  // escaped
             if (dot(hit.geometricNormal, direction) >= 0) continue;  // a back side: not in the solution
             const int32_t whole = wholeFaceElement[hit.face];
-            if (whole == kNotMeshed) continue;
+            if (whole == RadiosityMesh::kNoElement) continue;
             const uint32_t receiver = whole >= 0 ? uint32_t(whole) : s.mesh.locate(hit.face, hit.position).element;
             const Bands &colour = s.unshot[source];
             out.push_back({receiver, colour * (powerPerRay / colour.average())});
