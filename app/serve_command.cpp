@@ -16,6 +16,7 @@
 
 #include "commands.h"
 #include "interrupt_handler.h"
+#include "scene/load_scene.h"
 #include "util/error.h"
 #include "util/file_extension.h"
 #include "util/input_file.h"
@@ -62,6 +63,10 @@ CommandRunner addServeCommand(CLI::App &app) {
       throw InputError(InputLocation{"--viewer"}, "'" + o->viewerDir +
                                                       "' has no node_modules/three: run scripts/install-deps.sh "
                                                       "(it runs npm ci there)");
+    // Read as the renderer reads a glTF, so that a broken or empty model is
+    // refused here, naming the file, not in the browser without a word.
+    if (loadScene(o->modelPath).faces.empty())
+      throw InputError(InputLocation{o->modelPath}, "the model has no faces (no mesh primitives): nothing to show");
     const std::string modelRoute = "/model" + extension;
     const std::string modelBytes = readWholeFile(o->modelPath);
 
