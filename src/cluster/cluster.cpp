@@ -121,6 +121,42 @@ void sumOnRoot(uint32_t *values, size_t count) {
 void sumOnRoot(uint8_t *values, size_t count) {
   rootSum(values, count, MPI_UINT8_T);
 }
+std::vector<uint8_t> gatherFromAllRanks(const std::vector<uint8_t> &mine, std::vector<size_t> &starts) {
+  starts.assign(size_t(worldSize) + 1, 0);
+  if (!joined || worldSize == 1) {
+    starts[1] = mine.size();
+    return mine;
+  }
+  summedBytes += mine.size();
+  // Each rank's byte count, then the bytes: MPI's counts are ints, so a
+  // total beyond 2 GiB goes in rounds of at most 1 GiB from each rank.
+  std::vector<uint64_t> counts(size_t(worldSize), 0);
+  const uint64_t own = mine.size();
+  MPI_Allgather(&own, 1, MPI_UINT64_T, counts.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD);
+  for (int r = 0; r < worldSize; ++r) starts[size_t(r) + 1] = starts[size_t(r)] + counts[size_t(r)];
+  std::vector<uint8_t> all(starts.back());
+  constexpr uint64_t kRound = uint64_t(1) << 30;
+  const uint64_t largest = *std::max_element(counts.begin(), counts.end());
+  std::vector<int> roundCounts(static_cast<size_t>(worldSize)), displacements(static_cast<size_t>(worldSize));
+  std::vector<uint8_t> received;
+  for (uint64_t offset = 0; offset < largest; offset += kRound) {
+    // This round's piece of each rank's bytes, laid out one after another.
+    int total = 0;
+    for (int r = 0; r < worldSize; ++r) {
+      const uint64_t left = counts[size_t(r)] > offset ? counts[size_t(r)] - offset : 0;
+      roundCounts[size_t(r)] = int(std::min(left, kRound));
+      displacements[size_t(r)] = total;
+      total += roundCounts[size_t(r)];
+    }
+    received.resize(size_t(total));
+    MPI_Allgatherv(mine.data() + std::min<uint64_t>(offset, own), roundCounts[size_t(worldRank)], MPI_BYTE,
+                   received.data(), roundCounts.data(), displacements.data(), MPI_BYTE, MPI_COMM_WORLD);
+    for (int r = 0; r < worldSize; ++r)
+      std::copy_n(received.data() + displacements[size_t(r)], roundCounts[size_t(r)],
+                  all.data() + starts[size_t(r)] + offset);
+  }
+  return all;
+}
 int64_t fromRoot(int64_t value) {
   if (joined && worldSize > 1) MPI_Bcast(&value, 1, MPI_INT64_T, 0, MPI_COMM_WORLD);
   return value;
@@ -146,6 +182,10 @@ void sumOnAllRanks(uint8_t *, size_t) {}
 void sumOnRoot(double *, size_t) {}
 void sumOnRoot(uint32_t *, size_t) {}
 void sumOnRoot(uint8_t *, size_t) {}
+std::vector<uint8_t> gatherFromAllRanks(const std::vector<uint8_t> &mine, std::vector<size_t> &starts) {
+  starts = {0, mine.size()};
+  return mine;
+}
 int64_t fromRoot(int64_t value) {
   return value;
 }

@@ -59,21 +59,41 @@ void sumOnAllRanks(uint8_t *values, size_t count);
 void sumOnRoot(double *values, size_t count);
 void sumOnRoot(uint32_t *values, size_t count);
 void sumOnRoot(uint8_t *values, size_t count);
+/// Every rank's `mine`, on every rank, in rank order (MPI_Allgatherv):
+/// rank r's bytes are all[starts[r] .. starts[r + 1]).
+std::vector<uint8_t> gatherFromAllRanks(const std::vector<uint8_t> &mine, std::vector<size_t> &starts);
+
 /// Entries `which` of `values`, each computed by one rank (the one for
 /// which `owns(i)` is true) and not yet known to the others, on every rank
-/// afterwards, bit for bit: each rank contributes its own entries' bytes and
-/// zero bytes for the rest, and a byte-wise sum of one value and zeros is
-/// that value (a sum of doubles would turn −0 into +0). For a trivially
-/// copyable T (an estimate, a Bands).
+/// afterwards, bit for bit: each rank sends its own entries, each with its
+/// position in `which`, and copies in everyone else's. (A byte-wise sum of
+/// every rank's entries and zeros did the same, but moved and added every
+/// entry's bytes on every rank: twice the traffic, and a reduction besides.)
+/// For a trivially copyable T (an estimate, a Bands).
 template <typename T, typename Owns>
 void shareOwnedEntries(std::vector<T> &values, const std::vector<size_t> &which, const Owns &owns) {
   static_assert(std::is_trivially_copyable_v<T>, "entries travel as their bytes");
   if (!distributed() || which.empty()) return;
-  std::vector<uint8_t> bytes(which.size() * sizeof(T), 0);
+  constexpr size_t kRecord = sizeof(uint64_t) + sizeof(T);  // position in `which`, then the value
+  std::vector<uint8_t> mine;
   for (size_t k = 0; k < which.size(); ++k)
-    if (owns(which[k])) std::memcpy(&bytes[k * sizeof(T)], &values[which[k]], sizeof(T));
-  sumOnAllRanks(bytes.data(), bytes.size());
-  for (size_t k = 0; k < which.size(); ++k) std::memcpy(&values[which[k]], &bytes[k * sizeof(T)], sizeof(T));
+    if (owns(which[k])) {
+      const size_t at = mine.size();
+      mine.resize(at + kRecord);
+      const uint64_t position = k;
+      std::memcpy(&mine[at], &position, sizeof position);
+      std::memcpy(&mine[at + sizeof position], &values[which[k]], sizeof(T));
+    }
+  std::vector<size_t> starts;
+  const std::vector<uint8_t> all = gatherFromAllRanks(mine, starts);
+  for (int r = 0; r < size(); ++r) {
+    if (r == rank()) continue;
+    for (size_t at = starts[size_t(r)]; at + kRecord <= starts[size_t(r) + 1]; at += kRecord) {
+      uint64_t position = 0;
+      std::memcpy(&position, &all[at], sizeof position);
+      std::memcpy(&values[which[position]], &all[at + sizeof position], sizeof(T));
+    }
+  }
 }
 
 /// Rank 0's value, on every rank (MPI_Bcast).

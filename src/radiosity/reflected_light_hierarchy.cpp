@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <tuple>
 
+#include "cluster/cluster.h"
 #include "radiosity/transmission.h"
 #include "raytrace/surface_detail.h"
 
@@ -164,11 +165,42 @@ void ReflectedLightHierarchy::updateVariation() {
 }
 
 void ReflectedLightHierarchy::gatherAll() {
-  // Within arena_: every node and cluster gathers over its links, and what
-  // the clusters gathered goes down to their patches (patchClusterIrradiance_).
-  tbb::parallel_for(uint32_t(0), uint32_t(mesh_.tree.size()), [&](uint32_t n) { gatherTreeNode(n); });
-  tbb::parallel_for(uint32_t(0), uint32_t(clusters_.clusters.size()), [&](uint32_t c) { gatherCluster(c); });
-  pushClusters();
+  // Every node and cluster gathers over its links (each rank its own
+  // receivers: the sweeps' largest part, which every rank repeated), and
+  // what the clusters gathered goes down to their patches (patchClusterIrradiance_).
+  arena_.execute([&] {
+    tbb::parallel_for(uint32_t(0), uint32_t(mesh_.tree.size()), [&](uint32_t n) {
+      if (ownsReceiver(n)) gatherTreeNode(n);
+    });
+    tbb::parallel_for(uint32_t(0), uint32_t(clusters_.clusters.size()), [&](uint32_t c) {
+      if (ownsReceiver(clusterId(c))) gatherCluster(c);
+    });
+  });
+  if (cluster::distributed()) shareGathered();
+  arena_.execute([&] { pushClusters(); });
+}
+
+void ReflectedLightHierarchy::shareGathered() {
+  auto indices = [](size_t count) {
+    std::vector<size_t> all(count);
+    for (size_t i = 0; i < count; ++i) all[i] = i;
+    return all;
+  };
+  cluster::shareOwnedEntries(gathered_, indices(gathered_.size()), [&](size_t n) { return ownsReceiver(uint32_t(n)); });
+  cluster::shareOwnedEntries(clusterField_, indices(clusterField_.size()),
+                             [&](size_t c) { return ownsReceiver(clusterId(uint32_t(c))); });
+  // A small cluster's slice of exactIrradiance_, one entry per patch of its range.
+  std::vector<size_t> exact;
+  std::vector<uint8_t> owned(exactIrradiance_.size(), 0);
+  for (uint32_t c = 0; c < clusters_.clusters.size(); ++c) {
+    if (exactOffset_[c] < 0) continue;
+    const bool mine = ownsReceiver(clusterId(c));
+    for (uint32_t k = 0; k < clusters_.clusters[c].count; ++k) {
+      exact.push_back(size_t(exactOffset_[c]) + k);
+      owned[size_t(exactOffset_[c]) + k] = mine ? 1 : 0;
+    }
+  }
+  cluster::shareOwnedEntries(exactIrradiance_, exact, [&](size_t i) { return owned[i] != 0; });
 }
 
 void ReflectedLightHierarchy::measureClosure() {
@@ -192,8 +224,8 @@ void ReflectedLightHierarchy::measureClosure() {
   }
   pullClusters();
   closure_.assign(nodes, 1.0f);
+  gatherAll();
   arena_.execute([&] {
-    gatherAll();
     tbb::parallel_for(size_t(0), mesh_.patches.size(), [&](size_t p) {
       auto walk = [&](auto &self, uint32_t n, ReceiverPolynomial<Bands> down) -> void {
         const MeshTreeNode &t = mesh_.tree[n];
@@ -240,8 +272,8 @@ int ReflectedLightHierarchy::solve(double tolerance, int maxSweeps, double &resi
   std::vector<double> change(mesh_.patches.size()), largest(mesh_.patches.size());
   while (sweeps < maxSweeps) {
     keepForTransmission();
+    gatherAll();
     arena_.execute([&] {
-      gatherAll();
       tbb::parallel_for(size_t(0), mesh_.patches.size(), [&](size_t p) {
         change[p] = largest[p] = 0;
         ReceiverPolynomial<Bands> down;

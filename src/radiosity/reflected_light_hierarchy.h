@@ -153,8 +153,13 @@ class ReflectedLightHierarchy {
   static bool ownsReceiver(uint32_t id);
   void initialiseNewLeaves();
   Bands pushPull(uint32_t n, const ReceiverPolynomial<Bands> &down, double &change, double &largest);
-  /// One gather over every link, through the clusters to their patches (inside arena_).
+  /// One gather over every link, through the clusters to their patches.
+  /// With several MPI ranks each gathers into the receivers it owns
+  /// (ownsReceiver), and the gathered values are then shared, bit for bit.
+  /// Called outside arena_ (it enters it), from the thread that calls MPI.
   void gatherAll();
+  /// What gatherAll's receivers gathered, from their owners to every rank.
+  void shareGathered();
   /// Each leaf's Σ_j F_ij from one gather of R = 1, and the scale that holds it to 1.
   void measureClosure();
   void gatherTreeNode(uint32_t n);
