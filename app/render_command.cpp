@@ -38,6 +38,16 @@ namespace radiant {
 
 namespace {
 
+/// Where an interrupted render writes `path`: there, unless a file is
+/// already there, which may hold a finished image and is never replaced by
+/// fewer samples (issue 38); then beside it, as NAME.interrupted.EXT.
+std::string pathForInterruptedImage(const std::string &path) {
+  std::error_code error;
+  if (!std::filesystem::exists(path, error)) return path;
+  const std::filesystem::path p(path);
+  return (p.parent_path() / (p.stem().string() + ".interrupted" + p.extension().string())).string();
+}
+
 struct RenderCommandOptions {
   std::string scenePath;
   std::string method = "path";
@@ -395,8 +405,18 @@ CommandRunner addRenderCommand(CLI::App &app) {
                  spectral ? " (linear sRGB from the spectrum)" : "");
     }
     if (!cluster::isRoot()) return stats.interrupted ? interruptedExitStatus() : 0;
+    std::string variancePath = o->variancePath;
+    std::vector<std::string> kept;  // earlier files an interrupted render wrote beside
+    auto besideAnEarlierFile = [&](std::string &path) {
+      const std::string beside = pathForInterruptedImage(path);
+      if (beside != path) kept.push_back(path), path = beside;
+    };
+    if (stats.interrupted) {
+      for (std::string &path : outputs) besideAnEarlierFile(path);
+      if (!variancePath.empty()) besideAnEarlierFile(variancePath);
+    }
     writeRenderOutputs(image, outputs, display, app.count("--tonemap") > 0, tracer, camera, quiet);
-    if (!o->variancePath.empty()) writeImage(rendered.variance, o->variancePath);
+    if (!variancePath.empty()) writeImage(rendered.variance, variancePath);
     // A finished render's checkpoint has served; a stopped one's is what --resume reads.
     if (!o->checkpoint.path.empty() && !stats.interrupted)
       for (int pass = 0; pass < passes; ++pass) {
@@ -416,6 +436,9 @@ CommandRunner addRenderCommand(CLI::App &app) {
                  stats.interrupted ? "interrupted after " : "", stats.samplesPerPixel,
                  spectral ? fmt::format(" × {} passes", passes) : std::string(), converged, stats.seconds,
                  stats.cameraSamples / std::max(stats.seconds, 1e-9) * 1e-6, fmt::join(outputs, ", "));
+      if (!kept.empty())
+        fmt::print(stderr, "radiant: kept the earlier {} (an interrupted render never replaces a file)\n",
+                   fmt::join(kept, ", "));
     }
     return stats.interrupted ? interruptedExitStatus() : 0;
   };

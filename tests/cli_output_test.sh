@@ -147,6 +147,23 @@ status=$?
 if [ "$status" -eq 130 ] && [ -s int.exr ] && "$radiant" tonemap int.exr -o int.png -q; then pass; else
   fail "render; kill -INT: exit $status, int.exr $(ls -la int.exr 2>&1)"
 fi
+# An interrupted render never replaces a file that was there (issue 38: it may hold a finished
+# image): the image so far goes beside it, as NAME.interrupted.EXT; a new output is written as asked.
+echo "an earlier image" > finished.exr
+rm -f fresh.png finished.interrupted.exr
+"$radiant" render "$cornell" --spp 1000000 --width 32 --height 32 -o finished.exr -o fresh.png 2> finished.err &
+pid=$!
+sleep 3
+kill -INT $pid
+wait $pid
+status=$?
+if [ "$status" -eq 130 ] && [ "$(cat finished.exr)" = "an earlier image" ] && [ -s finished.interrupted.exr ] &&
+  [ -s fresh.png ] && grep -q "kept the earlier finished.exr" finished.err &&
+  "$radiant" tonemap finished.interrupted.exr -o finished.png -q; then
+  pass
+else
+  fail "render; kill -INT over an earlier file: exit $status, $(ls -la finished* fresh.png 2>&1), $(cat finished.err)"
+fi
 # Ctrl-C before every pixel has a sample (issue 38): nothing is written, and an earlier file of
 # that name stays as it was (it was replaced by a black image). The first round, 1 spp of 2000²
 # pixels on one thread, takes several seconds; the interrupt comes 1.5 s after the start.
