@@ -1,6 +1,7 @@
 // The radiosity stage: mesh, solvers, solution file, against closed forms.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -499,6 +500,57 @@ TEST(Hierarchical, InterpolationHasNoCracksAtTVertices) {
     Vec3 mid = (s.mesh.nodes[t.edgeStart] + s.mesh.nodes[t.edgeEnd]) * 0.5;
     EXPECT_LT(length(mid - s.mesh.nodes[t.node]), 1e-12);
   }
+}
+
+TEST(Mesh, ALongDiagonalEdgeAmongTinyFacetsIsJoinedInItsLengthsTime) {
+  // The T-vertices across patches bin each element edge on a grid of the
+  // mean edge length. 10⁴ facets of 1 mm make that grid about 5 mm fine; the
+  // 4–5 m lattice edges of two large triangles, diagonal in all three axes,
+  // then span ~900 cells along each: binned by their boxes, 10⁹ cells each
+  // (an allocation that fails, or hours); walked along their length, 10³
+  // steps. The triangles meet along the diagonal with different lattices,
+  // and the walk must still find every T-vertex there.
+  Scene scene;
+  scene.objects.push_back({"test", "test"});
+  Material grey;
+  grey.diffuse = Bands(0.5);
+  scene.materials = {grey};
+  for (int i = 0; i < 10000; ++i) {
+    const double x = 40 + 0.002 * (i % 100), z = 0.002 * (i / 100);
+    test::addQuad(scene, {{x, 0, z}, {x, 0, z + 0.001}, {x + 0.001, 0, z + 0.001}, {x + 0.001, 0, z}}, 0);
+  }
+  auto addTriangle = [&](const Vec3 &a, const Vec3 &b, const Vec3 &c) {
+    Face f;
+    f.vertexCount = 3;
+    f.material = 0;
+    for (int k = 0; k < 3; ++k) f.vertices[k] = uint32_t(scene.positions.size() + k);
+    scene.positions.insert(scene.positions.end(), {a, b, c});
+    scene.addFace(f);
+  };
+  // One plane (y = x), facing one way, the shared edge from (0, 0, 0) to
+  // (10, 10, 10) (17.3 m). With 5 m elements the first triangle's lattice
+  // has ⌈17.3 / 5⌉ = 4 divisions (its longest edge is the diagonal), the
+  // second's ⌈36.7 / 5⌉ = 8 (its longest runs to (25, 25, −10)): along the
+  // diagonal the second's nodes at odd eighths lie inside the first's
+  // edges, 4 T-vertices, and the first's nodes are all the second's.
+  addTriangle({0, 0, 0}, {10, 10, 10}, {0, 0, 10});
+  addTriangle({0, 0, 0}, {25, 25, -10}, {10, 10, 10});
+  MeshOptions options;
+  options.maxEdgeLength = 5.0;          // each large triangle a lattice; the facets whole
+  options.crossPatchTVertices = false;  // added below, timed
+  RadiosityMesh mesh = buildMesh(scene, options);
+  ASSERT_TRUE(mesh.tVertices.empty());
+  ASSERT_EQ(mesh.patches[10000].divisionsU, 4);
+  ASSERT_EQ(mesh.patches[10001].divisionsU, 8);
+  const auto start = std::chrono::steady_clock::now();
+  mesh.addCrossPatchTVertices();
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 30.0);
+  for (const RadiosityMesh::TVertex &t : mesh.tVertices) {
+    const Vec3 &p = mesh.nodes[t.node];
+    EXPECT_NEAR(p.x, p.z, 1e-9);  // on the diagonal x = y = z; none among the facets
+    EXPECT_NEAR(t.t, 0.5, 1e-6);  // an odd eighth: the middle of a quarter
+  }
+  EXPECT_EQ(mesh.tVertices.size(), 4u);
 }
 
 }  // namespace

@@ -65,46 +65,61 @@ void RadiosityMesh::addCrossPatchTVertices() {
                        uint64_t(k[2]) * 0x165667B19E3779F9ull;
     return h ^ (h >> 29);
   };
+  // The cells each edge passes through: walked in steps that advance at most
+  // one cell along every axis, each step adding the box of its two ends'
+  // cells (a point of the segment between them lies in that box, the cell
+  // index being monotone along each axis). The box of the whole edge grew
+  // as the cube of a long diagonal edge's length: a 1 km edge over a model
+  // of millimetre facets would have asked for 10¹⁸ cells.
+  auto cellsOf = [&](size_t i, std::vector<uint64_t> &out) {
+    out.clear();
+    const Vec3 &a = nodes[edges[i].start], &b = nodes[edges[i].end];
+    const auto ka = key(a), kb = key(b);
+    int64_t steps = 1;
+    for (int k = 0; k < 3; ++k) steps = std::max(steps, std::abs(kb[k] - ka[k]));
+    auto previous = ka;
+    for (int64_t step = 1; step <= steps; ++step) {
+      const auto next = step == steps ? kb : key(a + (b - a) * (double(step) / double(steps)));
+      for (int64_t x = std::min(previous[0], next[0]); x <= std::max(previous[0], next[0]); ++x)
+        for (int64_t y = std::min(previous[1], next[1]); y <= std::max(previous[1], next[1]); ++y)
+          for (int64_t z = std::min(previous[2], next[2]); z <= std::max(previous[2], next[2]); ++z)
+            out.push_back(cellHash({x, y, z}));
+      previous = next;
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+  };
   // The edges of each cell, as a bucket table laid out flat (bucketStart,
   // bucketEdges; edges in index order within a bucket): a hash map of
   // vectors made a million small allocations, seconds on a 10⁶-triangle model.
-  std::vector<std::array<int64_t, 6>> cellRange(edges.size());  // lo and hi cell of each edge's box
   std::vector<uint32_t> cellCount(edges.size());
   tbb::parallel_for(tbb::blocked_range<size_t>(0, edges.size(), 8192), [&](const auto &range) {
+    std::vector<uint64_t> cells;
     for (size_t i = range.begin(); i < range.end(); ++i) {
-      const auto ka = key(nodes[edges[i].start]), kb = key(nodes[edges[i].end]);
-      auto &r = cellRange[i];
-      uint64_t count = 1;
-      for (int k = 0; k < 3; ++k) {
-        r[k] = std::min(ka[k], kb[k]), r[3 + k] = std::max(ka[k], kb[k]);
-        count *= uint64_t(r[3 + k] - r[k] + 1);
-      }
-      cellCount[i] = uint32_t(std::min<uint64_t>(count, UINT32_MAX));
+      cellsOf(i, cells);
+      cellCount[i] = uint32_t(cells.size());
     }
   });
-  size_t entries = 0;
-  for (uint32_t c : cellCount) entries += c;
+  std::vector<size_t> firstEntry(edges.size() + 1, 0);
+  for (size_t i = 0; i < edges.size(); ++i) firstEntry[i + 1] = firstEntry[i] + cellCount[i];
+  const size_t entries = firstEntry.back();
+  std::vector<uint64_t> entryHash(entries);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, edges.size(), 8192), [&](const auto &range) {
+    std::vector<uint64_t> cells;
+    for (size_t i = range.begin(); i < range.end(); ++i) {
+      cellsOf(i, cells);
+      std::copy(cells.begin(), cells.end(), entryHash.begin() + std::ptrdiff_t(firstEntry[i]));
+    }
+  });
   size_t buckets = 1;
   while (buckets < entries) buckets *= 2;
   std::vector<uint32_t> bucketStart(buckets + 1, 0);
-  std::vector<uint64_t> entryHash;
-  entryHash.reserve(entries);
-  auto forEachCell = [&](size_t i, auto &&visit) {
-    const auto &r = cellRange[i];
-    for (int64_t x = r[0]; x <= r[3]; ++x)
-      for (int64_t y = r[1]; y <= r[4]; ++y)
-        for (int64_t z = r[2]; z <= r[5]; ++z) visit(cellHash({x, y, z}));
-  };
-  for (size_t i = 0; i < edges.size(); ++i)
-    forEachCell(i, [&](uint64_t h) {
-      entryHash.push_back(h);
-      ++bucketStart[(h & (buckets - 1)) + 1];
-    });
+  for (const uint64_t h : entryHash) ++bucketStart[(h & (buckets - 1)) + 1];
   for (size_t b = 0; b < buckets; ++b) bucketStart[b + 1] += bucketStart[b];
   std::vector<uint32_t> fill(bucketStart.begin(), bucketStart.end() - 1);
   std::vector<std::pair<uint64_t, uint32_t>> bucketEdges(entries);  // (cell hash, edge)
-  for (size_t i = 0, entry = 0; i < edges.size(); ++i)
-    for (uint32_t c = 0; c < cellCount[i]; ++c, ++entry) {
+  for (size_t i = 0; i < edges.size(); ++i)
+    for (size_t entry = firstEntry[i]; entry < firstEntry[i + 1]; ++entry) {
       const uint64_t h = entryHash[entry];
       bucketEdges[fill[h & (buckets - 1)]++] = {h, uint32_t(i)};
     }
