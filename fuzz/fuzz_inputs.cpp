@@ -118,11 +118,20 @@ void writeFixtures(const std::string &folder) {
             "IESNA:LM-63-2002\nTILT=NONE\n1 -1 1 2 1 1 2 0 0 0\n1 1 10\n0 180\n0\n100 100\n");
 }
 
-void feedSceneJson(std::span<const uint8_t> input, const std::string &folder) {
+namespace {
+
+/// The input written as `name` beside the fixtures, then loaded as a scene.
+void loadSceneNamed(std::span<const uint8_t> input, const std::string &folder, const char *name) {
   ensureFixtures(folder);
-  const std::string path = inFolder(folder, "scene.json");
+  const std::string path = inFolder(folder, name);
   writeFile(path, input.data(), input.size());
   loadScene(path);
+}
+
+}  // namespace
+
+void feedSceneJson(std::span<const uint8_t> input, const std::string &folder) {
+  loadSceneNamed(input, folder, "scene.json");
 }
 
 void feedObjMtl(std::span<const uint8_t> input, const std::string &folder) {
@@ -277,18 +286,12 @@ void feedPhotometry(std::span<const uint8_t> input, const std::string &folder) {
 }
 
 void feedGltf(std::span<const uint8_t> input, const std::string &folder) {
-  ensureFixtures(folder);
   const bool glb = input.size() >= 4 && std::memcmp(input.data(), "glTF", 4) == 0;
-  const std::string path = inFolder(folder, glb ? "model.glb" : "model.gltf");
-  writeFile(path, input.data(), input.size());
-  loadScene(path);
+  loadSceneNamed(input, folder, glb ? "model.glb" : "model.gltf");
 }
 
 void feedMgf(std::span<const uint8_t> input, const std::string &folder) {
-  ensureFixtures(folder);
-  const std::string path = inFolder(folder, "scene.mgf");
-  writeFile(path, input.data(), input.size());
-  loadScene(path);
+  loadSceneNamed(input, folder, "scene.mgf");
 }
 
 void feedHdr(std::span<const uint8_t> input, const std::string &folder) {
