@@ -92,25 +92,27 @@ void RadiosityMesh::addCrossPatchTVertices() {
   // The edges of each cell, as a bucket table laid out flat (bucketStart,
   // bucketEdges; edges in index order within a bucket): a hash map of
   // vectors made a million small allocations, seconds on a 10⁶-triangle model.
-  std::vector<uint32_t> cellCount(edges.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, edges.size(), 8192), [&](const auto &range) {
+  // Walked once, in fixed blocks of edges, each block's cells kept in edge
+  // order, then laid out block after block: the same entries whatever the threads.
+  constexpr size_t kBlock = 8192;
+  std::vector<std::vector<uint64_t>> blockCells((edges.size() + kBlock - 1) / kBlock);
+  std::vector<size_t> firstEntry(edges.size() + 1, 0);  // per edge, its start within its block first
+  tbb::parallel_for(size_t(0), blockCells.size(), [&](size_t block) {
     std::vector<uint64_t> cells;
-    for (size_t i = range.begin(); i < range.end(); ++i) {
+    for (size_t i = block * kBlock; i < std::min(edges.size(), (block + 1) * kBlock); ++i) {
       cellsOf(i, cells);
-      cellCount[i] = uint32_t(cells.size());
+      blockCells[block].insert(blockCells[block].end(), cells.begin(), cells.end());
+      firstEntry[i + 1] = cells.size();
     }
   });
-  std::vector<size_t> firstEntry(edges.size() + 1, 0);
-  for (size_t i = 0; i < edges.size(); ++i) firstEntry[i + 1] = firstEntry[i] + cellCount[i];
+  for (size_t i = 0; i < edges.size(); ++i) firstEntry[i + 1] += firstEntry[i];
   const size_t entries = firstEntry.back();
-  std::vector<uint64_t> entryHash(entries);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, edges.size(), 8192), [&](const auto &range) {
-    std::vector<uint64_t> cells;
-    for (size_t i = range.begin(); i < range.end(); ++i) {
-      cellsOf(i, cells);
-      std::copy(cells.begin(), cells.end(), entryHash.begin() + std::ptrdiff_t(firstEntry[i]));
-    }
-  });
+  std::vector<uint64_t> entryHash;
+  entryHash.reserve(entries);
+  for (std::vector<uint64_t> &cells : blockCells) {
+    entryHash.insert(entryHash.end(), cells.begin(), cells.end());
+    std::vector<uint64_t>().swap(cells);
+  }
   size_t buckets = 1;
   while (buckets < entries) buckets *= 2;
   std::vector<uint32_t> bucketStart(buckets + 1, 0);
