@@ -131,7 +131,7 @@ MeshDirectLight directLightOfMesh(const RayTracer &tracer, const Solution &solut
       for (int k = 0; k < element.vertexCount; ++k) light.ofElements[e] += light.atNodes[element.nodes[k]];
       light.ofElements[e] = light.ofElements[e] / double(element.vertexCount);
     } else {
-      lattice[e] = std::clamp(int(std::ceil(ratio)), 3, 16);
+      lattice[e] = int(std::clamp(std::ceil(ratio), 3.0, 16.0));  // clamped first: ratio reaches 4·10⁹ beside a light
       large.push_back(e);
     }
   }
