@@ -28,22 +28,22 @@ Bands incidentRadiance(const RayTracer &tracer, const Solution &solution, const 
 }  // namespace
 
 const ParameterSpec &bumpOrientationsParameter() {
-  static const ParameterSpec spec = {
-      "bump-orientations",
-      ParameterType::Integer,
-      "16",
-      "normal orientations gathered per node of a bump-mapped surface, an even number (two tilts × azimuths; Chen "
-      "& Wu 1990)",
-      4,
-      64};
+  static const ParameterSpec spec = [] {
+    ParameterSpec s = {"bump-orientations",
+                       ParameterType::Integer,
+                       "16",
+                       "normal orientations gathered per node of a bump-mapped surface, an even number (two tilts × "
+                       "azimuths; Chen & Wu 1990)",
+                       4,
+                       64};
+    s.multipleOf = BumpGather::kTilts;  // refused when the command line is read, not after the solve
+    return s;
+  }();
   return spec;
 }
 
 int bumpOrientations(const Parameters &parameters) {
-  const int orientations = int(parameters.integer("bump-orientations"));
-  if (orientations % BumpGather::kTilts != 0)
-    throw InputError(parameters.origin("bump-orientations"), "must be even (two tilts × azimuths)");
-  return orientations;
+  return int(parameters.integer("bump-orientations"));
 }
 
 BumpGather::BumpGather(const RayTracer &tracer, const Solution &solution, const BumpGatherOptions &options)

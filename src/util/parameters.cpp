@@ -41,10 +41,15 @@ std::string ParameterSpec::describeRange() const {
     case ParameterType::Integer:
     case ParameterType::Real:
       if (!choices.empty()) return "a number or " + joinNames(choices);
-      if (std::isinf(minimum) && std::isinf(maximum)) return "";
-      if (minimum == kPositive) return std::isinf(maximum) ? "> 0" : "0 < x ≤ " + formatBound(maximum);
-      if (std::isinf(maximum) || maximum >= 2147483647) return "≥ " + formatBound(minimum);
-      return formatBound(minimum) + "…" + formatBound(maximum);
+      {
+        const std::string multiple = multipleOf == 2  ? ", even"
+                                     : multipleOf > 2 ? ", a multiple of " + std::to_string(multipleOf)
+                                                      : "";
+        if (std::isinf(minimum) && std::isinf(maximum)) return multiple.empty() ? "" : multiple.substr(2);
+        if (minimum == kPositive) return (std::isinf(maximum) ? "> 0" : "0 < x ≤ " + formatBound(maximum)) + multiple;
+        if (std::isinf(maximum) || maximum >= 2147483647) return "≥ " + formatBound(minimum) + multiple;
+        return formatBound(minimum) + "…" + formatBound(maximum) + multiple;
+      }
   }
   return "";
 }
@@ -83,6 +88,11 @@ double parseParameter(const ParameterSpec &spec, const std::string &text, const 
       }
       if (value < spec.minimum || value > spec.maximum)
         throw InputError(origin, fmt::format("must be in {}, got {}", spec.describeRange(), text));
+      if (spec.multipleOf > 1 && std::fmod(value, double(spec.multipleOf)) != 0)
+        throw InputError(origin, fmt::format("must be {}, got {}",
+                                             spec.multipleOf == 2 ? std::string("even")
+                                                                  : "a multiple of " + std::to_string(spec.multipleOf),
+                                             text));
       return value;
     }
   }

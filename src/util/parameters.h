@@ -41,6 +41,9 @@ struct ParameterSpec {
   std::string defaultDescription;
   /// A parameter this one cannot be given with ("source-fraction" excludes "sources").
   std::string excludes;
+  /// Integer: the value must be a multiple of this (2: even), checked with
+  /// the range when the command line is read, before any solve; 0 for any.
+  int multipleOf = 0;
 
   /// "4", "0.1 (0…1)", "mc (point, mc)": the default and what is allowed, for help and docs.
   std::string describeDefault() const;
