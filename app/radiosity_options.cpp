@@ -124,10 +124,12 @@ Solution solvePreview(const Scene &scene, const RayTracer &tracer, const Radiosi
   ParameterValues meshing;
   const ParameterTable &progressive = solverParameters("progressive");
   const ParameterValues given = options.parameters.given();
-  for (const auto &[name, value] : given.all())
-    if (name != "max-iterations" &&
-        std::any_of(progressive.begin(), progressive.end(), [&](const ParameterSpec &s) { return s.name == name; }))
-      meshing.set(name, value.text, value.origin);
+  for (const auto &[name, value] : given.all()) {
+    const std::string &key = name;  // clang 14 (the sanitizer build) captures no structured binding
+    if (key != "max-iterations" &&
+        std::any_of(progressive.begin(), progressive.end(), [&](const ParameterSpec &s) { return s.name == key; }))
+      meshing.set(key, value.text, value.origin);
+  }
   MeshOptions meshOptions;
   SolverOptions solverOptions;
   solverOptions.solver = "progressive";

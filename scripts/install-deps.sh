@@ -11,6 +11,7 @@ packages=(
   libjemalloc-dev
   libopenmpi-dev openmpi-bin
   clang-format-14
+  clang-14 libclang-rt-14-dev
   python3
   chromium
 )

@@ -129,7 +129,7 @@ expect_error "multipass: not a checkpoint" "old.bin.*not a usable multipass chec
 cmp -s plain.exr saved.exr && pass || fail "checkpointing changed the solution"
 if [ $heavy = 1 ]; then
   # A spectral solve: a checkpoint per pass, kept to the end; killed after its first pass, resumed, the same solution.
-  ssolve=(--solver stochastic --rays-per-element 300)
+  ssolve=(--solver stochastic --rays-per-element 30)
   "$radiant" solve "$spectral" "${ssolve[@]}" -q -o splain.rad || fail "spectral solve without a checkpoint"
   "$radiant" solve "$spectral" "${ssolve[@]}" -q -o sresumed.rad --checkpoint ssolve.bin --checkpoint-interval 0 \
     2>/dev/null &

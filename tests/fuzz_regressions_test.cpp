@@ -15,6 +15,7 @@
 
 #include "fuzz_inputs.h"
 #include "io/image.h"
+#include "sanitizer.h"
 #include "util/error.h"
 
 namespace radiant {
@@ -76,7 +77,7 @@ TEST_P(FuzzRegressions, EverySavedInputIsAcceptedOrRefusedWithAnInputError) {
 // 13–16 M texels (2.4 s each to refuse). The Release build still feeds them,
 // so that a crash or a hang of ours shows; the sanitizer build skips them.
 TEST(FuzzRegressions, TheThirdPartyFindingsAreAcceptedOrRefusedInRelease) {
-#if defined(__SANITIZE_ADDRESS__)
+#if RADIANT_UNDER_SANITIZER
   GTEST_SKIP() << "undefined behaviour inside stb_image 2.27 (Debian's), reported by UBSan: Release only";
 #endif
   for (const fuzz::FuzzTarget &target : fuzz::fuzzTargets()) {

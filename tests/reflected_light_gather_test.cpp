@@ -92,12 +92,12 @@ TEST(ReflectedLightGather, NeighboursPoolTheirNoiseWithoutMovingTheMean) {
   constexpr int kRays = 16;
   const std::vector<Bands> own = gatherReflectedIrradiance(tracer, s, nodes, kRays, 0, 3, 0);
   const std::vector<Bands> pooled = gatherReflectedIrradiance(tracer, s, nodes, kRays, 2.0 / 256, 3, 0);
-  double ownSquares = 0, pooledSquares = 0, pooledSum = 0, ownSum = 0;
+  double ownSquares = 0, pooledSquares = 0, pooledSum = 0;
   for (size_t i = 0; i < nodes.size(); ++i) {
     const double exact = exactGather(s.mesh.nodes[nodes[i]]);
     ownSquares += (own[i][0] - exact) * (own[i][0] - exact);
     pooledSquares += (pooled[i][0] - exact) * (pooled[i][0] - exact);
-    ownSum += own[i][0] - exact, pooledSum += pooled[i][0] - exact;
+    pooledSum += pooled[i][0] - exact;
   }
   const double n = double(nodes.size()), sigma = gatherSigma(exactGather({0.025, 0, 0.025}), kRays);
   EXPECT_GT(std::sqrt(ownSquares / n), 0.01 * sigma) << "the nodes' own gathers are noisy";

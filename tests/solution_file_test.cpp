@@ -164,7 +164,7 @@ TEST(SolutionFile, EveryCorruptByteIsRefusedOrRead) {
         ADD_FAILURE() << what << ": not an InputError: " << e.what();
       }
     };
-#if defined(__SANITIZE_ADDRESS__)
+#if RADIANT_UNDER_SANITIZER
     const size_t stride = 16;  // every field still, at a sixteenth of the time
 #else
     const size_t stride = 1;
