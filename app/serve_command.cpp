@@ -71,6 +71,25 @@ CommandRunner addServeCommand(CLI::App &app) {
     const std::string modelBytes = readWholeFile(o->modelPath);
 
     httplib::Server server;
+    // Under load (tests/serve_stress_test.py): cpp-httplib gives each
+    // connection a worker from a pool (8 by default) for as long as the
+    // client keeps sending, so 8 clients dribbling their headers a byte at a
+    // time held every worker and the viewer got no answer at all. With
+    // kWorkers, a client silent for kIdle is dropped, and an idle keep-alive
+    // connection is closed after kIdle too; a browser opens 6 at most.
+    constexpr size_t kWorkers = 64;
+    constexpr time_t kIdle = 2;  // seconds
+    server.new_task_queue = [] { return new httplib::ThreadPool(kWorkers); };
+    server.set_read_timeout(kIdle, 0);
+    server.set_keep_alive_timeout(kIdle);
+    server.set_payload_max_length(1 << 16);  // GET and HEAD only: no request has a body to read
+    // A browser sends about 20 headers; cpp-httplib 0.11 reads any number (each line at most 8 KiB).
+    constexpr size_t kMaxHeaders = 128;
+    server.set_pre_routing_handler([](const httplib::Request &request, httplib::Response &response) {
+      if (request.headers.size() <= kMaxHeaders) return httplib::Server::HandlerResponse::Unhandled;
+      response.status = 431;  // Request Header Fields Too Large
+      return httplib::Server::HandlerResponse::Handled;
+    });
     for (const auto &[ext, type] : {std::pair{"html", "text/html"},
                                     {"js", "text/javascript"},
                                     {"mjs", "text/javascript"},
