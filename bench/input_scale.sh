@@ -14,17 +14,23 @@
 #   materials  the same quads, each with its own `usemtl` material of the MTL
 #   luminaires a JSON scene of one floor quad and N luminaires of one IES file:
 #              radiant render FILE --spp 1 --width 64 --height 48 -q
+#   nodes      a glTF of N nodes that each place the one quad mesh, and a
+#              scene node above them all:  radiant info FILE
+#   includes   an MGF file of N `i quad.mgf -t x 0 z` lines (each include
+#              opened, read and transformed):  radiant info FILE
 #
-# Usage: bench/input_scale.sh [--radiant PATH] [--counts "10000 30000 100000"]
+# Usage: bench/input_scale.sh [--radiant PATH] [--counts "10000 30000 100000"] [--cases "objects …"]
 set -euo pipefail
 
 radiant=build/radiant
 counts="10000 30000 100000"
+cases="objects materials luminaires nodes includes"
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --radiant) radiant="$2"; shift 2 ;;
     --counts) counts="$2"; shift 2 ;;
-    *) echo "usage: $0 [--radiant PATH] [--counts \"N1 N2 …\"]" >&2; exit 2 ;;
+    --cases) cases="$2"; shift 2 ;;
+    *) echo "usage: $0 [--radiant PATH] [--counts \"N1 N2 …\"] [--cases \"objects materials …\"]" >&2; exit 2 ;;
   esac
 done
 source_dir="$(cd "$(dirname "$0")/.." && pwd)"
@@ -54,6 +60,31 @@ if case in ("objects", "materials"):
             f.write(f"v {x} 0 {z}\nv {x + 1} 0 {z}\nv {x + 1} 0 {z + 1}\nv {x} 0 {z + 1}\n")
             f.write(f"f {v + 1} {v + 2} {v + 3} {v + 4}\n")
     print(obj)
+elif case == "nodes":
+    import base64, struct
+    quad = struct.pack("<12f", 0, 0, 0, 1, 0, 0, 1, 0, 1, 0, 0, 1) + struct.pack("<6H", 0, 2, 1, 0, 3, 2)
+    uri = "data:application/octet-stream;base64," + base64.b64encode(quad).decode()
+    nodes = [{"children": list(range(1, n + 1))}]
+    nodes += [{"mesh": 0, "translation": [(i % side) * 2.0, 0, (i // side) * 2.0]} for i in range(n)]
+    gltf = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": nodes,
+            "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+            "buffers": [{"byteLength": len(quad), "uri": uri}],
+            "bufferViews": [{"buffer": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 12}],
+            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
+                           "min": [0, 0, 0], "max": [1, 0, 1]},
+                          {"bufferView": 1, "componentType": 5123, "count": 6, "type": "SCALAR"}]}
+    path = os.path.join(work, f"nodes-{n}.gltf")
+    json.dump(gltf, open(path, "w"))
+    print(path)
+elif case == "includes":
+    with open(os.path.join(work, "quad.mgf"), "w") as f:
+        f.write("m grey =\n c\n rd 0.5\nv a =\n p 0 0 0\nv b =\n p 1 0 0\nv c =\n p 1 0 1\nv d =\n p 0 0 1\n"
+                "f a b c d\n")
+    path = os.path.join(work, f"includes-{n}.mgf")
+    with open(path, "w") as f:
+        for i in range(n):
+            f.write(f"i quad.mgf -t {(i % side) * 2.0} 0 {(i // side) * 2.0}\n")
+    print(path)
 else:
     shutil.copy(os.path.join(source, "tests/photometry/lambertian_downlight.ies"), work)
     scene = {"version": 1, "materials": {"grey": {"reflectance": 0.5}},
@@ -70,12 +101,14 @@ EOF
 
 echo "| case | N | wall s | peak MB | µs per item | time ratio to previous N |"
 echo "|---|---:|---:|---:|---:|---:|"
-for case in objects materials luminaires; do
+for case in $cases; do
   previous=""
   for n in $counts; do
     file="$(generate "$case" "$n")"
     if [[ "$case" == luminaires ]]; then
       command=("$radiant" render "$file" --spp 1 --width 64 --height 48 -q -o "$work/l.png")
+    elif [[ "$case" == nodes || "$case" == includes ]]; then
+      command=("$radiant" info "$file")
     else
       command=("$radiant" solve "$file" --solver stochastic -q)
     fi

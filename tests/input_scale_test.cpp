@@ -98,5 +98,43 @@ TEST(InputScale, LuminairesOfOneFileShareItsDistributionAndKeepTheirNames) {
     EXPECT_EQ(loaded.lights[i].photometry.get(), loaded.lights[1].photometry.get());
 }
 
+TEST(InputScale, AnMgfFileIncludedThousandsOfTimesMakesItsMaterialOnce) {
+  // Each include defines its material again with the same values: one
+  // Radiant material for all, not one per include (each new one was named
+  // grey#k after trying grey#2 … grey#k−1: 5 s for 10⁴ includes, minutes for
+  // 10⁵; bench/input_scale.sh --cases includes).
+  constexpr int kIncludes = 4000;
+  TempDir dir("input-scale-mgf");
+  dir.write("quad.mgf", "m grey =\n c\n rd 0.5\nv a =\n p 0 0 0\nv b =\n p 1 0 0\nv c =\n p 1 0 1\n"
+                        "v d =\n p 0 0 1\nf a b c d\n");
+  std::string main;
+  for (int i = 0; i < kIncludes; ++i) main += fmt::format("i quad.mgf -t {} 0 {}\n", 2 * (i % 64), 2 * (i / 64));
+  const Scene scene = loadScene(dir.write("many.mgf", main));
+  ASSERT_EQ(scene.faces.size(), size_t(kIncludes));
+  ASSERT_EQ(scene.materials.size(), 1u);
+  EXPECT_EQ(scene.materials[0].name, "grey");
+  EXPECT_NEAR(scene.materials[0].diffuse[0], 0.5, 1e-6);
+}
+
+TEST(InputScale, AnMgfMaterialChangedThousandsOfTimesNamesEachVersion) {
+  // A material changed after faces used it is a new one per change, named
+  // grey, grey#2, grey#3, …; a name the file took itself is skipped.
+  constexpr int kVersions = 3000;
+  std::string mgf = "m grey#3 =\n c\n rd 0.9\nv a =\n p 0 0 0\nv b =\n p 1 0 0\nv c =\n p 1 0 1\nf a b c\n";
+  for (int i = 0; i < kVersions; ++i)
+    mgf += fmt::format("m grey =\n c\n rd {}\nv a =\n p {} 0 0\nv b =\n p {} 0 0\nv c =\n p {} 0 1\nf a b c\n",
+                       0.1 + 0.8 * i / kVersions, i, i + 1, i);
+  TempDir dir("input-scale-mgf-versions");
+  const Scene scene = loadScene(dir.write("versions.mgf", mgf));
+  ASSERT_EQ(scene.materials.size(), size_t(kVersions) + 1);
+  std::set<std::string> names;
+  for (const Material &m : scene.materials) names.insert(m.name);
+  EXPECT_EQ(names.size(), scene.materials.size()) << "every version has its own name";
+  EXPECT_EQ(scene.materials[1].name, "grey");
+  EXPECT_EQ(scene.materials[2].name, "grey#2");
+  EXPECT_EQ(scene.materials[3].name, "grey#4") << "grey#3 is the file's own";
+  EXPECT_NEAR(scene.materials[kVersions].diffuse[0], 0.1 + 0.8 * (kVersions - 1) / kVersions, 1e-6);
+}
+
 }  // namespace
 }  // namespace radiant

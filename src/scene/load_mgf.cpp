@@ -17,6 +17,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 
 #include "scene/load_detail.h"
 #include "scene/mgf_detail.h"
@@ -123,7 +124,10 @@ class MgfReader {
   std::vector<std::string> objectNames_;
   std::map<std::string, uint32_t> objectIndex_;
   std::map<std::pair<std::string, uint64_t>, uint32_t> materialIndex_;
-  MaterialNames materialNames_{scene_.materials};  ///< new names checked without a scan of every name
+  /// Per MGF material name: its values when it last made a Radiant material, and that material.
+  std::unordered_map<std::string, std::pair<MgfMaterial, uint32_t>> lastMaterialOfName_;
+  std::unordered_map<std::string, int> nextSuffix_;  ///< per name: the next NAME#k to try
+  MaterialNames materialNames_{scene_.materials};    ///< new names checked without a scan of every name
   LightNames lightNames_{scene_.lights};
   uint64_t materialClock_ = 0;
   std::map<std::string, std::string> unknown_;
@@ -206,16 +210,41 @@ class MgfReader {
     auto key = std::make_pair(currentMaterial_, m.version);
     auto it = materialIndex_.find(key);
     if (it != materialIndex_.end()) return it->second;
-    std::string name = currentMaterial_.empty() ? "mgf-unnamed" : currentMaterial_;
-    // A material changed after faces used it is a new Radiant material.
-    for (int k = 2; materialNames_.find(name) >= 0; ++k)
-      name = (currentMaterial_.empty() ? "mgf-unnamed" : currentMaterial_) + "#" + std::to_string(k);
+    // Defined again with the same values (an included file that defines its
+    // own materials, included 10⁵ times): the Radiant material already made.
+    auto last = lastMaterialOfName_.find(currentMaterial_);
+    if (last != lastMaterialOfName_.end() && sameValues(last->second.first, m)) {
+      materialIndex_[key] = last->second.second;
+      return last->second.second;
+    }
+    // A material changed after faces used it is a new Radiant material,
+    // named NAME#2, NAME#3, …: the next suffix of each name is kept, since
+    // trying them all from 2 each time was quadratic in the redefinitions.
+    const std::string base = currentMaterial_.empty() ? "mgf-unnamed" : currentMaterial_;
+    std::string name = base;
+    int &suffix = nextSuffix_.try_emplace(base, 2).first->second;
+    while (materialNames_.find(name) >= 0) name = base + "#" + std::to_string(suffix++);
     Material radiant = mgfToMaterial(m, name, here(), scene_.warnings, scene_.spectral.enabled());
     checkMaterial(radiant, here());
     const auto index = static_cast<uint32_t>(scene_.materials.size());
     scene_.materials.push_back(std::move(radiant));
     materialIndex_[key] = index;
+    lastMaterialOfName_[currentMaterial_] = {m, index};
     return index;
+  }
+
+  static bool sameColour(const MgfColour &a, const MgfColour &b) {
+    if (a.x != b.x || a.y != b.y || a.spectrum.has_value() != b.spectrum.has_value()) return false;
+    return !a.spectrum ||
+           (a.spectrum->wavelengths == b.spectrum->wavelengths && a.spectrum->values == b.spectrum->values);
+  }
+
+  static bool sameValues(const MgfMaterial &a, const MgfMaterial &b) {
+    return a.sides == b.sides && a.rd == b.rd && a.td == b.td && a.ed == b.ed && a.rs == b.rs &&
+           a.rsAlpha == b.rsAlpha && a.ts == b.ts && a.tsAlpha == b.tsAlpha && a.iorReal == b.iorReal &&
+           a.iorImaginary == b.iorImaginary && sameColour(a.rdColour, b.rdColour) &&
+           sameColour(a.tdColour, b.tdColour) && sameColour(a.edColour, b.edColour) &&
+           sameColour(a.rsColour, b.rsColour) && sameColour(a.tsColour, b.tsColour);
   }
 
   uint32_t object() {
