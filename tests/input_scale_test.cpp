@@ -105,8 +105,9 @@ TEST(InputScale, AnMgfFileIncludedThousandsOfTimesMakesItsMaterialOnce) {
   // 10⁵; bench/input_scale.sh --cases includes).
   constexpr int kIncludes = 4000;
   TempDir dir("input-scale-mgf");
-  dir.write("quad.mgf", "m grey =\n c\n rd 0.5\nv a =\n p 0 0 0\nv b =\n p 1 0 0\nv c =\n p 1 0 1\n"
-                        "v d =\n p 0 0 1\nf a b c d\n");
+  dir.write("quad.mgf",
+            "m grey =\n c\n rd 0.5\nv a =\n p 0 0 0\nv b =\n p 1 0 0\nv c =\n p 1 0 1\n"
+            "v d =\n p 0 0 1\nf a b c d\n");
   std::string main;
   for (int i = 0; i < kIncludes; ++i) main += fmt::format("i quad.mgf -t {} 0 {}\n", 2 * (i % 64), 2 * (i / 64));
   const Scene scene = loadScene(dir.write("many.mgf", main));
