@@ -18,6 +18,7 @@
 #include "interrupt_handler.h"
 #include "io/output_files.h"
 #include "io/solution_file.h"
+#include "job_cost.h"
 #include "parameter_flags.h"
 #include "phase_console.h"
 #include "radiosity_options.h"
@@ -244,6 +245,15 @@ CommandRunner addRenderCommand(CLI::App &app) {
                                                   r.samplesPerPixel));
     if (!(r.timeBudgetSeconds >= 0) || !std::isfinite(r.timeBudgetSeconds))
       throw InputError(flag("--time"), "the time budget must be a non-negative number of seconds");
+    // Before any solve: what the image will hold, refused if it cannot fit.
+    RenderJobSize job;
+    job.width = r.width, job.height = r.height;
+    job.samplesPerPixel = r.samplesPerPixel;
+    job.timeBudget = r.timeBudgetSeconds > 0;
+    job.passes = scene.spectral.enabled() ? scene.spectral.passCount() : 1;
+    job.channels = o->selectiveMapPath.empty() ? 0 : 1;
+    job.outputs = int(outputs.size()) + (o->variancePath.empty() ? 0 : 1);
+    announceRenderJob(job, quiet);
 
     const DisplaySettings display = renderDisplaySettings(app, o->display, r.exposure, outputs);
 

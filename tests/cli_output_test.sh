@@ -180,4 +180,23 @@ else
   fail "render; kill -INT before the first sample: exit $status, early.png $(ls -la early.png), $(cat early.err)"
 fi
 
+# A job too large for the memory it may use is refused before anything is
+# solved or allocated (here a process limit of 1.5 GB, as a batch system sets;
+# the free memory counts the same way), naming the size; an existing file is
+# left alone. Not under ASan, which reserves terabytes of address space.
+if [ "${RADIANT_SANITIZED_RUN:-0}" != 1 ]; then
+  echo "an earlier image" > big.png
+  expect_error "an image larger than the memory allowed" \
+    "--width/--height: a 8192x8192 image needs at least 5.1 GB .* only 1.5 GB is available to this process" \
+    bash -c "ulimit -v 1500000 && exec \"$radiant\" render \"$cornell\" --width 8192 --height 8192 --spp 1 -o big.png"
+  [ "$(cat big.png)" = "an earlier image" ] && ! grep -q "solved" err.txt && pass ||
+    fail "a refused large job solved or wrote: $(cat err.txt)"
+fi
+# A large job that fits says what it holds and traces before it starts (here
+# 1.6·10¹⁰ samples; stopped after 2 s).
+timeout -s INT 2 "$radiant" render "$cornell" --method path --width 128 --height 128 --spp 1000000 -o large.png \
+  2>large.err
+grep -q "a large job: 128x128 = 16384 pixels, 1.64e+10 samples (1000000 per pixel); the film and images hold 1 MB" \
+  large.err && pass || fail "a large job's announcement: $(cat large.err)"
+
 finish
