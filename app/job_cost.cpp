@@ -48,22 +48,23 @@ void announceRenderJob(const RenderJobSize &job, bool quiet) {
   const std::optional<double> available = availableMemoryBytes();
   auto gb = [](double b) { return b >= 1e9 ? fmt::format("{:.1f} GB", b / 1e9) : fmt::format("{:.0f} MB", b / 1e6); };
   if (available && bytes > *available)
-    throw InputError(InputLocation{"--width/--height"},
-                     fmt::format("a {}x{} image needs at least {} for its film and images{}, and only {} is available "
-                                 "to this process: render a smaller image, or on a machine with more memory",
-                                 job.width, job.height, gb(bytes),
-                                 job.passes > 1 ? fmt::format(" ({} spectral passes)", job.passes) : "",
-                                 gb(*available)));
+    throw InputError(
+        InputLocation{"--width/--height"},
+        fmt::format("a {}x{} image needs at least {} for its film and images{}, and only {} is available "
+                    "to this process: render a smaller image, or on a machine with more memory",
+                    job.width, job.height, gb(bytes),
+                    job.passes > 1 ? fmt::format(" ({} spectral passes)", job.passes) : "", gb(*available)));
   constexpr double kLargePixels = 16.0 * (1 << 20), kLargeBytes = 1e9, kLargeSamples = 1e10;
   if (quiet || (pixels < kLargePixels && bytes < kLargeBytes && (job.timeBudget || samples < kLargeSamples))) return;
-  const std::string traced =
-      job.timeBudget ? "samples as the --time budget allows"
-                     : fmt::format("{:.3g} samples ({} per pixel{})", samples, job.samplesPerPixel,
-                                   job.passes > 1 ? fmt::format(", {} passes", job.passes) : "");
-  fmt::print(stderr, "radiant: a large job: {}x{} = {} pixels, {}; the film and images hold {}{}; the "
-                     "progress line gives the time left once the first tiles are done\n",
-             job.width, job.height, pixels >= 1e6 ? fmt::format("{:.1f} M", pixels / 1e6) : fmt::format("{:.0f}", pixels),
-             traced, gb(bytes),
+  const std::string traced = job.timeBudget
+                                 ? "samples as the --time budget allows"
+                                 : fmt::format("{:.3g} samples ({} per pixel{})", samples, job.samplesPerPixel,
+                                               job.passes > 1 ? fmt::format(", {} passes", job.passes) : "");
+  fmt::print(stderr,
+             "radiant: a large job: {}x{} = {} pixels, {}; the film and images hold {}{}; the "
+             "progress line gives the time left once the first tiles are done\n",
+             job.width, job.height,
+             pixels >= 1e6 ? fmt::format("{:.1f} M", pixels / 1e6) : fmt::format("{:.0f}", pixels), traced, gb(bytes),
              available ? fmt::format(" of the {} available", gb(*available)) : "");
 }
 

@@ -213,13 +213,12 @@ class MgfReader {
     // Defined again with the same values (an included file that defines its
     // own materials, included 10⁵ times): the Radiant material already made.
     auto last = lastMaterialOfName_.find(currentMaterial_);
-    if (last != lastMaterialOfName_.end() && sameValues(last->second.first, m)) {
+    if (last != lastMaterialOfName_.end() && sameMgfValues(last->second.first, m)) {
       materialIndex_[key] = last->second.second;
       return last->second.second;
     }
-    // A material changed after faces used it is a new Radiant material,
-    // named NAME#2, NAME#3, …: the next suffix of each name is kept, since
-    // trying them all from 2 each time was quadratic in the redefinitions.
+    // A material changed after faces used it is a new Radiant material, NAME#2, NAME#3, …:
+    // each name keeps its next suffix (trying all from 2 each time was quadratic).
     const std::string base = currentMaterial_.empty() ? "mgf-unnamed" : currentMaterial_;
     std::string name = base;
     int &suffix = nextSuffix_.try_emplace(base, 2).first->second;
@@ -231,20 +230,6 @@ class MgfReader {
     materialIndex_[key] = index;
     lastMaterialOfName_[currentMaterial_] = {m, index};
     return index;
-  }
-
-  static bool sameColour(const MgfColour &a, const MgfColour &b) {
-    if (a.x != b.x || a.y != b.y || a.spectrum.has_value() != b.spectrum.has_value()) return false;
-    return !a.spectrum ||
-           (a.spectrum->wavelengths == b.spectrum->wavelengths && a.spectrum->values == b.spectrum->values);
-  }
-
-  static bool sameValues(const MgfMaterial &a, const MgfMaterial &b) {
-    return a.sides == b.sides && a.rd == b.rd && a.td == b.td && a.ed == b.ed && a.rs == b.rs &&
-           a.rsAlpha == b.rsAlpha && a.ts == b.ts && a.tsAlpha == b.tsAlpha && a.iorReal == b.iorReal &&
-           a.iorImaginary == b.iorImaginary && sameColour(a.rdColour, b.rdColour) &&
-           sameColour(a.tdColour, b.tdColour) && sameColour(a.edColour, b.edColour) &&
-           sameColour(a.rsColour, b.rsColour) && sameColour(a.tsColour, b.tsColour);
   }
 
   uint32_t object() {

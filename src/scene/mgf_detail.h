@@ -47,6 +47,9 @@ struct MgfMaterial {
   uint64_t version = 0;  ///< incremented by every change, so a changed material becomes a new Radiant material
 };
 
+/// Whether two MGF materials hold the same values (their versions aside).
+bool sameMgfValues(const MgfMaterial &a, const MgfMaterial &b);
+
 /// The Radiant material for an MGF material (docs/scene-format.md#mgf-materials);
 /// simplifications are added to `warnings`, prefixed with `where`. In a
 /// `spectral` scene every value gets its colour's spectrum (a neutral cxy

@@ -15,6 +15,23 @@
 #include "scene/mgf_detail.h"
 
 namespace radiant::detail {
+
+namespace {
+
+bool sameColour(const MgfColour &a, const MgfColour &b) {
+  if (a.x != b.x || a.y != b.y || a.spectrum.has_value() != b.spectrum.has_value()) return false;
+  return !a.spectrum ||
+         (a.spectrum->wavelengths == b.spectrum->wavelengths && a.spectrum->values == b.spectrum->values);
+}
+
+}  // namespace
+
+bool sameMgfValues(const MgfMaterial &a, const MgfMaterial &b) {
+  return a.sides == b.sides && a.rd == b.rd && a.td == b.td && a.ed == b.ed && a.rs == b.rs && a.rsAlpha == b.rsAlpha &&
+         a.ts == b.ts && a.tsAlpha == b.tsAlpha && a.iorReal == b.iorReal && a.iorImaginary == b.iorImaginary &&
+         sameColour(a.rdColour, b.rdColour) && sameColour(a.tdColour, b.tdColour) &&
+         sameColour(a.edColour, b.edColour) && sameColour(a.rsColour, b.rsColour) && sameColour(a.tsColour, b.tsColour);
+}
 namespace {
 
 /// Lumens per watt of the equal-energy white at 555 nm's peak efficacy, the
