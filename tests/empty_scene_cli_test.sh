@@ -100,10 +100,14 @@ j += b" " * (-len(j) % 4)
 open("empty.glb", "wb").write(struct.pack("<III", 0x46546C67, 2, 20 + len(j)) + struct.pack("<II", len(j), 0x4E4F534A) + j)
 EOF
 printf 'glTF' >truncated.glb
-run_guarded "serve empty.glb" "$radiant" serve empty.glb --port 0 -q &&
+# A viewer folder of our own: the test needs no npm packages (a machine without the npm registry has none).
+mkdir -p viewer/node_modules/three/build
+echo "<html>viewer</html>" >viewer/index.html
+echo "export {};" >viewer/node_modules/three/build/three.module.js
+run_guarded "serve empty.glb" "$radiant" serve empty.glb --port 0 --viewer viewer -q &&
   { [ "$status" -eq 2 ] && grep -qF "empty.glb: the model has no faces" err.txt && pass ||
     { fail "serve empty.glb: status $status"; cat err.txt; }; }
-run_guarded "serve truncated.glb" "$radiant" serve truncated.glb --port 0 -q &&
+run_guarded "serve truncated.glb" "$radiant" serve truncated.glb --port 0 --viewer viewer -q &&
   { [ "$status" -eq 2 ] && grep -qF "truncated.glb:" err.txt && pass ||
     { fail "serve truncated.glb: status $status"; cat err.txt; }; }
 
