@@ -63,6 +63,26 @@ TEST(Parameters, RefuseValuesOfTheWrongTypeOrOutOfRangeAtTheirOrigin) {
   EXPECT_EQ(check({{"sources", "100"}, {"fraction", "0"}, {"ff", "point"}}), "");
 }
 
+TEST(Parameters, AnIntegerThatMustBeAMultipleIsRefusedOtherwiseWhenRead) {
+  // bump-orientations (two tilts × azimuths): an odd count was refused only
+  // after the solve; the table now says it, and reading the value refuses it.
+  ParameterSpec even{"orientations", ParameterType::Integer, "16", "", 4, 64};
+  even.multipleOf = 2;
+  ParameterSpec third = even;
+  third.multipleOf = 3;
+  EXPECT_EQ(even.describeRange(), "4…64, even");
+  EXPECT_EQ(third.describeRange(), "4…64, a multiple of 3");
+  const InputLocation where{"--orientations"};
+  EXPECT_EQ(parseParameter(even, "8", where), 8);
+  EXPECT_EQ(parseParameter(third, "9", where), 9);
+  EXPECT_NE(errorOf([&] { parseParameter(even, "9", where); }).find("--orientations: must be even, got 9"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { parseParameter(third, "8", where); }).find("must be a multiple of 3, got 8"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { parseParameter(even, "66", where); }).find("must be in 4…64, even, got 66"),
+            std::string::npos);
+}
+
 TEST(Parameters, AMisplacedParameterNamesTheMethodsThatTakeIt) {
   const ParameterTable other = {{"radius", ParameterType::Real, "1", "r"}};
   const std::string misplaced = errorOf([&] {
