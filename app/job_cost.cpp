@@ -15,9 +15,8 @@ namespace radiant {
 
 double renderImageBytes(const RenderJobSize &job) {
   const double pixels = double(job.width) * double(job.height);
-  // The film's sums per pixel (render/film.h), then each pass's image and
-  // each output's converted copy as three floats a pixel.
-  const double film = double(2 * sizeof(Bands) + sizeof(uint32_t)) + double(job.channels) * 5 * sizeof(Bands);
+  // The film's sums per pixel, then each pass's image and each output's converted copy as three floats a pixel.
+  const double film = double(Film::bytesPerPixel(size_t(job.channels)));
   const double images = 3.0 * sizeof(float) * double(job.passes + job.outputs);
   return pixels * (film + images);
 }

@@ -55,6 +55,10 @@ struct Film {
   }
 
   size_t pixelCount() const { return size_t(width) * height; }
+  /// The bytes a pixel takes: the sums, the sample count and each channel's five sums.
+  static constexpr size_t bytesPerPixel(size_t channelCount) {
+    return 2 * sizeof(Bands) + sizeof(uint32_t) + channelCount * 5 * sizeof(Bands);
+  }
   /// No samples again, keeping the memory: a film reused pass after pass
   /// (multipass) is not allocated, zeroed by the kernel page by page and
   /// freed every pass (35–50 ms a pass at 256²).
@@ -145,6 +149,10 @@ struct PairedFilm {
   }
 
   size_t pixelCount() const { return size_t(width) * height; }
+  /// The bytes a pixel takes: the sums, the sample count and each channel's five sums.
+  static constexpr size_t bytesPerPixel(size_t channelCount) {
+    return 2 * sizeof(Bands) + sizeof(uint32_t) + channelCount * 5 * sizeof(Bands);
+  }
   /// Adds another paired film's samples (same size).
   void accumulate(const PairedFilm &other) {
     for (size_t p = 0; p < pixelCount(); ++p) {

@@ -32,6 +32,15 @@ std::string ParameterSpec::describeDefault() const {
   return defaultValue;
 }
 
+namespace {
+
+/// "even", "a multiple of 3": what ParameterSpec::multipleOf asks, in words.
+std::string multipleWords(int multipleOf) {
+  return multipleOf == 2 ? "even" : "a multiple of " + std::to_string(multipleOf);
+}
+
+}  // namespace
+
 std::string ParameterSpec::describeRange() const {
   switch (type) {
     case ParameterType::Flag:
@@ -42,9 +51,7 @@ std::string ParameterSpec::describeRange() const {
     case ParameterType::Real:
       if (!choices.empty()) return "a number or " + joinNames(choices);
       {
-        const std::string multiple = multipleOf == 2  ? ", even"
-                                     : multipleOf > 2 ? ", a multiple of " + std::to_string(multipleOf)
-                                                      : "";
+        const std::string multiple = multipleOf > 1 ? ", " + multipleWords(multipleOf) : "";
         if (std::isinf(minimum) && std::isinf(maximum)) return multiple.empty() ? "" : multiple.substr(2);
         if (minimum == kPositive) return (std::isinf(maximum) ? "> 0" : "0 < x ≤ " + formatBound(maximum)) + multiple;
         if (std::isinf(maximum) || maximum >= 2147483647) return "≥ " + formatBound(minimum) + multiple;
@@ -89,10 +96,7 @@ double parseParameter(const ParameterSpec &spec, const std::string &text, const 
       if (value < spec.minimum || value > spec.maximum)
         throw InputError(origin, fmt::format("must be in {}, got {}", spec.describeRange(), text));
       if (spec.multipleOf > 1 && std::fmod(value, double(spec.multipleOf)) != 0)
-        throw InputError(origin, fmt::format("must be {}, got {}",
-                                             spec.multipleOf == 2 ? std::string("even")
-                                                                  : "a multiple of " + std::to_string(spec.multipleOf),
-                                             text));
+        throw InputError(origin, fmt::format("must be {}, got {}", multipleWords(spec.multipleOf), text));
       return value;
     }
   }
