@@ -144,9 +144,9 @@ TEST(Colour, SrgbMatricesMatchReference) {
     Vec3 unit;
     unit[j] = 1.0;
     expectNear(xyzToLinearSrgb(unit), {xyzToRgb[0][j], xyzToRgb[1][j], xyzToRgb[2][j]}, 1e-6,
-               "XYZ → sRGB column " + std::to_string(j));
+               std::string("XYZ → sRGB column ").append(std::to_string(j)));
     expectNear(linearSrgbToXyz(unit), {rgbToXyz[0][j], rgbToXyz[1][j], rgbToXyz[2][j]}, 1e-6,
-               "sRGB → XYZ column " + std::to_string(j));
+               std::string("sRGB → XYZ column ").append(std::to_string(j)));
   }
 }
 

@@ -13,7 +13,7 @@
 namespace radiant {
 namespace {
 
-constexpr int kSize = 32;       // 2 × 2 tiles of 16 pixels
+constexpr int kImageSize = 32;  // 2 × 2 tiles of 16 pixels
 constexpr double kTruth = 1.0;  // every pixel, every band
 
 /// Samples of R = truth + bias + e and P = truth + a·e + s·g (e ~ N(0, σ_R²),
@@ -28,7 +28,7 @@ struct SyntheticPixels {
     return std::sqrt(-2 * std::log(u1)) * std::cos(2 * kPi * u2);
   }
   void controls(ControlVariateImage &image, int spp) {
-    Film film(kSize, kSize);
+    Film film(kImageSize, kImageSize);
     for (size_t p = 0; p < film.pixelCount(); ++p)
       for (int k = 0; k < spp; ++k) {
         Bands r;
@@ -38,7 +38,7 @@ struct SyntheticPixels {
     image.addControls(film);
   }
   void pairs(ControlVariateImage &image, int spp) {
-    Film film(kSize, kSize, {"control"});
+    Film film(kImageSize, kImageSize, {"control"});
     for (size_t p = 0; p < film.pixelCount(); ++p)
       for (int k = 0; k < spp; ++k) {
         Bands r, unbiased;
@@ -68,10 +68,10 @@ double meanOf(const Image &image) {
 
 // Without pairs nothing corrects R's bias: the image is R̄.
 TEST(ControlVariate, WithoutPairsTheImageIsTheControlMean) {
-  ControlVariateImage image(kSize, kSize);
+  ControlVariateImage image(kImageSize, kImageSize);
   SyntheticPixels pixels{0.1, 0.3, 1, 0.5, Pcg32(1, 2)};
   pixels.controls(image, 16);
-  EXPECT_NEAR(meanOf(image.mean()), kTruth + 0.1, 4 * 0.3 / std::sqrt(16.0 * 3 * kSize * kSize));
+  EXPECT_NEAR(meanOf(image.mean()), kTruth + 0.1, 4 * 0.3 / std::sqrt(16.0 * 3 * kImageSize * kImageSize));
   EXPECT_EQ(image.controlSamples(), 16);
   EXPECT_EQ(image.pairedSamples(), 0);
 }
@@ -83,7 +83,7 @@ TEST(ControlVariate, WithoutPairsTheImageIsTheControlMean) {
 // over 3072 values has a standard deviation of √(σ_R²/72 + σ_D²/8)/√3072 = 0.0033.
 TEST(ControlVariate, TheImageIsUnbiasedWhateverTheControlsBias) {
   const double bias = 0.1, sigmaD = 0.5;
-  ControlVariateImage image(kSize, kSize);
+  ControlVariateImage image(kImageSize, kImageSize);
   SyntheticPixels pixels{bias, 0.3, 1, sigmaD, Pcg32(3, 4)};
   pixels.controls(image, 64);
   pixels.pairs(image, 8);
@@ -114,7 +114,7 @@ TEST(ControlVariate, TheForecastIsTheExpectedError) {
   double predictedNow = 0, measuredNow = 0, predictedLater = 0, measuredLater = 0;
   const int runs = 12;
   for (int run = 0; run < runs; ++run) {
-    ControlVariateImage image(kSize, kSize);
+    ControlVariateImage image(kImageSize, kImageSize);
     SyntheticPixels pixels{0.05, 0.4, 0.5, 0.1, Pcg32(100 + run, 7)};
     pixels.controls(image, 16);
     pixels.pairs(image, 8);

@@ -18,6 +18,7 @@
 #include "raytrace/ray_tracer.h"
 #include "render/emitter_coverage.h"
 #include "scene/load_scene.h"
+#include "temp_dir.h"
 #include "util/error.h"
 
 namespace radiant {
@@ -43,10 +44,6 @@ double encodeGrey(double luminanceCdM2, const DisplaySettings &settings) {
 
 double mean8Bit(const std::vector<uint16_t> &values) {
   return std::accumulate(values.begin(), values.end(), 0.0) / double(values.size());
-}
-
-std::string temporaryPath(const std::string &name) {
-  return (std::filesystem::temp_directory_path() / ("radiant_display_test_" + name)).string();
 }
 
 // ---- Gamma, sRGB (IEC 61966-2-1), quantisation, gamut ----
@@ -364,7 +361,8 @@ TEST(ImageFiles, ExrKeepsEmitterChannelAndQuantityPlainExrStillReads) {
   for (size_t i = 0; i < image.rgb.size(); ++i) image.rgb[i] = 0.25f * float(i);
   image.emitterFraction = {0, 0.25f, 1, 0, 0.0625f, 0};
   image.quantity = "radiance";
-  const std::string path = temporaryPath("coverage.exr");
+  const test::TempDir scratch("display");
+  const std::string path = scratch.file("coverage.exr");
   writeImage(image, path);
   Image back = readImage(path);
   EXPECT_EQ(back.rgb, image.rgb);
@@ -375,12 +373,12 @@ TEST(ImageFiles, ExrKeepsEmitterChannelAndQuantityPlainExrStillReads) {
   Image plainBack = readImage(path);
   EXPECT_TRUE(plainBack.emitterFraction.empty());
   EXPECT_TRUE(plainBack.quantity.empty());
-  std::filesystem::remove(path);
 }
 
 TEST(ImageFiles, SixteenBitPngRoundTrips) {
   const std::vector<uint16_t> values = {0, 1, 255, 256, 32768, 65535};
-  const std::string path = temporaryPath("sixteen.png");
+  const test::TempDir scratch("display");
+  const std::string path = scratch.file("sixteen.png");
   writePng16(values, 2, 1, path);
   int w = 0, h = 0, channels = 0;
   ASSERT_TRUE(stbi_is_16_bit(path.c_str()));
@@ -391,7 +389,6 @@ TEST(ImageFiles, SixteenBitPngRoundTrips) {
   EXPECT_EQ(channels, 3);
   for (size_t i = 0; i < values.size(); ++i) EXPECT_EQ(read[i], values[i]);
   stbi_image_free(read);
-  std::filesystem::remove(path);
 }
 
 // ---- False colour ----

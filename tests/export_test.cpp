@@ -15,12 +15,14 @@
 #include "export/baked_mesh.h"
 #include "export/gltf_writer.h"
 #include "export/ply_writer.h"
+#include "identity_display.h"
 #include "radiosity/solution_query.h"
 #include "radiosity/solver.h"
 #include "raytrace/surface_detail.h"
 #include "refined_mesh.h"
 #include "scene/load_scene.h"
 #include "scene/spectral_scene.h"
+#include "temp_dir.h"
 #include "test_scenes.h"
 
 namespace radiant {
@@ -38,11 +40,6 @@ Solution solveWith(const Scene &scene, const std::string &solver, double meshSiz
   return s;
 }
 
-/// linear, exposure 0: display value = radiance.
-void identityDisplay(const float radiance[3], double display[3]) {
-  for (int c = 0; c < 3; ++c) display[c] = std::clamp(double(radiance[c]), 0.0, 1.0);
-}
-
 double triangleArea(const BakedPrimitive &p, size_t t) {
   Vec3 v[3];
   for (int k = 0; k < 3; ++k) {
@@ -52,17 +49,13 @@ double triangleArea(const BakedPrimitive &p, size_t t) {
   return 0.5 * length(cross(v[1] - v[0], v[2] - v[0]));
 }
 
-std::string temporaryPath(const std::string &name) {
-  return (std::filesystem::temp_directory_path() / ("radiant-export-test-" + name)).string();
-}
-
 // The furnace (every wall emits L_e = 1 and reflects ρ = ½): L = L_e/(1 − ρ) = 2
 // W·sr⁻¹·m⁻² at every vertex, and H = (B − E)/ρ = π·2 W·m⁻²; Gauss–Seidel to 1e-9
 // leaves an error of that order, so 1e-6 is the round-off of the float attributes.
 TEST(Export, TheFurnaceBakesItsClosedFormAtEveryVertex) {
   const Scene scene = test::furnace(1.0, 0.5);
   const Solution solution = solveWith(scene, "gauss-seidel", 0.25, 1e-9);
-  const BakedMesh baked = bakeSolution(scene, solution, identityDisplay);
+  const BakedMesh baked = bakeSolution(scene, solution, test::identityDisplay);
   ASSERT_EQ(baked.primitives.size(), 1u);
   const BakedPrimitive &p = baked.primitives[0];
   ASSERT_GT(p.vertexCount(), 0u);
@@ -81,7 +74,7 @@ TEST(Export, TheFurnaceBakesItsClosedFormAtEveryVertex) {
 TEST(Export, TheTrianglesCoverTheElementsAndCarryTheNodesLight) {
   const Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
   const Solution solution = solveWith(scene, "gauss-seidel", 0.1, 1e-4);
-  const BakedMesh baked = bakeSolution(scene, solution, identityDisplay);
+  const BakedMesh baked = bakeSolution(scene, solution, test::identityDisplay);
   std::vector<double> elementArea(scene.materials.size(), 0.0), bakedArea(scene.materials.size(), 0.0);
   for (const Element &e : solution.mesh.elements) elementArea[solution.mesh.patches[e.patch].material] += e.area;
   size_t triangles = 0;
@@ -167,7 +160,7 @@ TEST(Export, RefinedMeshesHaveNoCracksAtTheirTVertices) {
   Solution solution = initialSolution(scene, std::move(mesh));
   solution.radiosity = solution.emission;
   solution.updateNodesAndErrors();
-  const BakedMesh baked = bakeSolution(scene, solution, identityDisplay);
+  const BakedMesh baked = bakeSolution(scene, solution, test::identityDisplay);
   size_t openEdges = 0;
   for (const BakedPrimitive &p : baked.primitives) {
     // A vertex by position and normal: the floor's edge is not the back wall's.
@@ -201,7 +194,7 @@ TEST(Export, RefinedMeshesHaveNoCracksAtTheirTVertices) {
 TEST(Export, TexturedSurfacesKeepTheirTextureCoordinates) {
   const Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-textured/scene.json");
   const Solution solution = solveWith(scene, "gauss-seidel", 0.1, 1e-3);
-  const BakedMesh baked = bakeSolution(scene, solution, identityDisplay);
+  const BakedMesh baked = bakeSolution(scene, solution, test::identityDisplay);
   RayTracer tracer(scene);
   size_t textured = 0;
   for (const BakedPrimitive &p : baked.primitives) {
@@ -251,12 +244,12 @@ const float *attribute(const tinygltf::Model &model, const tinygltf::Primitive &
 TEST(Export, TheGltfFileReadsBackAsBaked) {
   const Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
   const Solution solution = solveWith(scene, "gauss-seidel", 0.15, 1e-3);
-  const BakedMesh baked = bakeSolution(scene, solution, identityDisplay);
+  const BakedMesh baked = bakeSolution(scene, solution, test::identityDisplay);
   for (const std::string extension : {".glb", ".gltf"}) {
-    const std::string path = temporaryPath("box" + extension);
+    const test::TempDir scratch("export");
+    const std::string path = scratch.file("box" + extension);
     writeGltf(scene, baked, ExportProvenance{"gauss-seidel", "linear", {{"exposure", 0.0}}, "linear"}, path);
     const tinygltf::Model model = readGltf(path);
-    std::filesystem::remove(path);
     ASSERT_EQ(model.meshes.size(), 1u);
     ASSERT_EQ(model.meshes[0].primitives.size(), baked.primitives.size());
     for (size_t i = 0; i < baked.primitives.size(); ++i) {
@@ -308,12 +301,12 @@ TEST(Export, TheGltfFileReadsBackAsBaked) {
 TEST(Export, ThePlyFileHoldsWhatItsHeaderSays) {
   const Scene scene = test::furnace(1.0, 0.5);
   const Solution solution = solveWith(scene, "gauss-seidel", 0.5, 1e-6);
-  const BakedMesh baked = bakeSolution(scene, solution, identityDisplay);
-  const std::string path = temporaryPath("furnace.ply");
-  writePly(baked, identityDisplay, path);
+  const BakedMesh baked = bakeSolution(scene, solution, test::identityDisplay);
+  const test::TempDir scratch("export");
+  const std::string path = scratch.file("furnace.ply");
+  writePly(baked, test::identityDisplay, path);
   std::ifstream in(path, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::filesystem::remove(path);
   const size_t headerEnd = bytes.find("end_header\n");
   ASSERT_NE(headerEnd, std::string::npos);
   const size_t vertices = baked.primitives[0].vertexCount(), triangles = baked.primitives[0].triangleCount();

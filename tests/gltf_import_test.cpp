@@ -16,7 +16,9 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 
+#include "input_errors.h"
 #include "scene/load_scene.h"
+#include "temp_dir.h"
 #include "util/error.h"
 
 namespace radiant {
@@ -24,29 +26,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;
-
-class TempDir {
- public:
-  TempDir() {
-    static std::atomic<int> counter{0};
-    path_ =
-        fs::temp_directory_path() / ("radiant-gltf-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string write(const std::string &name, const std::string &bytes) const {
-    fs::path file = path_ / name;
-    std::ofstream(file, std::ios::binary) << bytes;
-    return file.string();
-  }
-  std::string file(const std::string &name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
 
 std::string base64(const std::vector<unsigned char> &bytes) {
   static const char *kDigits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -145,15 +124,6 @@ Gltf oneTriangle(Json primitiveExtras = Json::object()) {
   return g;
 }
 
-std::string loadError(const std::string &path) {
-  try {
-    loadScene(path);
-  } catch (const InputError &e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
 void expectNear(const Vec3 &a, const Vec3 &b, double tolerance = 1e-9) {
   EXPECT_NEAR(a.x, b.x, tolerance) << "y " << a.y << " z " << a.z;
   EXPECT_NEAR(a.y, b.y, tolerance);
@@ -179,7 +149,7 @@ TEST(GltfImport, NestedTrsAndMatrixTransformsPlaceEachInstance) {
   // The same mesh again, by a column-major matrix translating by (10, 0, 0).
   const int moved = g.node({{"mesh", 0}, {"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 10, 0, 0, 1}}});
   g.scene({parent, moved});
-  TempDir dir;
+  test::TempDir dir("gltf");
   Scene scene = loadScene(dir.write("model.gltf", g.gltf()));
   ASSERT_EQ(scene.objects.size(), 2u);
   EXPECT_EQ(scene.objects[0].name, "model/turned");
@@ -202,7 +172,7 @@ TEST(GltfImport, MirroringNodeKeepsTheFrontAndNormalsTransform) {
   const int uv = g.accessor(std::vector<float>{0, 0, 1, 0.25f, 0, 1}, "VEC2", 5126);
   g.mesh({{"attributes", {{"POSITION", p}, {"NORMAL", n}, {"TEXCOORD_0", uv}}}});
   g.scene({g.node({{"mesh", 0}, {"scale", {-1, 1, 1}}}), g.node({{"mesh", 0}, {"translation", {0, 0, 5}}})});
-  TempDir dir;
+  test::TempDir dir("gltf");
   Scene scene = loadScene(dir.write("m.gltf", g.gltf()));
   ASSERT_EQ(scene.faces.size(), 2u);
   for (const Face &f : scene.faces) {
@@ -233,7 +203,7 @@ TEST(GltfImport, StripsFansAndIndexTypesMakeTheSameSquare) {
   g.mesh({{"attributes", {{"POSITION", p}}}, {"indices", list}});
   g.scene({g.node({{"mesh", 0}}), g.node({{"mesh", 1}, {"translation", {0, 0, 1}}}),
            g.node({{"mesh", 2}, {"translation", {0, 0, 2}}})});
-  TempDir dir;
+  test::TempDir dir("gltf");
   Scene scene = loadScene(dir.write("m.gltf", g.gltf()));
   ASSERT_EQ(scene.faces.size(), 6u);
   double area[3] = {0, 0, 0};
@@ -251,7 +221,7 @@ TEST(GltfImport, QuantisedPositionsAreRead) {
   g.doc["accessors"][size_t(p)]["normalized"] = true;
   g.mesh({{"attributes", {{"POSITION", p}}}});
   g.scene({g.node({{"mesh", 0}, {"scale", {2, 2, 2}}})});
-  TempDir dir;
+  test::TempDir dir("gltf");
   Scene scene = loadScene(dir.write("q.gltf", g.gltf()));
   ASSERT_EQ(scene.faces.size(), 1u);
   expectNear(scene.positions[scene.faces[0].vertices[1]], {2, 0, 0});
@@ -261,14 +231,14 @@ TEST(GltfImport, DegenerateTrianglesAreDropped) {
   Gltf g;
   g.mesh({{"attributes", {{"POSITION", g.positions({0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 2, 0, 0})}}}});
   g.scene({g.node({{"mesh", 0}})});
-  TempDir dir;
+  test::TempDir dir("gltf");
   Scene scene = loadScene(dir.write("d.gltf", g.gltf()));
   EXPECT_EQ(scene.faces.size(), 1u);
   EXPECT_EQ(scene.droppedDegenerateFaces, 1u);
 }
 
 /// One triangle per material, materials given as JSON.
-Scene loadMaterials(const TempDir &dir, const std::vector<Json> &materials) {
+Scene loadMaterials(const test::TempDir &dir, const std::vector<Json> &materials) {
   Gltf g;
   const int p = g.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
   std::vector<int> roots;
@@ -286,7 +256,7 @@ const Material &materialOf(const Scene &scene, uint32_t object) {
 }
 
 TEST(GltfImport, MaterialsFromMetallicRoughness) {
-  TempDir dir;
+  test::TempDir dir("gltf");
   Scene scene = loadMaterials(
       dir,
       {
@@ -320,7 +290,7 @@ TEST(GltfImport, MaterialsFromMetallicRoughness) {
 }
 
 TEST(GltfImport, RadiantExtrasWinOverThePbrApproximation) {
-  TempDir dir;
+  test::TempDir dir("gltf");
   Scene scene = loadMaterials(dir, {{{"name", "plastic"},
                                      {"pbrMetallicRoughness", {{"baseColorFactor", {0.1, 0.1, 0.1, 1}}}},
                                      {"emissiveFactor", {1, 1, 1}},
@@ -351,7 +321,7 @@ std::vector<unsigned char> pngBytes(int width, int height, const std::vector<uns
 
 /// A textured triangle: base colour factor 0.5 times a 2 × 1 image (left 255
 /// white, right 0 black), its image stored as `how`: "bufferView", "data" or "file".
-Gltf texturedTriangle(const TempDir &dir, const std::string &how, int wrap) {
+Gltf texturedTriangle(const test::TempDir &dir, const std::string &how, int wrap) {
   Gltf g;
   const int p = g.positions({0, 0, 0, 1, 0, 0, 0, 1, 0});
   const int uv = g.accessor(std::vector<float>{0, 0, 1, 0, 0, 1}, "VEC2", 5126);
@@ -374,7 +344,7 @@ Gltf texturedTriangle(const TempDir &dir, const std::string &how, int wrap) {
 }
 
 TEST(GltfImport, BaseColourTexturesEmbeddedOrBesideTheFile) {
-  TempDir dir;
+  test::TempDir dir("gltf");
   for (const char *how : {"bufferView", "data", "file"}) {
     SCOPED_TRACE(how);
     const Gltf g = texturedTriangle(dir, how, 33071);
@@ -411,7 +381,7 @@ TEST(GltfImport, TheFirstPerspectiveCameraIsTheView) {
   const int camera = g.node({{"camera", 0}, {"rotation", {0, s, 0, s}}, {"translation", {0, 1, 5}}});
   const int other = g.node({{"camera", 1}});
   g.scene({other, mesh, camera});
-  TempDir dir;
+  test::TempDir dir("gltf");
   Scene scene = loadScene(dir.write("c.glb", g.glb()));
   expectNear(scene.camera.eye, {0, 1, 5});
   expectNear(normalize(scene.camera.target - scene.camera.eye), {-1, 0, 0});
@@ -424,7 +394,7 @@ TEST(GltfImport, TheFirstPerspectiveCameraIsTheView) {
 TEST(GltfImport, WithoutACameraTheBoundsAreFramed) {
   Gltf g = oneTriangle();
   g.scene({g.node({{"mesh", 0}})});
-  TempDir dir;
+  test::TempDir dir("gltf");
   Scene scene = loadScene(dir.write("n.gltf", g.gltf()));
   EXPECT_NEAR(scene.camera.target.x, 0.5, 1e-12);
   EXPECT_GT(scene.camera.eye.z, 1.0);
@@ -436,7 +406,7 @@ TEST(GltfImport, GlbAndGltfGiveTheSameScene) {
   g.doc["materials"].push_back(
       {{"pbrMetallicRoughness", {{"baseColorFactor", {0.3, 0.4, 0.5, 1}}}}, {"emissiveFactor", {1, 1, 1}}});
   g.scene({g.node({{"mesh", 0}, {"translation", {1, 2, 3}}})});
-  TempDir dir;
+  test::TempDir dir("gltf");
   Scene text = loadScene(dir.write("same.gltf", g.gltf()));
   Scene binary = loadScene(dir.write("same.glb", g.glb()));
   ASSERT_EQ(text.positions.size(), binary.positions.size());
@@ -453,7 +423,7 @@ TEST(GltfImport, AJsonSceneObjectPlacesTheModelAndOverridesMaterials) {
   g.doc["materials"].push_back(
       {{"name", "paint"}, {"pbrMetallicRoughness", {{"baseColorFactor", {0.1, 0.2, 0.3, 1}}}}});
   g.scene({g.node({{"name", "a"}, {"mesh", 0}}), g.node({{"name", "b"}, {"mesh", 1}, {"translation", {0, 0, 1}}})});
-  TempDir dir;
+  test::TempDir dir("gltf");
   dir.write("model.glb", g.glb());
   const std::string scenePath = dir.write("scene.json", R"({
     "units": "cm",
@@ -502,7 +472,7 @@ TEST(GltfImportErrors, EachRefusalNamesTheFileAndJsonPath) {
       {"no such material", [](Gltf &g) { g.doc["meshes"][0]["primitives"][0]["material"] = 3; },
        "/meshes/0/primitives/0/material", "materials 3 does not exist"},
   };
-  TempDir dir;
+  test::TempDir dir("gltf");
   for (const Refusal &refusal : refusals) {
     SCOPED_TRACE(refusal.what);
     Gltf g = oneTriangle();
@@ -525,27 +495,28 @@ TEST(GltfImportErrors, EachRefusalNamesTheFileAndJsonPath) {
 TEST(GltfImportErrors, GltfOneIsNamedAsSuchWithTheFile) {
   // glTF 1.0 (CesiumMilkTruck) writes its version as the number 1 or as "1.0"; it was refused with
   // "at /asset/version: expected a string, got the number 1" (issue 38).
-  TempDir dir;
+  test::TempDir dir("gltf");
   for (const std::string version : {"1", "1.0", "\"1.0\"", "\"1.1\""}) {
     const std::string path = dir.write("truck.gltf", R"({"asset": {"version": )" + version + R"(}, "scenes": []})");
-    const std::string error = loadError(path);
+    const std::string error = test::loadErrorOf(path);
     EXPECT_NE(error.find(path + ": at /asset/version: '" + path + "' is a glTF 1.0 file (" + version +
                          "), which Radiant does not read: it reads glTF 2.0"),
               std::string::npos)
         << error;
   }
   const std::string three = dir.write("three.gltf", R"({"asset": {"version": "3.0"}})");
-  EXPECT_NE(loadError(three).find("is glTF version 3.0, which Radiant does not read: it reads glTF 2.0"),
+  EXPECT_NE(test::loadErrorOf(three).find("is glTF version 3.0, which Radiant does not read: it reads glTF 2.0"),
             std::string::npos);
   std::string glb("glTF\x01\0\0\0\x14\0\0\0\0\0\0\0JSON", 20);
   const std::string binary = dir.write("old.glb", glb);
-  EXPECT_NE(loadError(binary).find("is a GLB of version 1 (glTF 1.0), which Radiant does not read"), std::string::npos)
-      << loadError(binary);
+  EXPECT_NE(test::loadErrorOf(binary).find("is a GLB of version 1 (glTF 1.0), which Radiant does not read"),
+            std::string::npos)
+      << test::loadErrorOf(binary);
 }
 
 TEST(GltfImportErrors, MissingFilesAreNamedWhereTheyAreReferenced) {
-  TempDir dir;
-  EXPECT_NE(loadError(dir.file("absent.glb")).find("cannot open glTF file"), std::string::npos);
+  test::TempDir dir("gltf");
+  EXPECT_NE(test::loadErrorOf(dir.file("absent.glb")).find("cannot open glTF file"), std::string::npos);
   const std::string scene = dir.write("scene.json", R"({"objects": [{"type": "gltf", "file": "absent.gltf"}]})");
   try {
     loadScene(scene);
@@ -559,32 +530,32 @@ TEST(GltfImportErrors, MissingFilesAreNamedWhereTheyAreReferenced) {
   g.scene({g.node({{"mesh", 0}})});
   Json doc = nlohmann::ordered_json::parse(g.gltf());
   doc["buffers"][0]["uri"] = "missing.bin";
-  const std::string error = loadError(dir.write("nobin.gltf", doc.dump()));
+  const std::string error = test::loadErrorOf(dir.write("nobin.gltf", doc.dump()));
   EXPECT_NE(error.find("nobin.gltf"), std::string::npos) << error;
   EXPECT_NE(error.find("missing.bin"), std::string::npos) << error;
   // An image file that is not there, at the image's uri.
   Json textured = nlohmann::ordered_json::parse(texturedTriangle(dir, "data", 10497).gltf());
   textured["images"][0]["uri"] = "gone.png";
-  const std::string imageError = loadError(dir.write("noimage.gltf", textured.dump()));
+  const std::string imageError = test::loadErrorOf(dir.write("noimage.gltf", textured.dump()));
   EXPECT_NE(imageError.find("noimage.gltf: at /images/0/uri: cannot open image"), std::string::npos) << imageError;
 }
 
 TEST(GltfImportErrors, LyingSizesAreRefusedBeforeAllocating) {
-  TempDir dir;
+  test::TempDir dir("gltf");
   // A GLB whose header claims more bytes than the file has.
   Gltf g = oneTriangle();
   g.scene({g.node({{"mesh", 0}})});
   std::string glb = g.glb();
   const uint32_t huge = 0x7FFFFFFF;
   std::memcpy(glb.data() + 8, &huge, 4);
-  EXPECT_NE(loadError(dir.write("long.glb", glb)).find("the GLB header says"), std::string::npos);
+  EXPECT_NE(test::loadErrorOf(dir.write("long.glb", glb)).find("the GLB header says"), std::string::npos);
   // A mesh whose accessor claims 2^40 vertices, placed by three nodes: refused by the count, not by memory.
   Gltf many = oneTriangle();
   many.doc["accessors"][0]["count"] = uint64_t(1) << 40;
   std::vector<int> roots;
   for (int i = 0; i < 3; ++i) roots.push_back(many.node({{"mesh", 0}}));
   many.scene(roots);
-  const std::string error = loadError(dir.write("many.gltf", many.gltf()));
+  const std::string error = test::loadErrorOf(dir.write("many.gltf", many.gltf()));
   EXPECT_NE(error.find("Radiant reads at most"), std::string::npos) << error;
 }
 

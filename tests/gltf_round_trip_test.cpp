@@ -8,6 +8,7 @@
 
 #include "export/baked_mesh.h"
 #include "export/gltf_writer.h"
+#include "identity_display.h"
 #include "path_image_comparison.h"
 #include "radiosity/solver.h"
 #include "raytrace/ray_tracer.h"
@@ -16,10 +17,6 @@
 
 namespace radiant {
 namespace {
-
-void identityDisplay(const float radiance[3], double display[3]) {
-  for (int c = 0; c < 3; ++c) display[c] = std::clamp(double(radiance[c]), 0.0, 1.0);
-}
 
 std::map<std::string, double> areaByMaterial(const Scene &scene) {
   std::map<std::string, double> area;
@@ -39,7 +36,7 @@ TEST(GltfRoundTrip, AnExportedSceneReadsBackAsTheSameScene) {
     options.solver = "gauss-seidel";
     options.tolerance = 1e-2;
     solveRadiosity(tracer, solution, options);
-    const BakedMesh baked = bakeSolution(scene, solution, identityDisplay);
+    const BakedMesh baked = bakeSolution(scene, solution, test::identityDisplay);
     for (const std::string extension : {".glb", ".gltf"}) {
       SCOPED_TRACE(extension);
       const std::string path =
@@ -92,7 +89,8 @@ TEST(GltfRoundTrip, TheExportsPathTracedImageIsTheOriginals) {
   ASSERT_FALSE(mesh.tVertices.empty());
   Solution solution = initialSolution(scene, std::move(mesh));
   const std::string path = (std::filesystem::temp_directory_path() / "radiant-round-trip-path.glb").string();
-  writeGltf(scene, bakeSolution(scene, solution, identityDisplay), ExportProvenance{"none", "linear", {}, ""}, path);
+  writeGltf(scene, bakeSolution(scene, solution, test::identityDisplay), ExportProvenance{"none", "linear", {}, ""},
+            path);
   const Scene back = loadScene(path);
   std::filesystem::remove(path);
   EXPECT_TRUE(back.warnings.empty()) << back.warnings.front();

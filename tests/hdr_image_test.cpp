@@ -8,14 +8,11 @@
 #include <fstream>
 
 #include "io/image.h"
+#include "temp_dir.h"
 #include "util/error.h"
 
 namespace radiant {
 namespace {
-
-std::string temporaryPath(const std::string &name) {
-  return (std::filesystem::temp_directory_path() / name).string();
-}
 
 TEST(HdrImage, RoundTripWithinRgbePrecision) {
   Image image(7, 5);
@@ -29,7 +26,8 @@ TEST(HdrImage, RoundTripWithinRgbePrecision) {
     }
   image.pixel(0, 0)[0] = -1.0f;  // no sign in RGBE: written as 0
   image.pixel(1, 0)[1] = NAN;
-  const std::string path = temporaryPath("radiant_hdr_round_trip.hdr");
+  const test::TempDir scratch("hdr");
+  const std::string path = scratch.file("radiant_hdr_round_trip.hdr");
   writeImage(image, path);
   {
     std::ifstream in(path, std::ios::binary);
@@ -59,14 +57,13 @@ TEST(HdrImage, RoundTripWithinRgbePrecision) {
     }
   EXPECT_EQ(back.pixel(0, 0)[0], 0.0f);
   EXPECT_EQ(back.pixel(1, 0)[1], 0.0f);
-  std::filesystem::remove(path);
 }
 
 TEST(HdrImage, AnotherFileCalledHdrIsAnInputError) {
-  const std::string path = temporaryPath("radiant_not_an_hdr.hdr");
+  const test::TempDir scratch("hdr");
+  const std::string path = scratch.file("radiant_not_an_hdr.hdr");
   std::ofstream(path) << "P3\n1 1\n255\n0 0 0\n";
   EXPECT_THROW(readImage(path), InputError);
-  std::filesystem::remove(path);
   EXPECT_TRUE(isLinearImageExtension("x.hdr"));
 }
 
@@ -76,7 +73,8 @@ TEST(HdrImage, AnotherFileCalledHdrIsAnInputError) {
 TEST(HdrImage, AFileShorterThanItsResolutionSaysIsRefusedUnread) {
   const std::string path =
       std::string(RADIANT_SOURCE_DIR) + "/tests/fuzz-regressions/hdr/timeout-hdr-claims-3x7777772-pixels-in-105-bytes";
-  const std::string copy = temporaryPath("radiant_truncated.hdr");
+  const test::TempDir scratch("hdr");
+  const std::string copy = scratch.file("radiant_truncated.hdr");
   std::filesystem::copy_file(path, copy, std::filesystem::copy_options::overwrite_existing);
   try {
     readImage(copy);
@@ -84,7 +82,6 @@ TEST(HdrImage, AFileShorterThanItsResolutionSaysIsRefusedUnread) {
   } catch (const InputError &e) {
     EXPECT_NE(std::string(e.what()).find("truncated: the header says 7777772x3 pixels"), std::string::npos) << e.what();
   }
-  std::filesystem::remove(copy);
 }
 
 }  // namespace

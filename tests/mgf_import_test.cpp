@@ -18,6 +18,7 @@
 #include "path_image_comparison.h"
 #include "scene/load_scene.h"
 #include "scene/mgf_detail.h"
+#include "temp_dir.h"
 #include "util/error.h"
 
 namespace radiant {
@@ -25,29 +26,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class TempDir {
- public:
-  TempDir() {
-    static std::atomic<int> counter{0};
-    path_ = fs::temp_directory_path() / ("radiant-mgf-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string write(const std::string &name, const std::string &text) const {
-    fs::path file = path_ / name;
-    std::ofstream(file, std::ios::binary) << text;
-    return file.string();
-  }
-
- private:
-  fs::path path_;
-};
-
 Scene loadMgfText(const std::string &text) {
-  TempDir dir;
+  test::TempDir dir("mgf");
   return loadScene(dir.write("scene.mgf", text));
 }
 
@@ -59,7 +39,7 @@ double totalArea(const Scene &scene) {
 
 /// The loader's message for `text`, or "" when it loads.
 std::string errorOf(const std::string &text, const std::string &name = "bad.mgf") {
-  TempDir dir;
+  test::TempDir dir("mgf");
   try {
     loadScene(dir.write(name, text));
   } catch (const InputError &e) {
@@ -179,7 +159,7 @@ TEST(MgfImport, TransformsAndArrays) {
 }
 
 TEST(MgfImport, IncludesObjectsAndTheirNames) {
-  TempDir dir;
+  test::TempDir dir("mgf");
   dir.write("part.mgf", std::string(kSquare) + "o leaf\nf a b c d\no\n");
   const std::string path = dir.write("scene.mgf", "o tree\ni part.mgf -t 0 0 1\ni part.mgf -a 2 -t 0 0 2\no\n");
   const Scene scene = loadScene(path);
@@ -297,7 +277,7 @@ TEST(MgfImport, UnknownEntitiesAreWarnedAndIgnored) {
 /// nadir along the transformed −z and C = 0 along the transformed +x; a
 /// missing file is an error at the entity's line.
 TEST(MgfImport, IesEntityPlacesALuminaire) {
-  TempDir dir;
+  test::TempDir dir("mgf");
   const std::string ies = RADIANT_SOURCE_DIR "/tests/photometry/lambertian_downlight.ies";
   const std::string path = dir.write(
       "scene.mgf", std::string("m white =\n rd 0.5\n") + kSquare + "f a b c d\nies " + ies + " -m 2 -rx 90 -t 0 0 3\n");
@@ -322,7 +302,7 @@ TEST(MgfImport, IesEntityPlacesALuminaire) {
 }
 
 TEST(MgfImport, JsonSceneEntry) {
-  TempDir dir;
+  test::TempDir dir("mgf");
   dir.write("part.mgf", std::string("m w =\n rd 0.5\n") + kSquare + "f a b c d\n");
   const std::string path = dir.write(
       "scene.json",
@@ -338,7 +318,7 @@ TEST(MgfImport, JsonSceneEntry) {
 /// becomes the material's spectrum; a neutral cxy colour a constant one; any
 /// other cxy colour is refused at its file:line.
 TEST(MgfImport, SpectralSceneGetsTheColoursSpectra) {
-  TempDir dir;
+  test::TempDir dir("mgf");
   dir.write("part.mgf", std::string("m warm =\n c\n  cspec 400 700 0.2 0.4 0.8\n rd 0.5\nm grey =\n c\n rd 0.4\n") +
                             kSquare + "m warm\nf a b c d\nm grey\nxf -t 0 0 1\nf a b c d\nxf\n");
   dir.write("bad.mgf", std::string("m green =\n c\n  cxy 0.3 0.6\n rd 0.5\n") + kSquare + "f a b c d\n");
@@ -388,7 +368,7 @@ TEST(MgfImport, RealMgfSceneLoadsAndRenders) {
 /// and path-traced images equal within their noise (4.5σ per block, 4σ overall,
 /// as GltfRoundTrip does).
 TEST(MgfImport, SceneAsMgfAndAsObjRenderTheSame) {
-  TempDir dir;
+  test::TempDir dir("mgf");
   const double ke = 3000 / (683 * kPi);
   std::ostringstream mtl;
   mtl << std::setprecision(17) << "newmtl white\nKd 0.6 0.6 0.6\nnewmtl lamp\nKd 0 0 0\nKe " << ke << " " << ke << " "

@@ -8,6 +8,7 @@
 #include <map>
 
 #include "display/tone_operator.h"
+#include "input_errors.h"
 #include "radiosity/solver.h"
 #include "render/registry.h"
 
@@ -30,15 +31,6 @@ ParameterValues given(std::initializer_list<std::pair<std::string, std::string>>
   return v;
 }
 
-std::string errorOf(const std::function<void()> &f) {
-  try {
-    f();
-  } catch (const InputError &e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(Parameters, ReadTheGivenValueOrTheTablesDefault) {
   const Parameters p(table(), given({{"sources", "7"}, {"selective", "true"}}));
   EXPECT_EQ(p.integer("sources"), 7);
@@ -52,7 +44,7 @@ TEST(Parameters, ReadTheGivenValueOrTheTablesDefault) {
 
 TEST(Parameters, RefuseValuesOfTheWrongTypeOrOutOfRangeAtTheirOrigin) {
   auto check = [](std::initializer_list<std::pair<std::string, std::string>> values) {
-    return errorOf([&] { checkParameters(table(), given(values), "method m", {}); });
+    return test::inputErrorOf([&] { checkParameters(table(), given(values), "method m", {}); });
   };
   EXPECT_NE(check({{"sources", "2.5"}}).find("--sources: expected an integer"), std::string::npos);
   EXPECT_NE(check({{"sources", "101"}}).find("--sources: must be in 0…100"), std::string::npos);
@@ -75,21 +67,21 @@ TEST(Parameters, AnIntegerThatMustBeAMultipleIsRefusedOtherwiseWhenRead) {
   const InputLocation where{"--orientations"};
   EXPECT_EQ(parseParameter(even, "8", where), 8);
   EXPECT_EQ(parseParameter(third, "9", where), 9);
-  EXPECT_NE(errorOf([&] { parseParameter(even, "9", where); }).find("--orientations: must be even, got 9"),
+  EXPECT_NE(test::inputErrorOf([&] { parseParameter(even, "9", where); }).find("--orientations: must be even, got 9"),
             std::string::npos);
-  EXPECT_NE(errorOf([&] { parseParameter(third, "8", where); }).find("must be a multiple of 3, got 8"),
+  EXPECT_NE(test::inputErrorOf([&] { parseParameter(third, "8", where); }).find("must be a multiple of 3, got 8"),
             std::string::npos);
-  EXPECT_NE(errorOf([&] { parseParameter(even, "66", where); }).find("must be in 4…64, even, got 66"),
+  EXPECT_NE(test::inputErrorOf([&] { parseParameter(even, "66", where); }).find("must be in 4…64, even, got 66"),
             std::string::npos);
 }
 
 TEST(Parameters, AMisplacedParameterNamesTheMethodsThatTakeIt) {
   const ParameterTable other = {{"radius", ParameterType::Real, "1", "r"}};
-  const std::string misplaced = errorOf([&] {
+  const std::string misplaced = test::inputErrorOf([&] {
     checkParameters(other, given({{"sources", "3"}}), "method disc", {{"kok", &table()}});
   });
   EXPECT_NE(misplaced.find("--sources: method disc does not use it (used by kok)"), std::string::npos) << misplaced;
-  const std::string misspelt = errorOf([&] {
+  const std::string misspelt = test::inputErrorOf([&] {
     checkParameters(table(), given({{"sorces", "3"}}), "method kok", {{"kok", &table()}});
   });
   EXPECT_NE(misspelt.find("unknown parameter 'sorces' (did you mean 'sources'?)"), std::string::npos) << misspelt;
@@ -131,13 +123,17 @@ TEST(Parameters, EveryRegistryTableIsConsistent) {
 }
 
 TEST(Parameters, AMethodTakesOnlyWhatItsTableDeclares) {
-  const std::string error = errorOf([] { methodParameters(findRenderer("path"), given({{"sources", "2"}})); });
+  const std::string error = test::inputErrorOf([] {
+    methodParameters(findRenderer("path"), given({{"sources", "2"}}));
+  });
   EXPECT_NE(error.find("method path does not use it (used by kok, multipass)"), std::string::npos) << error;
-  const std::string both = errorOf([] {
+  const std::string both = test::inputErrorOf([] {
     methodParameters(findRenderer("kok"), given({{"sources", "2"}, {"source-fraction", "0.5"}}));
   });
   EXPECT_NE(both.find("--source-fraction: give sources or source-fraction, not both"), std::string::npos) << both;
-  const std::string solverError = errorOf([] { checkSolverParameters("stochastic", given({{"quality", "low"}})); });
+  const std::string solverError = test::inputErrorOf([] {
+    checkSolverParameters("stochastic", given({{"quality", "low"}}));
+  });
   EXPECT_NE(solverError.find("solver stochastic does not use it (used by auto, hierarchical-exact)"), std::string::npos)
       << solverError;
 }

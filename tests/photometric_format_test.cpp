@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include "input_errors.h"
 #include "scene/load_scene.h"
 #include "scene/photometry.h"
 
@@ -27,15 +28,6 @@ std::string readText(const fs::path &path) {
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
-}
-
-std::string errorOf(const std::function<void()> &load) {
-  try {
-    load();
-  } catch (const InputError &e) {
-    return e.what();
-  }
-  return "(no error)";
 }
 
 std::string sceneWithLuminaire(const std::string &key, const fs::path &file) {
@@ -62,7 +54,7 @@ TEST(PhotometricFormat, EveryTestFileIsToldByItsContent) {
 
 TEST(PhotometricFormat, AEulumdatFileUnderIesIsNamedAtItsJsonPath) {
   const fs::path ldt = kPhotometry / "full.ldt";
-  const std::string error = errorOf([&] { parseSceneJson(sceneWithLuminaire("ies", ldt), "scene.json"); });
+  const std::string error = test::inputErrorOf([&] { parseSceneJson(sceneWithLuminaire("ies", ldt), "scene.json"); });
   EXPECT_NE(error.find("scene.json: at /luminaires/0/ies: this is a EULUMDAT file: give it as \"ldt\""),
             std::string::npos)
       << error;
@@ -73,7 +65,7 @@ TEST(PhotometricFormat, AEulumdatFileUnderIesIsNamedAtItsJsonPath) {
 
 TEST(PhotometricFormat, AnIesFileUnderLdtIsNamedAtItsJsonPath) {
   const fs::path ies = kPhotometry / "lambertian_downlight.ies";
-  const std::string error = errorOf([&] { parseSceneJson(sceneWithLuminaire("ldt", ies), "scene.json"); });
+  const std::string error = test::inputErrorOf([&] { parseSceneJson(sceneWithLuminaire("ldt", ies), "scene.json"); });
   EXPECT_NE(error.find("scene.json: at /luminaires/0/ldt: this is an IES LM-63 file: give it as \"ies\""),
             std::string::npos)
       << error;
@@ -83,11 +75,12 @@ TEST(PhotometricFormat, TheReadersNameAFileOfTheOtherFormat) {
   // A EULUMDAT file named .ies (the case the issue found), read by extension.
   const fs::path renamed = fs::temp_directory_path() / ("radiant-ldt-as-ies-" + std::to_string(::getpid()) + ".ies");
   fs::copy_file(kPhotometry / "full.ldt", renamed, fs::copy_options::overwrite_existing);
-  const std::string error = errorOf([&] { readPhotometricFile(renamed.string()); });
+  const std::string error = test::inputErrorOf([&] { readPhotometricFile(renamed.string()); });
   fs::remove(renamed);
   EXPECT_NE(error.find(":1: this is a EULUMDAT file, not an IES LM-63 file"), std::string::npos) << error;
   EXPECT_EQ(error.find("TILT= line\n"), std::string::npos) << error;
-  const std::string other = errorOf([&] { readEulumdatFile((kPhotometry / "lambertian_downlight.ies").string()); });
+  const std::string other =
+      test::inputErrorOf([&] { readEulumdatFile((kPhotometry / "lambertian_downlight.ies").string()); });
   EXPECT_NE(other.find(":1: this is an IES LM-63 file, not a EULUMDAT file"), std::string::npos) << other;
 }
 

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "input_errors.h"
 #include "radiosity/backprojection.h"
 #include "radiosity/calculation_grid.h"
 #include "radiosity/solver.h"
@@ -49,17 +50,6 @@ std::string sceneWithLights(const std::string &lights) {
          lights + "}";
 }
 
-/// The message of the InputError `load` throws ("" if none).
-template <typename F>
-std::string errorOf(F load) {
-  try {
-    load();
-  } catch (const InputError &e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(PointLight, ThePhotometryOfTheSceneFileIsKeptWhateverTheColour) {
   const Scene scene = loadSceneText(sceneWithLights(R"([
       {"type": "point", "position": [0, 2, 0], "intensity": 1000},
@@ -96,31 +86,31 @@ TEST(PointLight, ThePhotometryOfTheSceneFileIsKeptWhateverTheColour) {
 }
 
 TEST(PointLight, BadLightsAreRefusedAtTheirJsonPath) {
-  EXPECT_NE(errorOf([] {
+  EXPECT_NE(test::inputErrorOf([] {
               loadSceneText(sceneWithLights(R"([{"type": "point", "position": [0, 2, 0]}])"));
             }).find("/lights/0"),
             std::string::npos);
   EXPECT_NE(
-      errorOf([] {
+      test::inputErrorOf([] {
         loadSceneText(sceneWithLights(R"([{"type": "point", "position": [0, 2, 0], "intensity": 1, "lumens": 2}])"));
       }).find("one of them"),
       std::string::npos);
-  EXPECT_NE(errorOf([] {
+  EXPECT_NE(test::inputErrorOf([] {
               loadSceneText(sceneWithLights(R"([{"type": "pont", "position": [0, 2, 0], "intensity": 1}])"));
             }).find("did you mean 'point'"),
             std::string::npos);
-  EXPECT_NE(errorOf([] {
+  EXPECT_NE(test::inputErrorOf([] {
               loadSceneText(
                   sceneWithLights(R"([{"type": "spot", "position": [0, 2, 0], "aim": [0, 0, 0], "intensity": 1}])"));
             }).find("/lights/0/aim"),
             std::string::npos);
-  EXPECT_NE(errorOf([] {
+  EXPECT_NE(test::inputErrorOf([] {
               loadSceneText(sceneWithLights(
                   R"([{"type": "spot", "position": [0, 2, 0], "intensity": 1, "cone_angle": 0.00001}])"));
             }).find("/lights/0/cone_angle"),
             std::string::npos);
   // A spectrum that is 0 at every sample wavelength has no luminance to keep the candela by.
-  EXPECT_NE(errorOf([] {
+  EXPECT_NE(test::inputErrorOf([] {
               loadSceneText(R"({"version": 1, "spectral": {"wavelengths": [450, 550, 650]},
                 "materials": {"grey": {"reflectance": 0.5}},
                 "objects": [{"type": "quad", "material": "grey", "vertices": [[0, 0, 0], [0, 0, 1], [1, 0, 1], [1, 0, 0]]}],
@@ -128,16 +118,16 @@ TEST(PointLight, BadLightsAreRefusedAtTheirJsonPath) {
                             "colour": {"spectrum": [[460, 0], [500, 1], [540, 0]]}}]})");
             }).find("no luminance"),
             std::string::npos);
-  EXPECT_NE(errorOf([] {
+  EXPECT_NE(test::inputErrorOf([] {
               loadSceneText(sceneWithLights(R"([{"type": "point", "position": [0, 2, 0], "intensity": -5}])"));
             }).find("/lights/0/intensity"),
             std::string::npos);
-  EXPECT_NE(errorOf([] {
+  EXPECT_NE(test::inputErrorOf([] {
               loadSceneText(sceneWithLights(
                   R"([{"type": "point", "position": [0, 2, 0], "intensity": 1, "colour": [0, 0, 0]}])"));
             }).find("no luminance"),
             std::string::npos);
-  EXPECT_NE(errorOf([] {
+  EXPECT_NE(test::inputErrorOf([] {
               loadSceneText(sceneWithLights(R"([{"type": "point", "position": [0, 2, 0], "intensity": 1},
                                                 {"type": "point", "name": "point-0", "position": [0, 2, 0], "intensity": 1}])"));
             }).find("a second light named"),

@@ -11,6 +11,7 @@
 
 #include "radiosity/solver.h"
 #include "raytrace/ray_tracer.h"
+#include "sanitizer.h"
 #include "scene/load_scene.h"
 #include "test_scenes.h"
 
@@ -87,6 +88,11 @@ TEST(PowerBalance, EverySolverBalancesOnEveryScene) {
   for (BalanceCase &c : balanceCases()) {
     const RayTracer tracer(c.scene);
     for (const char *solver : kSolvers) {
+      // Under the sanitizers, hierarchical-exact (most of this test's 40 s there) meets the
+      // plain box's materials only: the textured and glossy boxes change what it reads, not its code.
+      if (RADIANT_UNDER_SANITIZER && std::string(solver) == "hierarchical-exact" &&
+          (c.name == "cornell-textured" || c.name == "glossy-cornell"))
+        continue;
       MeshOptions mesh;
       mesh.maxEdgeLength = c.edge;
       SolverOptions options;
@@ -155,6 +161,7 @@ TEST(PowerBalance, TheCollocationToleranceFallsWithTheMesh) {
 }
 
 TEST(PowerBalance, TheCornellBoxLosesWhatABlackCapOverItsOpeningWouldAbsorb) {
+  RADIANT_SKIP_UNDER_SANITIZER();  // four solves of EverySolverBalancesOnEveryScene's code
   // The box is open at the front (z = 0): closing it with a black quad
   // facing in changes nothing else, and the quad absorbs what escaped.
   for (const char *solver : {"hierarchical-exact", "stochastic"}) {

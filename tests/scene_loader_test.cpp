@@ -14,8 +14,10 @@
 #include <string>
 #include <vector>
 
+#include "input_errors.h"
 #include "scene/load_scene.h"
 #include "scene/overlapping_faces.h"
+#include "temp_dir.h"
 #include "util/error.h"
 
 namespace radiant {
@@ -26,30 +28,6 @@ namespace fs = std::filesystem;
 std::string sourcePath(const std::string &relative) {
   return std::string(RADIANT_SOURCE_DIR) + "/" + relative;
 }
-
-/// A fresh folder under the system temp directory, removed at the end of the test.
-class TempDir {
- public:
-  TempDir() {
-    static std::atomic<int> counter{0};
-    path_ = fs::temp_directory_path() /
-            ("radiant-scene-loader-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  std::string write(const std::string &name, const std::string &text) const {
-    fs::path file = path_ / name;
-    std::ofstream(file, std::ios::binary) << text;
-    return file.string();
-  }
-  std::string file(const std::string &name) const { return (path_ / name).string(); }
-
- private:
-  fs::path path_;
-};
 
 int objectIndex(const Scene &scene, const std::string &name) {
   for (size_t i = 0; i < scene.objects.size(); ++i)
@@ -372,7 +350,7 @@ std::vector<BadInput> badInputs() {
 }
 
 TEST(SceneLoaderErrors, EveryBadInputIsAnInputErrorWithItsLocation) {
-  TempDir dir;
+  test::TempDir dir("scene-loader");
   const std::string path = dir.file("scene.json");
   for (const BadInput &row : badInputs()) {
     SCOPED_TRACE(row.name);
@@ -547,7 +525,7 @@ f 1 2 3 5 4
 )";
 
 TEST(SceneLoaderObj, MtlMappingAndJsonOverride) {
-  TempDir dir;
+  test::TempDir dir("scene-loader");
   dir.write("test.mtl", kMtl);
   dir.write("model.obj", kObj);
   std::string path = dir.write(
@@ -587,7 +565,7 @@ TEST(SceneLoaderObj, MtlMappingAndJsonOverride) {
 }
 
 TEST(SceneLoaderObj, DefaultMaterialFromJsonOrMtl) {
-  TempDir dir;
+  test::TempDir dir("scene-loader");
   dir.write("test.mtl", kMtl);
   dir.write("plain.obj", "mtllib test.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   Scene fromMtl =
@@ -623,7 +601,7 @@ TEST(SceneLoaderObj, BadLinesNameTheFileAndLine) {
       {"normal index out of range", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1//1 2//1 3//1\n", 4, "normal index"},
       {"missing mtllib", "mtllib nothing.mtl\n", 1, "nothing.mtl"},
   };
-  TempDir dir;
+  test::TempDir dir("scene-loader");
   for (const Row &row : rows) {
     SCOPED_TRACE(row.name);
     std::string obj = dir.write("bad.obj", row.obj);
@@ -639,7 +617,7 @@ TEST(SceneLoaderObj, BadLinesNameTheFileAndLine) {
 }
 
 TEST(SceneLoaderObj, MissingTextureNamesTheMtlLine) {
-  TempDir dir;
+  test::TempDir dir("scene-loader");
   dir.write("t.mtl", "newmtl a\nKd 0.5 0.5 0.5\nmap_Kd textures/missing.png\n");
   std::string obj = dir.write("t.obj", "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n");
   try {
@@ -663,7 +641,7 @@ TEST(SceneLoaderObj, MissingTextureNamesTheMtlLine) {
 
 TEST(SceneLoaderObj, TexturePathsWithWindowsSeparatorsAreFound) {
   // MTL files written on Windows (assimp's spider: `map_Kd .\SpiderTex.jpg`).
-  TempDir dir;
+  test::TempDir dir("scene-loader");
   fs::create_directories(dir.file("textures"));
   dir.write("textures/wood.png", kTinyPng);
   dir.write("t.mtl", "newmtl a\nKd 0.5 0.5 0.5\nmap_Kd .\\textures\\wood.png\n");
@@ -673,7 +651,7 @@ TEST(SceneLoaderObj, TexturePathsWithWindowsSeparatorsAreFound) {
 }
 
 TEST(SceneLoaderObj, BareObjGetsAFramingCameraAndWarnings) {
-  TempDir dir;
+  test::TempDir dir("scene-loader");
   std::string obj = dir.write("box.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nv 9 9 9\nf 1 2 3 4\n");
   Scene s = loadScene(obj);
   ASSERT_EQ(s.faces.size(), 1u);
@@ -687,7 +665,7 @@ TEST(SceneLoaderObj, BareObjGetsAFramingCameraAndWarnings) {
 TEST(SceneLoaderObj, KdOfOneIsScaledWithAWarning) {
   // Exporters write Kd 1 1 1 ("white") and Kd + Ks > 1 (3ds Max: Kd 0.2, Ks
   // 0.9): loaded, scaled by one factor to conserve energy, said once.
-  TempDir dir;
+  test::TempDir dir("scene-loader");
   dir.write("w.mtl", "newmtl white\nKd 1 0.5 0.5\nnewmtl max\nillum 2\nKd 0.2 0.2 0.2\nKs 0.9 0.9 0.9\nNs 50\n");
   std::string obj = dir.write(
       "w.obj", "mtllib w.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nusemtl white\nf 1 2 3\nusemtl max\nf 1 2 4\n");
@@ -769,7 +747,7 @@ TEST(SceneLoaderTransform, SphereAreaApproachesFourPiRSquared) {
 }
 
 TEST(SceneLoaderTransform, MirroredObjFlipsWinding) {
-  TempDir dir;
+  test::TempDir dir("scene-loader");
   dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   Scene s = loadScene(dir.write("s.json", sceneText(kLamp, kQuad + R"(,
       {"name": "plain", "type": "obj", "file": "tri.obj"},
@@ -807,7 +785,7 @@ TEST(SceneLoaderDocs, TheDocumentedExampleLoads) {
   ASSERT_NE(begin, std::string::npos);
   begin += 8;
   size_t end = doc.find("```", begin);
-  TempDir dir;
+  test::TempDir dir("scene-loader");
   fs::create_directories(dir.file("textures"));
   fs::create_directories(dir.file("models"));
   dir.write("textures/oak.png", kTinyPng);
@@ -830,43 +808,34 @@ TEST(SceneLoaderDocs, TheDocumentedExampleLoads) {
 namespace radiant {
 namespace {
 
-std::string loadError(const std::string &path) {
-  try {
-    loadScene(path);
-  } catch (const InputError &e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(SceneLoaderMalformed, DeeplyNestedJsonIsRefusedWithItsPosition) {
-  TempDir dir;
+  test::TempDir dir("scene-loader");
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
   for (const char *name : {"deep.json", "deep.txt"}) {
-    const std::string error = loadError(dir.write(name, deep));
+    const std::string error = test::loadErrorOf(dir.write(name, deep));
     EXPECT_NE(error.find(std::string(name) + ":1:65: arrays and objects nest more than 64"), std::string::npos)
         << error;
   }
 }
 
 TEST(SceneLoaderMalformed, HexadecimalFloatsAndHugeIndicesAreRefusedAtTheirLine) {
-  TempDir dir;
-  std::string error = loadError(dir.write("hex.obj", "v 0 0 0\nv 0x1p-2 0 0\nv 1 1 0\nf 1 2 3\n"));
+  test::TempDir dir("scene-loader");
+  std::string error = test::loadErrorOf(dir.write("hex.obj", "v 0 0 0\nv 0x1p-2 0 0\nv 1 1 0\nf 1 2 3\n"));
   EXPECT_NE(error.find("hex.obj:2: 'v' expects finite decimal numbers, got '0x1p-2'"), std::string::npos) << error;
-  error = loadError(dir.write("big.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 -99999999999999999999\n"));
+  error = test::loadErrorOf(dir.write("big.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 -99999999999999999999\n"));
   EXPECT_NE(error.find("big.obj:4:"), std::string::npos) << error;
 }
 
 TEST(SceneLoaderMalformed, AFaceOfAMillionVerticesIsRefused) {
-  TempDir dir;
+  test::TempDir dir("scene-loader");
   std::string text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nf";
   for (int k = 0; k < 1000000; ++k) text += k % 2 ? " 2" : " 3";
-  const std::string error = loadError(dir.write("ngon.obj", text + "\n"));
+  const std::string error = test::loadErrorOf(dir.write("ngon.obj", text + "\n"));
   EXPECT_NE(error.find("ngon.obj:4: a face of 1000000 vertices"), std::string::npos) << error.substr(0, 200);
 }
 
 TEST(SceneLoaderMalformed, RepeatedCornersLeaveAProperPolygon) {
-  TempDir dir;
+  test::TempDir dir("scene-loader");
   // f 1 2 2 3 once reached the quad mesher with a zero-length edge and crashed the solve.
   Scene s = loadScene(dir.write("rep.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 2 3\nf 4 4 1 3 4\n"));
   ASSERT_EQ(s.faces.size(), 2u);
@@ -875,7 +844,7 @@ TEST(SceneLoaderMalformed, RepeatedCornersLeaveAProperPolygon) {
 }
 
 TEST(SceneLoaderMalformed, ExactRepeatsAreDroppedAndOverlapsNamed) {
-  TempDir dir;
+  test::TempDir dir("scene-loader");
   const std::string quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
   Scene repeated = loadScene(dir.write("dup.obj", quad + "f 1 2 3 4\nf 2 3 4 1\nf 4 3 2 1\n"));
   EXPECT_EQ(repeated.faces.size(), 2u);  // the rotated copy goes; the reversed one is the other side
@@ -898,19 +867,21 @@ TEST(SceneLoaderMalformed, ExactRepeatsAreDroppedAndOverlapsNamed) {
 }
 
 TEST(SceneLoaderMalformed, OtherFormatsAreNamed) {
-  TempDir dir;
-  EXPECT_NE(loadError(dir.write("m.dae", "<?xml version=\"1.0\"?><COLLADA/>")).find("this is a COLLADA file"),
+  test::TempDir dir("scene-loader");
+  EXPECT_NE(test::loadErrorOf(dir.write("m.dae", "<?xml version=\"1.0\"?><COLLADA/>")).find("this is a COLLADA file"),
             std::string::npos);
-  EXPECT_NE(loadError(dir.write("m.dat", "ply\nformat ascii 1.0\n")).find("this is a PLY file"), std::string::npos);
-  EXPECT_NE(loadError(dir.write("m.off", "OFF\n3 1 0\n")).find("OFF"), std::string::npos);
+  EXPECT_NE(test::loadErrorOf(dir.write("m.dat", "ply\nformat ascii 1.0\n")).find("this is a PLY file"),
+            std::string::npos);
+  EXPECT_NE(test::loadErrorOf(dir.write("m.off", "OFF\n3 1 0\n")).find("OFF"), std::string::npos);
   // MGF is read now (tests/mgf_import_test.cpp): an undefined colour is an error at its line.
-  EXPECT_NE(loadError(dir.write("m.mgf", "c red\n")).find("m.mgf:1: colour 'red' is not defined"), std::string::npos);
-  EXPECT_NE(loadError(dir.write("x.rad", "RADIANT-SOLUTION....")).find("--solution"), std::string::npos);
+  EXPECT_NE(test::loadErrorOf(dir.write("m.mgf", "c red\n")).find("m.mgf:1: colour 'red' is not defined"),
+            std::string::npos);
+  EXPECT_NE(test::loadErrorOf(dir.write("x.rad", "RADIANT-SOLUTION....")).find("--solution"), std::string::npos);
 }
 
 TEST(SceneLoaderMalformed, FarAwayCameraOrVerticesAreRefused) {
-  TempDir dir;
-  std::string error = loadError(dir.write(
+  test::TempDir dir("scene-loader");
+  std::string error = test::loadErrorOf(dir.write(
       "far.json",
       sceneText(kLamp, R"({"type": "triangle", "vertices": [[0,0,0],[1,0,0],[0,1,1e30]], "material": "lamp"})")));
   EXPECT_NE(error.find("from the origin"), std::string::npos) << error;

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "input_errors.h"
 #include "io/image.h"
 #include "io/solution_file.h"
 #include "radiosity/report.h"
@@ -60,13 +61,8 @@ Vec3 meanColour(const Image &image) {
   return sum / double(image.rgb.size() / 3);
 }
 
-std::string loadError(const std::string &json) {
-  try {
-    parseSceneJson(json, "test.json");
-  } catch (const InputError &e) {
-    return e.what();
-  }
-  return "";
+std::string sceneJsonError(const std::string &json) {
+  return test::inputErrorOf([&] { parseSceneJson(json, "test.json"); });
 }
 
 TEST(Spectral, TheCornellBoxLoadsWithItsMeasuredSpectra) {
@@ -108,25 +104,25 @@ TEST(Spectral, BadSpectraAreClearErrors) {
     EXPECT_NE(at, std::string::npos) << from;
     return text.replace(at, from.size(), to);
   };
-  EXPECT_EQ(loadError(base), "");
+  EXPECT_EQ(sceneJsonError(base), "");
   // An RGB colour means nothing in a spectral scene.
-  std::string error = loadError(
+  std::string error = sceneJsonError(
       replaced(R"("emission": {"spectrum": [[300, 2], [900, 2]], "scale": 0.5})", R"("emission": [1, 0.5, 0.2])"));
   EXPECT_NE(error.find("/materials/wall/emission"), std::string::npos) << error;
   EXPECT_NE(error.find("spectral"), std::string::npos) << error;
-  error = loadError(replaced("[612, 0.5]", "[500, 0.5]"));
+  error = sceneJsonError(replaced("[612, 0.5]", "[500, 0.5]"));
   EXPECT_NE(error.find("must increase"), std::string::npos) << error;
-  error = loadError(replaced("[612, 0.5]", "[612, 1.2]"));
+  error = sceneJsonError(replaced("[612, 0.5]", "[612, 1.2]"));
   EXPECT_NE(error.find("at 612 nm must be < 1"), std::string::npos) << error;
-  error = loadError(replaced("\"scale\": 0.5", "\"scale\": -1"));
+  error = sceneJsonError(replaced("\"scale\": 0.5", "\"scale\": -1"));
   EXPECT_NE(error.find("scale"), std::string::npos) << error;
-  error = loadError(replaced(R"("range": [400, 700])", R"("range": [300, 700])"));
+  error = sceneJsonError(replaced(R"("range": [400, 700])", R"("range": [300, 700])"));
   EXPECT_NE(error.find("/spectral/range"), std::string::npos) << error;
-  error = loadError(replaced(R"("samples": 8)", R"("samples": 2)"));
+  error = sceneJsonError(replaced(R"("samples": 8)", R"("samples": 2)"));
   EXPECT_NE(error.find("/spectral/samples"), std::string::npos) << error;
-  error = loadError(replaced(R"("range": [400, 700], "samples": 8)", R"("wavelengths": [450, 450, 600])"));
+  error = sceneJsonError(replaced(R"("range": [400, 700], "samples": 8)", R"("wavelengths": [450, 450, 600])"));
   EXPECT_NE(error.find("/spectral/wavelengths/1"), std::string::npos) << error;
-  error = loadError(replaced(R"("range": [400, 700], "samples": 8)", R"("wavelngths": [450, 500, 600])"));
+  error = sceneJsonError(replaced(R"("range": [400, 700], "samples": 8)", R"("wavelngths": [450, 500, 600])"));
   EXPECT_NE(error.find("did you mean 'wavelengths'"), std::string::npos) << error;
 }
 
@@ -146,10 +142,10 @@ TEST(Spectral, LoaderEdgeCases) {
       replaced(base, R"("reflectance": {"spectrum": [[380, 0.5], [507.5, 0.5], [612, 0.5], [780, 0.5]]},)",
                R"("type": "glossy", "reflectance": {"spectrum": [[380, 0.9], [420, 0.1], [700, 0.1]]},
       "specular": {"spectrum": [[400, 0.5], [700, 0.5]]},)");
-  EXPECT_EQ(loadError(glossy), "");
-  EXPECT_NE(loadError(replaced(glossy, "[700, 0.5]", "[700, 0.95]")).find("exceeds 1"), std::string::npos);
+  EXPECT_EQ(sceneJsonError(glossy), "");
+  EXPECT_NE(sceneJsonError(replaced(glossy, "[700, 0.5]", "[700, 0.95]")).find("exceeds 1"), std::string::npos);
   std::string error =
-      loadError(replaced(base, R"("range": [400, 700], "samples": 8)", R"("wavelengths": [500.1, 500.2, 500.3])"));
+      sceneJsonError(replaced(base, R"("range": [400, 700], "samples": 8)", R"("wavelengths": [500.1, 500.2, 500.3])"));
   EXPECT_NE(error.find("/spectral/wavelengths: the wavelengths must span"), std::string::npos) << error;
   Scene narrow = parseSceneJson(
       replaced(base, R"([[300, 2], [900, 2]], "scale": 0.5)", R"([[545, 0], [550, 50], [555, 0]])"), "narrow.json");
