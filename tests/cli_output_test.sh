@@ -14,7 +14,8 @@ else
 fi
 "$radiant" render "$spectral" --colour rgb --white-balance equal-energy --spp 1 --width 16 --height 16 -o sprgb.png \
   -q && [ -s sprgb.png ] && pass || fail "render --colour rgb of a spectral scene"
-if "$radiant" solve "$spectral" --mesh-size 200 --quality draft -o sp.rad --report sp.csv -q; then
+# Gauss–Seidel: the solver is not what is tested here, and it solves the six passes in 0.4 s under the sanitizers.
+if "$radiant" solve "$spectral" --solver gauss-seidel --mesh-size 200 -o sp.rad --report sp.csv -q; then
   head -1 sp.csv | grep -q "radiosity_700nm_W_m2_nm" && pass || fail "spectral report lacks the wavelength columns"
   "$radiant" render "$spectral" --solution sp.rad --method interpolate --width 16 --height 16 -o spi.exr -q \
     && pass || fail "render --solution of a spectral solution"

@@ -64,10 +64,10 @@ compiler=$(command -v clang++-14 || command -v clang++ || true)
 if [ ! -f "$build/build.ninja" ] && [ ! -f "$build/Makefile" ]; then
   generator=()
   command -v ninja >/dev/null && generator=(-G Ninja)
-  # -O1 -g1 as CI's sanitizer build; assertions stay on: a failed one is a finding.
+  # -O2 -g1 as CI's sanitizer build; assertions stay on: a failed one is a finding.
   cmake -S . -B "$build" "${generator[@]}" -DCMAKE_CXX_COMPILER="$compiler" -DRADIANT_FUZZ=ON \
     -DRADIANT_BUILD_TESTS=OFF -DRADIANT_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1"
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1"
 fi
 build_targets=()
 for t in "${targets[@]}"; do build_targets+=("fuzz_$t"); done
