@@ -3,8 +3,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <climits>
 #include <cstdlib>
+#include <thread>
 
 #ifdef RADIANT_HAVE_MPI
 #include <mpi.h>
@@ -29,6 +31,30 @@ bool launchedByMpi() {
 }
 
 #ifdef RADIANT_HAVE_MPI
+/// Waits for a non-blocking collective without taking a core from the ranks
+/// still working. A blocking collective polls until the last rank arrives
+/// (Open MPI spins, or calls sched_yield in a loop under
+/// mpi_yield_when_idle): where ranks share cores, the first to arrive took
+/// CPU from the others, and 3 ranks of a solve on 2 cores used 2.2 times one
+/// process's CPU time, a third of it in the kernel. Here a rank polls for
+/// 50 µs, then sleeps between polls, 20 µs doubling to 1 ms: a rank that
+/// waits long costs almost nothing, and one that waits briefly loses at most
+/// a millisecond. (The progress of the collective's own steps happens inside
+/// MPI_Test.)
+void waitQuietly(MPI_Request &request) {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = Clock::now();
+  auto pause = std::chrono::microseconds(20);
+  for (;;) {
+    int done = 0;
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (done) return;
+    if (Clock::now() - start < std::chrono::microseconds(50)) continue;
+    std::this_thread::sleep_for(pause);
+    pause = std::min(2 * pause, std::chrono::microseconds(1000));
+  }
+}
+
 /// MPI counts are ints: long arrays go in pieces of at most 2^30 elements.
 template <typename T, typename Operation>
 void inPieces(T *values, size_t count, const Operation &operation) {
@@ -41,18 +67,23 @@ void inPieces(T *values, size_t count, const Operation &operation) {
 template <typename T>
 void allSum(T *values, size_t count, MPI_Datatype type) {
   if (!joined || worldSize == 1) return;
-  inPieces(values, count,
-           [&](T *piece, int n) { MPI_Allreduce(MPI_IN_PLACE, piece, n, type, MPI_SUM, MPI_COMM_WORLD); });
+  inPieces(values, count, [&](T *piece, int n) {
+    MPI_Request request;
+    MPI_Iallreduce(MPI_IN_PLACE, piece, n, type, MPI_SUM, MPI_COMM_WORLD, &request);
+    waitQuietly(request);
+  });
 }
 
 template <typename T>
 void rootSum(T *values, size_t count, MPI_Datatype type) {
   if (!joined || worldSize == 1) return;
   inPieces(values, count, [&](T *piece, int n) {
+    MPI_Request request;
     if (worldRank == 0)
-      MPI_Reduce(MPI_IN_PLACE, piece, n, type, MPI_SUM, 0, MPI_COMM_WORLD);
+      MPI_Ireduce(MPI_IN_PLACE, piece, n, type, MPI_SUM, 0, MPI_COMM_WORLD, &request);
     else
-      MPI_Reduce(piece, nullptr, n, type, MPI_SUM, 0, MPI_COMM_WORLD);
+      MPI_Ireduce(piece, nullptr, n, type, MPI_SUM, 0, MPI_COMM_WORLD, &request);
+    waitQuietly(request);
   });
 }
 #endif
@@ -78,6 +109,13 @@ Session::Session(int &argc, char **&argv) {
 
 Session::~Session() {
 #ifdef RADIANT_HAVE_MPI
+  if (joined && worldSize > 1) {
+    // The ranks end together here, while rank 0 may still be writing the
+    // output: MPI_Finalize's own barrier would spin meanwhile.
+    MPI_Request request;
+    MPI_Ibarrier(MPI_COMM_WORLD, &request);
+    waitQuietly(request);
+  }
   if (joined) MPI_Finalize();
   joined = false;
   worldRank = 0, worldSize = 1;
@@ -132,7 +170,9 @@ std::vector<uint8_t> gatherFromAllRanks(const std::vector<uint8_t> &mine, std::v
   // total beyond 2 GiB goes in rounds of at most 1 GiB from each rank.
   std::vector<uint64_t> counts(size_t(worldSize), 0);
   const uint64_t own = mine.size();
-  MPI_Allgather(&own, 1, MPI_UINT64_T, counts.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD);
+  MPI_Request request;
+  MPI_Iallgather(&own, 1, MPI_UINT64_T, counts.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD, &request);
+  waitQuietly(request);
   for (int r = 0; r < worldSize; ++r) starts[size_t(r) + 1] = starts[size_t(r)] + counts[size_t(r)];
   std::vector<uint8_t> all(starts.back());
   constexpr uint64_t kRound = uint64_t(1) << 30;
@@ -149,25 +189,36 @@ std::vector<uint8_t> gatherFromAllRanks(const std::vector<uint8_t> &mine, std::v
       total += roundCounts[size_t(r)];
     }
     received.resize(size_t(total));
-    MPI_Allgatherv(mine.data() + std::min<uint64_t>(offset, own), roundCounts[size_t(worldRank)], MPI_BYTE,
-                   received.data(), roundCounts.data(), displacements.data(), MPI_BYTE, MPI_COMM_WORLD);
+    MPI_Iallgatherv(mine.data() + std::min<uint64_t>(offset, own), roundCounts[size_t(worldRank)], MPI_BYTE,
+                    received.data(), roundCounts.data(), displacements.data(), MPI_BYTE, MPI_COMM_WORLD, &request);
+    waitQuietly(request);
     for (int r = 0; r < worldSize; ++r)
       std::copy_n(received.data() + displacements[size_t(r)], roundCounts[size_t(r)],
                   all.data() + starts[size_t(r)] + offset);
   }
   return all;
 }
-int64_t fromRoot(int64_t value) {
-  if (joined && worldSize > 1) MPI_Bcast(&value, 1, MPI_INT64_T, 0, MPI_COMM_WORLD);
+template <typename T>
+T broadcastFromRoot(T value, MPI_Datatype type) {
+  if (!joined || worldSize == 1) return value;
+  MPI_Request request;
+  MPI_Ibcast(&value, 1, type, 0, MPI_COMM_WORLD, &request);
+  waitQuietly(request);
   return value;
 }
+int64_t fromRoot(int64_t value) {
+  return broadcastFromRoot(value, MPI_INT64_T);
+}
 double fromRoot(double value) {
-  if (joined && worldSize > 1) MPI_Bcast(&value, 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
-  return value;
+  return broadcastFromRoot(value, MPI_DOUBLE);
 }
 bool anyRank(bool value) {
   int v = value ? 1 : 0;
-  if (joined && worldSize > 1) MPI_Allreduce(MPI_IN_PLACE, &v, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD);
+  if (joined && worldSize > 1) {
+    MPI_Request request;
+    MPI_Iallreduce(MPI_IN_PLACE, &v, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD, &request);
+    waitQuietly(request);
+  }
   return v != 0;
 }
 void abortAll(int exitStatus) {

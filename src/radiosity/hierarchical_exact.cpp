@@ -28,12 +28,14 @@
 #include "radiosity/reflected_light_hierarchy.h"
 #include "radiosity/solver.h"
 #include "util/phase.h"
+#include "util/timing.h"
 
 namespace radiant {
 
 void solveHierarchicalExact(const RayTracer &tracer, Solution &s, const SolverOptions &options,
                             const SolverProgressCallback &progress) {
   const auto start = std::chrono::steady_clock::now();
+  TimingLaps laps;
   const Scene &scene = tracer.scene();
   RadiosityMesh &mesh = s.mesh;
   // A uniform mesh (a caller's, not meshAndSolve's): its patches become the
@@ -70,14 +72,7 @@ void solveHierarchicalExact(const RayTracer &tracer, Solution &s, const SolverOp
     const Phase phase("refining the mesh to the direct light");
     refineForDirectLight(mesh, patchReflectance, field, refinement);
   }
-  const bool timing = std::getenv("RADIANT_TIMING") != nullptr;
-  auto lap = [&, last = start](const char *what) mutable {
-    if (!timing) return;
-    const auto now = std::chrono::steady_clock::now();
-    std::fprintf(stderr, "  %-28s %.3f s\n", what, std::chrono::duration<double>(now - last).count());
-    last = now;
-  };
-  lap("direct light and its mesh");
+  laps.lap("direct light and its mesh");
 
   // 2. The reflected light by hierarchical radiosity on the same trees.
   const double minimumEdge = options.linkMinimumEdge > 0 ? options.linkMinimumEdge : extent / 64;
@@ -90,15 +85,15 @@ void solveHierarchicalExact(const RayTracer &tracer, Solution &s, const SolverOp
     const Phase phase("linking the reflected light");
     hierarchy.link();
   }
-  lap("linking");
+  laps.lap("linking");
   const int maxSweeps = options.maxIterations > 0 ? options.maxIterations : 1000;
   int total = 0;
   double residual = 0;
   for (int round = 0; round < std::max(1, options.refinementRounds); ++round) {
     if (round > 0 && hierarchy.rerefine() == 0) break;
-    lap("re-linking");
+    laps.lap("re-linking");
     hierarchy.solve(options.tolerance, maxSweeps, residual, progress, total, start);
-    lap("solving");
+    laps.lap("solving");
   }
   s.stats.iterations = total;
   s.stats.residual = residual;
@@ -118,8 +113,8 @@ void solveHierarchicalExact(const RayTracer &tracer, Solution &s, const SolverOp
   // 15°): the stochastic solver evaluates once with that mean's direction
   // (radiosity/node_direct_light.cpp).
   s.poolNodeIrradiance();
-  lap("writing the solution");
-  if (timing)
+  laps.lap("writing the solution");
+  if (timingRequested())
     std::fprintf(stderr, "  links %zu (%zu with clusters), sweeps %d\n", hierarchy.linkCount(),
                  hierarchy.clusterLinkCount(), total);
 }

@@ -9,6 +9,7 @@
 #include "scene/overlapping_faces.h"
 #include "util/error.h"
 #include "util/sampling.h"
+#include "util/timing.h"
 
 namespace radiant {
 
@@ -135,11 +136,9 @@ Solution meshAndSolve(const Scene &scene, const RayTracer &tracer, const MeshOpt
     if (options.adaptiveRounds > 0)
       throw InputError(InputLocation::ofParameter("adaptive-rounds"), "hierarchical-exact refines by itself");
     // Faces cut where other surfaces meet them, hidden parts left out (mesh/face_split.h).
-    const auto splitStart = std::chrono::steady_clock::now();
+    TimingLaps cutting;
     const std::vector<FaceSplit> splits = splitFaces(scene, tracer);
-    if (std::getenv("RADIANT_TIMING"))
-      std::fprintf(stderr, "  %-28s %.3f s\n", "cutting faces",
-                   std::chrono::duration<double>(std::chrono::steady_clock::now() - splitStart).count());
+    cutting.lap("cutting faces");
     MeshOptions cut = meshOptions;
     cut.faceSplits = &splits;
     Solution s = initialSolution(scene, buildTreeMesh(scene, cut));
@@ -217,7 +216,7 @@ namespace {
 
 /// The escaped power measured (power_balance.h), and the imbalance this solver may show.
 void measureBalance(const RayTracer &tracer, Solution &solution, const SolverOptions &options) {
-  const auto start = std::chrono::steady_clock::now();
+  const ScopedTiming timing("power balance");
   const PowerBalance balance = measurePowerBalance(tracer, solution, kPowerBalanceRays, options.seed);
   SolveStats &stats = solution.stats;
   stats.escapedPower = balance.escaped;
@@ -225,9 +224,6 @@ void measureBalance(const RayTracer &tracer, Solution &solution, const SolverOpt
   stats.unshotPower = balance.unshot;
   stats.escapedStandardError = balance.escapedStandardError;
   stats.powerBalanceTolerance = powerBalanceTolerance(solution, options, balance);
-  if (std::getenv("RADIANT_TIMING"))
-    std::fprintf(stderr, "  %-28s %.3f s\n", "power balance",
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
 }  // namespace
