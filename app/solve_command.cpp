@@ -118,6 +118,12 @@ CommandRunner addSolveCommand(CLI::App &app) {
       for (const std::string &warning : scene.warnings) fmt::print(stderr, "radiant: warning: {}\n", warning);
     if (!quiet)
       for (const PointLight &light : scene.lights) fmt::print(stderr, "radiant: light {}\n", describeLight(light));
+    // Lights and grids alone (a luminaire layout before the room is modelled): the grids get the lights'
+    // direct illuminance, and there is nothing to solve. Asked for a solution, the solve refuses as ever.
+    const bool gridsAlone = scene.faces.empty() && gridsWanted && !scene.lights.empty() && o->outputPath.empty() &&
+                            o->reportPath.empty() && o->checkpoint.path.empty();
+    if (gridsAlone && !quiet)
+      fmt::print(stderr, "radiant: the scene has no faces: the grids get the lights' direct illuminance alone\n");
     RayTracer tracer(scene);
     SolveCheckpointOptions checkpoint;
     // A spectral solve checkpoints each pass in a file of its own (FILE's stem
@@ -154,7 +160,10 @@ CommandRunner addSolveCommand(CLI::App &app) {
           passCheckpointOptions.saveWhenDone = true;
         }
       }
-      solutions.push_back(solveScene(scene, tracer, o->radiosity, o->seed, o->threads, quiet, passCheckpointOptions));
+      if (gridsAlone)
+        solutions.emplace_back();  // no faces: no ray meets a surface, nothing is reflected
+      else
+        solutions.push_back(solveScene(scene, tracer, o->radiosity, o->seed, o->threads, quiet, passCheckpointOptions));
     }
     if (interruptRequested()) throw Interrupted();  // between the solve's last report and here
     std::vector<GridIlluminance> grids;

@@ -16,7 +16,7 @@ echo '{"version": 1, "objects": []}' >no-objects.json
 cat >lamp-and-grid.json <<'EOF'
 {"version": 1, "objects": [],
  "lights": [{"type": "point", "position": [0, 2, 0], "intensity": 1000}],
- "grids": [{"name": "floor", "origin": [-1, 0, -1], "u": [2, 0, 0], "v": [0, 0, 2], "nu": 3, "nv": 3}]}
+ "grids": [{"name": "floor", "origin": [-1, 0, -1], "u": [0, 0, 2], "v": [2, 0, 0], "nu": 3, "nv": 3}]}
 EOF
 scenes=(comment.obj vertices.obj points-and-lines.obj no-objects.json lamp-and-grid.json)
 
@@ -59,6 +59,24 @@ refused() {
   fi
 }
 
+# lamp_grid_report: the faceless lamp-and-grid.json's grid report. 1000 cd at 2 m above the grid's centre, its
+# normal up: E = I·cos θ/d², 250 lx at the centre, 1000·2/(4 + 2·(2/3)²)^(3/2) = 185.018 lx at a corner; nothing
+# reflected, since nothing is there to reflect.
+lamp_grid_report() {
+  rm -f grid.csv
+  run_guarded "lamp-and-grid.json grid report" "$radiant" solve lamp-and-grid.json --grid-report grid.csv || return
+  if [ "$status" -ne 0 ]; then
+    fail "lamp-and-grid.json grid report: exit status $status"
+    cat err.txt
+    return
+  fi
+  grep -q "the grids get the lights' direct illuminance alone" err.txt && pass ||
+    { fail "the faceless grid report does not say what it computes"; cat err.txt; }
+  awk -F, '$1 == "floor" && $2 == 1 && $3 == 1 { c = $7 } $1 == "floor" && $2 == 0 && $3 == 0 { k = $7; r = $10 }
+    END { exit !(c > 249.999 && c < 250.001 && k > 185.0182 && k < 185.0184 && r == 0) }' grid.csv && pass ||
+    { fail "the faceless grid report is not the inverse-square law:"; cat grid.csv; }
+}
+
 for scene in "${scenes[@]}"; do
   faceless="$scene: the scene has no faces: there is nothing to solve"
   for method in "${methods[@]}"; do
@@ -84,9 +102,16 @@ for scene in "${scenes[@]}"; do
       --width 8 --height 6 -o image.png
   done
   refused "$scene solve" solution.rad "$faceless" "$radiant" solve "$scene" -o solution.rad
-  # Only lamp-and-grid.json has a grid (the others are refused for having none, before anything is read further).
-  if [ "$scene" = lamp-and-grid.json ]; then grids="$faceless"; else grids="the scene has no calculation grids"; fi
-  refused "$scene grid report" grid.csv "$grids" "$radiant" solve "$scene" --grid-report grid.csv
+  # Only lamp-and-grid.json has a grid (the others are refused for having none, before anything is read
+  # further). Its grid gets the lamp's direct light, and a solution asked for beside it is refused.
+  if [ "$scene" = lamp-and-grid.json ]; then
+    refused "$scene grid report with a solution" grid.csv "$faceless" "$radiant" solve "$scene" --grid-report grid.csv \
+      -o solution.rad
+    lamp_grid_report
+  else
+    refused "$scene grid report" grid.csv "the scene has no calculation grids" "$radiant" solve "$scene" \
+      --grid-report grid.csv
+  fi
   refused "$scene export glb" model.glb "$faceless" "$radiant" export "$scene" -o model.glb
   refused "$scene export ply" model.ply "$faceless" "$radiant" export "$scene" -o model.ply
   run_guarded "$scene info" "$radiant" info "$scene" -q && { [ "$status" -eq 0 ] && pass || fail "$scene info: $status"; }
