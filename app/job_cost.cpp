@@ -13,8 +13,21 @@
 
 namespace radiant {
 
+namespace {
+
+double pixelCount(const RenderJobSize &job) {
+  return double(job.width) * double(job.height);
+}
+
+/// Camera samples of the whole job (the ceiling, under a --time budget).
+double sampleCount(const RenderJobSize &job) {
+  return pixelCount(job) * double(job.samplesPerPixel) * double(job.passes);
+}
+
+}  // namespace
+
 double renderImageBytes(const RenderJobSize &job) {
-  const double pixels = double(job.width) * double(job.height);
+  const double pixels = pixelCount(job);
   // The film's sums per pixel, then each pass's image and each output's converted copy as three floats a pixel.
   const double film = double(Film::bytesPerPixel(size_t(job.channels)));
   const double images = 3.0 * sizeof(float) * double(job.passes + job.outputs);
@@ -40,10 +53,29 @@ std::optional<double> availableMemoryBytes() {
   return available;
 }
 
+bool isLargeRenderJob(const RenderJobSize &job) {
+  constexpr double kLargePixels = 16.0 * (1 << 20), kLargeBytes = 1e9, kLargeSamples = 1e10;
+  return pixelCount(job) >= kLargePixels || renderImageBytes(job) >= kLargeBytes ||
+         (!job.timeBudget && sampleCount(job) >= kLargeSamples);
+}
+
+void announceRenderTime(const RenderJobSize &job, const PilotRate &pilot, bool atMost, int ranks) {
+  const double samples = sampleCount(job);
+  const double seconds = samples / (pilot.samplesPerSecond * std::max(ranks, 1));
+  const std::string time = seconds < 120         ? fmt::format("{:.0f} s", seconds)
+                           : seconds < 7200      ? fmt::format("{:.0f} min", seconds / 60)
+                           : seconds < 2 * 86400 ? fmt::format("{:.1f} h", seconds / 3600)
+                                                 : fmt::format("{:.1f} days", seconds / 86400);
+  fmt::print(stderr,
+             "radiant: a pilot of {} samples ran at {:.3g} M samples/s{}: the {:.3g} samples take {}about {}{}\n",
+             pilot.samples, pilot.samplesPerSecond * 1e-6, ranks > 1 ? fmt::format(" per rank ({} ranks)", ranks) : "",
+             samples, atMost ? "at most " : "", time,
+             atMost ? " (this method's pixels stop early where they have converged)" : "");
+}
+
 void announceRenderJob(const RenderJobSize &job, bool quiet) {
   const double bytes = renderImageBytes(job);
-  const double pixels = double(job.width) * double(job.height);
-  const double samples = pixels * double(job.samplesPerPixel) * double(job.passes);
+  const double pixels = pixelCount(job), samples = sampleCount(job);
   const std::optional<double> available = availableMemoryBytes();
   auto gb = [](double b) { return b >= 1e9 ? fmt::format("{:.1f} GB", b / 1e9) : fmt::format("{:.0f} MB", b / 1e6); };
   if (available && bytes > *available)
@@ -53,18 +85,14 @@ void announceRenderJob(const RenderJobSize &job, bool quiet) {
                     "to this process: render a smaller image, or on a machine with more memory",
                     job.width, job.height, gb(bytes),
                     job.passes > 1 ? fmt::format(" ({} spectral passes)", job.passes) : "", gb(*available)));
-  constexpr double kLargePixels = 16.0 * (1 << 20), kLargeBytes = 1e9, kLargeSamples = 1e10;
-  if (quiet || (pixels < kLargePixels && bytes < kLargeBytes && (job.timeBudget || samples < kLargeSamples))) return;
+  if (quiet || !isLargeRenderJob(job)) return;
   const std::string traced = job.timeBudget
                                  ? "samples as the --time budget allows"
                                  : fmt::format("{:.3g} samples ({} per pixel{})", samples, job.samplesPerPixel,
                                                job.passes > 1 ? fmt::format(", {} passes", job.passes) : "");
-  fmt::print(stderr,
-             "radiant: a large job: {}x{} = {} pixels, {}; the film and images hold {}{}; the "
-             "progress line gives the time left once the first tiles are done\n",
-             job.width, job.height,
-             pixels >= 1e6 ? fmt::format("{:.1f} M", pixels / 1e6) : fmt::format("{:.0f}", pixels), traced, gb(bytes),
-             available ? fmt::format(" of the {} available", gb(*available)) : "");
+  fmt::print(stderr, "radiant: a large job: {}x{} = {} pixels, {}; the film and images hold {}{}\n", job.width,
+             job.height, pixels >= 1e6 ? fmt::format("{:.1f} M", pixels / 1e6) : fmt::format("{:.0f}", pixels), traced,
+             gb(bytes), available ? fmt::format(" of the {} available", gb(*available)) : "");
 }
 
 }  // namespace radiant

@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <optional>
 
+#include "render/pilot.h"
+
 namespace radiant {
 
 struct RenderJobSize {
@@ -25,9 +27,18 @@ double renderImageBytes(const RenderJobSize &job);
 /// own limit (ulimit -v) where that is less, bytes; none when neither is known.
 std::optional<double> availableMemoryBytes();
 
+/// ≥ 16 M pixels, ≥ 1 GB of film and images, or ≥ 10¹⁰ samples (without a --time budget).
+bool isLargeRenderJob(const RenderJobSize &job);
+
 /// Throws InputError at --width/--height when renderImageBytes exceeds the
 /// available memory; else, for a large job (≥ 16 M pixels, ≥ 1 GB, or
 /// ≥ 10¹⁰ samples), prints one line of what it holds and traces, unless quiet.
 void announceRenderJob(const RenderJobSize &job, bool quiet);
+
+/// The time a large job's sampling will take, from the rate of a pilot
+/// (render/pilot.h) on one of `ranks` alike: one line on stderr. `atMost`
+/// for a method whose pixels stop early where they have converged
+/// (Renderer::variesOnlyAcrossThePixel): then it is an upper bound.
+void announceRenderTime(const RenderJobSize &job, const PilotRate &pilot, bool atMost, int ranks);
 
 }  // namespace radiant

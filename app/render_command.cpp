@@ -25,6 +25,7 @@
 #include "raytrace/ray_tracer.h"
 #include "render/driver.h"
 #include "render/multipass.h"
+#include "render/pilot.h"
 #include "render/registry.h"
 #include "render/renderer.h"
 #include "render/spectral_film.h"
@@ -369,6 +370,10 @@ CommandRunner addRenderCommand(CLI::App &app) {
         context.solution = solutions.empty() ? &solved : &solutions[pass];
       }
       std::unique_ptr<Renderer> renderer = createRenderer(o->method, tracer, context, given);
+      // A large job's time, from a pilot of a fraction of a second before its first sample (after any solve).
+      if (pass == 0 && !quiet && !job.timeBudget && isLargeRenderJob(job))
+        announceRenderTime(job, measureSampleRate(camera, *renderer, r.width, r.height, o->threads, 0.3),
+                           renderer->variesOnlyAcrossThePixel(), cluster::size());
       // --selective-map: the renderer's selective channel, in the first pass with light.
       std::string mapChannel;
       if (!o->selectiveMapPath.empty() && !selectiveMapWritten)

@@ -199,5 +199,16 @@ timeout -s INT 2 "$radiant" render "$cornell" --method path --width 128 --height
   2>large.err
 grep -q "a large job: 128x128 = 16384 pixels, 1.64e+10 samples (1000000 per pixel); the film and images hold 1 MB" \
   large.err && pass || fail "a large job's announcement: $(cat large.err)"
+# Then its time, from a pilot's rate: 1.64·10¹⁰ samples at R M samples/s take 1.64·10⁴/R s, said in the unit that fits.
+python3 - large.err <<'PY' && pass || fail "a large job's time: $(cat large.err)"
+import re, sys
+text = open(sys.argv[1]).read()
+m = re.search(r"a pilot of (\d+) samples ran at ([0-9.e+]+) M samples/s: the 1.64e\+10 samples take about "
+              r"([0-9.]+) (s|min|h|days)\n", text)
+assert m and int(m.group(1)) > 0, text
+seconds = float(m.group(3)) * {"s": 1, "min": 60, "h": 3600, "days": 86400}[m.group(4)]
+expected = 16384 * 1e6 / (float(m.group(2)) * 1e6)
+assert abs(seconds - expected) <= 0.05 * expected + 60, (seconds, expected)
+PY
 
 finish
