@@ -492,6 +492,61 @@ TEST(GltfImportErrors, EachRefusalNamesTheFileAndJsonPath) {
   }
 }
 
+TEST(GltfImportErrors, WhatTinygltfWouldRefuseIsRefusedFirstAtItsJsonPath) {
+  // tinygltf refuses these too, in words of its own and with no position
+  // ("'count' property is not a positive integer"); gltf_schema.cpp checks
+  // them first (issue 38: 177 of tools/error_corpus.py's glTF refusals named no path).
+  const std::vector<Refusal> refusals = {
+      {"a count that is a string", [](Gltf &g) { g.doc["accessors"][0]["count"] = "3"; }, "/accessors/0/count",
+       "expected an integer"},
+      {"an unknown component type", [](Gltf &g) { g.doc["accessors"][0]["componentType"] = 5000; },
+       "/accessors/0/componentType", "componentType 5000 is not one of glTF's"},
+      {"an unknown accessor type", [](Gltf &g) { g.doc["accessors"][0]["type"] = "VEC"; }, "/accessors/0/type",
+       "type \"VEC\" is not one of SCALAR"},
+      {"an emissive factor of two numbers",
+       [](Gltf &g) {
+         g.doc["materials"] = Json::array({{{"emissiveFactor", {1, 1}}}});
+         g.doc["meshes"][0]["primitives"][0]["material"] = 0;
+       },
+       "/materials/0/emissiveFactor", "expected"},
+      {"a misspelt camera type",
+       [](Gltf &g) {
+         g.doc["cameras"] = Json::array({{{"type", "perspectiv"}}});
+       },
+       "/cameras/0/type", "camera type \"perspectiv\" is neither"},
+      {"indices without a buffer view",
+       [](Gltf &g) {
+         g.doc["meshes"][0]["primitives"][0]["indices"] = g.accessor(std::vector<uint16_t>{0, 1, 2}, "SCALAR", 5123);
+         g.doc["accessors"][1].erase("bufferView");
+       },
+       "/accessors/1", "the accessor of a primitive's indices needs a bufferView"},
+      {"primitives that are not an array", [](Gltf &g) { g.doc["meshes"][0]["primitives"] = 1; },
+       "/meshes/0/primitives", "expected an array"},
+  };
+  test::TempDir dir("gltf");
+  for (const Refusal &refusal : refusals) {
+    SCOPED_TRACE(refusal.what);
+    Gltf g = oneTriangle();
+    g.scene({g.node({{"mesh", 0}})});
+    refusal.spoil(g);
+    for (const char *name : {"bad.gltf", "bad.glb"}) {
+      const std::string path = dir.write(name, std::string(name).ends_with("glb") ? g.glb() : g.gltf());
+      const std::string error = test::loadErrorOf(path);
+      EXPECT_NE(error.find(path + ": at " + refusal.path + ": "), std::string::npos) << error;
+      EXPECT_NE(error.find(refusal.message), std::string::npos) << error;
+    }
+  }
+  // A .gltf file's buffer without a uri (only a GLB's first buffer is its BIN chunk).
+  Gltf g = oneTriangle();
+  g.scene({g.node({{"mesh", 0}})});
+  Json text = Json::parse(g.gltf());
+  text["buffers"][0].erase("uri");
+  const std::string path = dir.write("no-uri.gltf", text.dump());
+  EXPECT_NE(test::loadErrorOf(path).find(path + ": at /buffers/0: a buffer of a .gltf file needs a \"uri\""),
+            std::string::npos)
+      << test::loadErrorOf(path);
+}
+
 TEST(GltfImportErrors, GltfOneIsNamedAsSuchWithTheFile) {
   // glTF 1.0 (CesiumMilkTruck) writes its version as the number 1 or as "1.0"; it was refused with
   // "at /asset/version: expected a string, got the number 1" (issue 38).

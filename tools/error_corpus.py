@@ -33,6 +33,8 @@ import sys
 import tempfile
 import zlib
 
+from error_corpus_readers import reader_cases
+
 SOURCE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 TIMEOUT = 60
 
@@ -539,6 +541,9 @@ def main():
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--keep", help="write the corpus here and keep it")
     parser.add_argument("--verbose", action="store_true", help="print every case's message")
+    parser.add_argument("--no-readers", action="store_true",
+                        help="leave out the glTF, MGF, IES and EULUMDAT cases (error_corpus_readers.py)")
+    parser.add_argument("--only-readers", action="store_true", help="run those cases alone")
     args = parser.parse_args()
     radiant = os.path.abspath(args.radiant)
     work = os.path.abspath(args.keep) if args.keep else tempfile.mkdtemp(prefix="radiant-errors-")
@@ -546,11 +551,15 @@ def main():
     try:
         fx = Fixtures(work, radiant)
         cases = []
-        for name in ("cornell-box", "cornell-specular", "cornell-textured", "furnace", "two-rooms"):
+        for name in () if args.only_readers else ("cornell-box", "cornell-specular", "cornell-textured", "furnace", "two-rooms"):
             cases += scene_cases(fx, name, fx.scenes[name])
-        cases += scene_cases(fx, "cornell-box-spectral", fx.scenes["cornell-box-spectral"])
-        cases += scene_cases(fx, "obj-wrapper", fx.wrapper)
-        cases += obj_cases(fx) + texture_cases(fx) + image_cases(fx) + solution_cases(fx) + flag_cases(fx)
+        if not args.only_readers:
+            cases += scene_cases(fx, "cornell-box-spectral", fx.scenes["cornell-box-spectral"])
+            cases += scene_cases(fx, "obj-wrapper", fx.wrapper)
+        if not args.only_readers:
+            cases += obj_cases(fx) + texture_cases(fx) + image_cases(fx) + solution_cases(fx) + flag_cases(fx)
+        if not args.no_readers:
+            cases += reader_cases(fx, Case, json_paths, set_at, replacements, write)
         with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
             results = list(pool.map(lambda c: run(radiant, c, work), cases))
     finally:

@@ -22,7 +22,9 @@
 # tests/fuzz_regressions_test.cpp replays it in every build.
 #
 # Environment: FUZZ_BUILD_JOBS (build parallelism, default nproc),
-# FUZZ_NICE (default 10), RADIANT_BINARY (a built radiant, for --seeds).
+# FUZZ_FORKS (fuzzing processes per target, default 1; nproc on a machine
+# left to the campaign), FUZZ_NICE (default 10), RADIANT_BINARY (a built
+# radiant, for --seeds).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -57,6 +59,7 @@ done
 build=build-fuzz
 jobs=${FUZZ_BUILD_JOBS:-$(nproc)}
 niceness=${FUZZ_NICE:-10}
+forks=${FUZZ_FORKS:-1}
 
 # ---- Build ----
 compiler=$(command -v clang++-14 || command -v clang++ || true)
@@ -116,7 +119,7 @@ for t in "${targets[@]}"; do
   start=$(date +%s)
   # halt_on_error: a UBSan report is a finding, not a line in the log.
   RADIANT_FUZZ_SCRATCH="$scratch" UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
-    nice -n "$niceness" "$build/fuzz/fuzz_$t" -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
+    nice -n "$niceness" "$build/fuzz/fuzz_$t" -fork="$forks" -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
     -runs="$runs" -max_len="${max_len[$t]}" -timeout=10 -rss_limit_mb=2048 -print_funcs=0 "${dictionary[@]}" \
     -artifact_prefix="$artifacts/" "${inputs[@]}" >"$log" 2>&1 || true
   seconds=$(($(date +%s) - start))

@@ -156,6 +156,7 @@ GltfFile::GltfFile(std::string path, const InputLocation &fileFrom, std::vector<
   root_ = std::make_unique<JsonNode>(json_, path_, "");
   root_->expectObject();
   checkAsset();
+  checkSchema();
   checkBufferViews();
   loadBuffers(warnings);
 }

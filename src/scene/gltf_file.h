@@ -100,6 +100,8 @@ class GltfFile {
 
  private:
   void checkAsset();
+  /// The parts of the glTF schema tinygltf insists on, each refusal at its JSON path (gltf_schema.cpp).
+  void checkSchema() const;
   void checkBufferViews();
   void loadBuffers(std::vector<std::string> &warnings);
 
