@@ -448,6 +448,19 @@ struct Refusal {
   std::string path, message;
 };
 
+/// Each refusal's spoiled one-triangle scene written as bad.gltf and as bad.glb, and `check`ed.
+void forEachSpoiledFile(const std::vector<Refusal> &refusals, const test::TempDir &dir,
+                        const std::function<void(const Refusal &, const std::string &)> &check) {
+  for (const Refusal &refusal : refusals) {
+    SCOPED_TRACE(refusal.what);
+    Gltf g = oneTriangle();
+    g.scene({g.node({{"mesh", 0}})});
+    refusal.spoil(g);
+    for (const char *name : {"bad.gltf", "bad.glb"})
+      check(refusal, dir.write(name, std::string(name).ends_with("glb") ? g.glb() : g.gltf()));
+  }
+}
+
 TEST(GltfImportErrors, EachRefusalNamesTheFileAndJsonPath) {
   const std::vector<Refusal> refusals = {
       {"points", [](Gltf &g) { g.doc["meshes"][0]["primitives"][0]["mode"] = 0; }, "/meshes/0/primitives/0/mode",
@@ -473,23 +486,16 @@ TEST(GltfImportErrors, EachRefusalNamesTheFileAndJsonPath) {
        "/meshes/0/primitives/0/material", "materials 3 does not exist"},
   };
   test::TempDir dir("gltf");
-  for (const Refusal &refusal : refusals) {
-    SCOPED_TRACE(refusal.what);
-    Gltf g = oneTriangle();
-    g.scene({g.node({{"mesh", 0}})});
-    refusal.spoil(g);
-    for (const char *name : {"bad.gltf", "bad.glb"}) {
-      const std::string path = dir.write(name, std::string(name).ends_with("glb") ? g.glb() : g.gltf());
-      try {
-        loadScene(path);
-        ADD_FAILURE() << "no error for " << name;
-      } catch (const InputError &e) {
-        EXPECT_EQ(e.location().file, path);
-        EXPECT_EQ(e.location().jsonPath, refusal.path) << e.what();
-        EXPECT_NE(std::string(e.what()).find(refusal.message), std::string::npos) << e.what();
-      }
+  forEachSpoiledFile(refusals, dir, [](const Refusal &refusal, const std::string &path) {
+    try {
+      loadScene(path);
+      ADD_FAILURE() << "no error for " << path;
+    } catch (const InputError &e) {
+      EXPECT_EQ(e.location().file, path);
+      EXPECT_EQ(e.location().jsonPath, refusal.path) << e.what();
+      EXPECT_NE(std::string(e.what()).find(refusal.message), std::string::npos) << e.what();
     }
-  }
+  });
 }
 
 TEST(GltfImportErrors, WhatTinygltfWouldRefuseIsRefusedFirstAtItsJsonPath) {
@@ -524,18 +530,11 @@ TEST(GltfImportErrors, WhatTinygltfWouldRefuseIsRefusedFirstAtItsJsonPath) {
        "/meshes/0/primitives", "expected an array"},
   };
   test::TempDir dir("gltf");
-  for (const Refusal &refusal : refusals) {
-    SCOPED_TRACE(refusal.what);
-    Gltf g = oneTriangle();
-    g.scene({g.node({{"mesh", 0}})});
-    refusal.spoil(g);
-    for (const char *name : {"bad.gltf", "bad.glb"}) {
-      const std::string path = dir.write(name, std::string(name).ends_with("glb") ? g.glb() : g.gltf());
-      const std::string error = test::loadErrorOf(path);
-      EXPECT_NE(error.find(path + ": at " + refusal.path + ": "), std::string::npos) << error;
-      EXPECT_NE(error.find(refusal.message), std::string::npos) << error;
-    }
-  }
+  forEachSpoiledFile(refusals, dir, [](const Refusal &refusal, const std::string &path) {
+    const std::string error = test::loadErrorOf(path);
+    EXPECT_NE(error.find(path + ": at " + refusal.path + ": "), std::string::npos) << error;
+    EXPECT_NE(error.find(refusal.message), std::string::npos) << error;
+  });
   // A .gltf file's buffer without a uri (only a GLB's first buffer is its BIN chunk).
   Gltf g = oneTriangle();
   g.scene({g.node({{"mesh", 0}})});
