@@ -39,9 +39,8 @@ void textureInfo(const GltfFile &file, const JsonNode &parent, const std::string
 }
 
 void checkAccessors(const GltfFile &file) {
-  static const std::set<int64_t> kComponentTypes = {kComponentByte,          kComponentUnsignedByte,
-                                                    kComponentShort,         kComponentUnsignedShort,
-                                                    kComponentUnsignedInt,   kComponentFloat};
+  static const std::set<int64_t> kComponentTypes = {kComponentByte,          kComponentUnsignedByte, kComponentShort,
+                                                    kComponentUnsignedShort, kComponentUnsignedInt,  kComponentFloat};
   static const std::set<std::string> kTypes = {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"};
   for (const JsonNode &accessor : objects(file, "accessors")) {
     accessor.child("count").asInteger(1, INT64_MAX);
