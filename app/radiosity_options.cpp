@@ -64,6 +64,13 @@ SolverChoice chooseSolver(const Scene &scene, const RadiosityCommandOptions &o) 
   return chooseSolver(scene, solverOptionsFor(scene, o, meshOptions));
 }
 
+std::string whySolveAlone(const Scene &scene, const RadiosityCommandOptions &o) {
+  if (o.solver != "auto" || !o.parameters.given().all().empty()) return {};
+  const SolverChoice chosen = chooseSolver(scene, o);
+  if (chosen.solver != "hierarchical-exact") return {};
+  return fmt::format("auto's hierarchical-exact, for {}: a solve of seconds, which sharing would slow", chosen.reason);
+}
+
 Solution solveScene(const Scene &scene, const RayTracer &tracer, const RadiosityCommandOptions &o, uint64_t seed,
                     int threads, bool quiet, const SolveCheckpointOptions &checkpoint) {
   MeshOptions meshOptions;

@@ -31,6 +31,15 @@ SolverOptions solverOptionsFor(const Scene &scene, const RadiosityCommandOptions
 /// What the solve of these flags will run, and why (radiosity/solver.h chooseSolver).
 SolverChoice chooseSolver(const Scene &scene, const RadiosityCommandOptions &options);
 
+/// Why the solve of these flags under several MPI ranks is better run by rank
+/// 0 alone, or empty when the ranks share it: `auto`'s hierarchical-exact with
+/// no solver parameter given. Auto picks it only for a scene of a few
+/// thousand faces whose solve takes seconds on one machine, and sharing such
+/// a solve over 3 ranks tripled its wall time and doubled its CPU time (MPI's
+/// start and the waits at every batch of links, docs/cluster.md). A solver
+/// named, or given parameters (a finer mesh, a lower threshold), is shared.
+std::string whySolveAlone(const Scene &scene, const RadiosityCommandOptions &options);
+
 /// Meshes and solves the scene, printing progress and a summary unless quiet.
 Solution solveScene(const Scene &scene, const RayTracer &tracer, const RadiosityCommandOptions &options, uint64_t seed,
                     int threads, bool quiet, const SolveCheckpointOptions &checkpoint = {});

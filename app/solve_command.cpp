@@ -4,6 +4,7 @@
 
 #include <cctype>
 #include <filesystem>
+#include <optional>
 
 #include "checkpoint_options.h"
 #include "cluster/cluster.h"
@@ -124,6 +125,14 @@ CommandRunner addSolveCommand(CLI::App &app) {
                             o->reportPath.empty() && o->checkpoint.path.empty();
     if (gridsAlone && !quiet)
       fmt::print(stderr, "radiant: the scene has no faces: the grids get the lights' direct illuminance alone\n");
+    // A solve too small to share (whySolveAlone) is rank 0's alone: the other ranks end here, before the BVH,
+    // and wait for it at the job's end (cluster::Session); rank 0 works as one process.
+    const std::string aloneBecause = cluster::distributed() ? whySolveAlone(scene, o->radiosity) : std::string();
+    if (!aloneBecause.empty() && !cluster::isRoot()) return 0;
+    if (!aloneBecause.empty() && !quiet)
+      fmt::print(stderr, "radiant: {} ranks: rank 0 solves alone ({})\n", cluster::size(), aloneBecause);
+    std::optional<cluster::RootAlone> rootAlone;
+    if (!aloneBecause.empty()) rootAlone.emplace();
     RayTracer tracer(scene);
     SolveCheckpointOptions checkpoint;
     // A spectral solve checkpoints each pass in a file of its own (FILE's stem

@@ -51,15 +51,29 @@ for method in flat interpolate; do
   cmp -s solved1.exr solved3.exr && pass || fail "solve: 3 ranks give another solution than one process ($method)"
 done
 
-# The distributed hierarchical-exact solve (auto's choice here): each rank estimates the links into the
-# receivers it owns and the direct light at every N-th point, and the ranks share them: the same solution.
+# The distributed hierarchical-exact solve (named: auto's is solved by rank 0 alone, below): each rank
+# estimates the links into the receivers it owns and the direct light at every N-th point, and the ranks
+# share them: the same solution.
 "$radiant" solve "$cornell" -q -o exact1.rad || fail "hierarchical-exact: one process"
-mpi 2 "$radiant" solve "$cornell" -o exact2.rad >exact2.log 2>&1 || fail "hierarchical-exact: 2 ranks"
+mpi 2 "$radiant" solve "$cornell" --solver hierarchical-exact -o exact2.rad >exact2.log 2>&1 ||
+  fail "hierarchical-exact: 2 ranks"
 grep -q "hierarchical-exact solved" exact2.log && grep -q "summed" exact2.log && ! grep -q "summed 0.0 MB" exact2.log &&
-  pass || { fail "hierarchical-exact on 2 ranks shared no work:"; cat exact2.log; }
+  ! grep -q "alone" exact2.log && pass || { fail "hierarchical-exact on 2 ranks shared no work:"; cat exact2.log; }
 "$radiant" render "$cornell" "${size[@]}" --spp 4 --method interpolate --solution exact1.rad -q -o exact1.exr
 "$radiant" render "$cornell" "${size[@]}" --spp 4 --method interpolate --solution exact2.rad -q -o exact2.exr
 cmp -s exact1.exr exact2.exr && pass || fail "hierarchical-exact: 2 ranks give another solution than one process"
+
+# auto's hierarchical-exact (a scene of at most 2000 faces, a solve of seconds) is too small to share:
+# rank 0 solves it alone, the others only wait, and the solution is one process's.
+mpi 3 "$radiant" solve "$cornell" -o alone3.rad >alone3.log 2>&1 || fail "auto's hierarchical-exact: 3 ranks"
+grep -q "^radiant: 3 ranks: rank 0 solves alone (auto's hierarchical-exact" alone3.log &&
+  grep -q "hierarchical-exact solved" alone3.log && ! grep -q "summed" alone3.log && pass ||
+  { fail "auto's hierarchical-exact on 3 ranks was not rank 0's alone:"; cat alone3.log; }
+"$radiant" render "$cornell" "${size[@]}" --spp 4 --method interpolate --solution alone3.rad -q -o alone3.exr
+cmp -s exact1.exr alone3.exr && pass || fail "auto's hierarchical-exact alone on rank 0 gives another solution"
+# A parameter given (here the default tolerance, written out) shares it again.
+mpi 2 "$radiant" solve "$cornell" --tolerance 0.001 -o given2.rad >given2.log 2>&1 && grep -q "summed" given2.log &&
+  ! grep -q "alone" given2.log && pass || { fail "auto's solve with a parameter given was not shared"; cat given2.log; }
 
 # The classic hierarchical solver: each rank measures the form factors of the links into the receivers it
 # owns, and the ranks share them; 3 ranks on the Cornell box give one process's solution.

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <climits>
 #include <cstdlib>
+#include <stdexcept>
 #include <thread>
 
 #ifdef RADIANT_HAVE_MPI
@@ -18,8 +19,14 @@ namespace {
 
 int worldRank = 0, worldSize = 1;
 uint64_t summedBytes = 0;
+bool rootAlone = false;  // a RootAlone lives: rank 0 works as one process
 #ifdef RADIANT_HAVE_MPI
 bool joined = false;
+
+/// The collectives have other ranks to talk to.
+bool sharing() {
+  return joined && worldSize > 1 && !rootAlone;
+}
 #endif
 
 /// Set by every launcher we know of: Open MPI's mpirun, PMIx (Slurm's srun
@@ -66,7 +73,7 @@ void inPieces(T *values, size_t count, const Operation &operation) {
 
 template <typename T>
 void allSum(T *values, size_t count, MPI_Datatype type) {
-  if (!joined || worldSize == 1) return;
+  if (!sharing()) return;
   inPieces(values, count, [&](T *piece, int n) {
     MPI_Request request;
     MPI_Iallreduce(MPI_IN_PLACE, piece, n, type, MPI_SUM, MPI_COMM_WORLD, &request);
@@ -76,7 +83,7 @@ void allSum(T *values, size_t count, MPI_Datatype type) {
 
 template <typename T>
 void rootSum(T *values, size_t count, MPI_Datatype type) {
-  if (!joined || worldSize == 1) return;
+  if (!sharing()) return;
   inPieces(values, count, [&](T *piece, int n) {
     MPI_Request request;
     if (worldRank == 0)
@@ -126,7 +133,15 @@ int rank() {
   return worldRank;
 }
 int size() {
-  return worldSize;
+  return rootAlone ? 1 : worldSize;
+}
+
+RootAlone::RootAlone() {
+  if (worldRank != 0) throw std::logic_error("cluster::RootAlone on rank " + std::to_string(worldRank));
+  rootAlone = true;
+}
+RootAlone::~RootAlone() {
+  rootAlone = false;
 }
 
 bool builtWithMpi() {
@@ -160,8 +175,8 @@ void sumOnRoot(uint8_t *values, size_t count) {
   rootSum(values, count, MPI_UINT8_T);
 }
 std::vector<uint8_t> gatherFromAllRanks(const std::vector<uint8_t> &mine, std::vector<size_t> &starts) {
-  starts.assign(size_t(worldSize) + 1, 0);
-  if (!joined || worldSize == 1) {
+  starts.assign(size_t(size()) + 1, 0);
+  if (!sharing()) {
     starts[1] = mine.size();
     return mine;
   }
@@ -200,7 +215,7 @@ std::vector<uint8_t> gatherFromAllRanks(const std::vector<uint8_t> &mine, std::v
 }
 template <typename T>
 T broadcastFromRoot(T value, MPI_Datatype type) {
-  if (!joined || worldSize == 1) return value;
+  if (!sharing()) return value;
   MPI_Request request;
   MPI_Ibcast(&value, 1, type, 0, MPI_COMM_WORLD, &request);
   waitQuietly(request);
@@ -214,7 +229,7 @@ double fromRoot(double value) {
 }
 bool anyRank(bool value) {
   int v = value ? 1 : 0;
-  if (joined && worldSize > 1) {
+  if (sharing()) {
     MPI_Request request;
     MPI_Iallreduce(MPI_IN_PLACE, &v, 1, MPI_INT, MPI_LOR, MPI_COMM_WORLD, &request);
     waitQuietly(request);

@@ -36,7 +36,7 @@ class Session {
 
 /// This process's rank, 0 … size() − 1; 0 without MPI.
 int rank();
-/// The number of ranks; 1 without MPI.
+/// The number of ranks; 1 without MPI, and 1 on rank 0 inside a RootAlone.
 int size();
 /// More than one rank: work is split and summed.
 inline bool distributed() {
@@ -101,6 +101,18 @@ int64_t fromRoot(int64_t value);
 double fromRoot(double value);
 /// True on every rank when it is true on any (an interrupt on one node).
 bool anyRank(bool value);
+
+/// Rank 0 works as one process while this lives: size() is 1 and every
+/// collective above is a no-op, so that it runs a stage alone (a solve too
+/// small to be worth sharing: app/solve_command.cpp) while the other ranks
+/// skip it and wait at the job's end. Only rank 0 may hold one.
+class RootAlone {
+ public:
+  RootAlone();
+  ~RootAlone();
+  RootAlone(const RootAlone &) = delete;
+  RootAlone &operator=(const RootAlone &) = delete;
+};
 
 /// Ends the whole job at once (an error on one rank, which the others,
 /// waiting in a collective, would never hear of); never returns.
