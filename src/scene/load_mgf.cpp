@@ -12,11 +12,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <set>
-#include <sstream>
 #include <unordered_map>
 
 #include "scene/load_detail.h"
@@ -29,45 +30,11 @@ namespace {
 namespace fs = std::filesystem;
 
 /// Limits on what a file may ask for, checked before allocating.
-constexpr size_t kMaxFileBytes = size_t(1) << 30;
-constexpr size_t kMaxEntityWords = 1 << 16;  // a cspec or an fh of many corners
 constexpr size_t kMaxFaceCorners = 4096;
+constexpr size_t kMaxEntityWords = kMaxMgfEntityWords;
 constexpr int kMaxIncludeDepth = 16;
 constexpr long long kMaxArrayCopies = 1 << 20;          // the product of an xf's -a counts
 constexpr long long kMaxGeneratedEntities = 1LL << 28;  // entities run, with arrays and includes replayed
-
-struct Entity {
-  std::vector<std::string> words;
-  int line = 0;
-};
-
-std::vector<Entity> readEntities(const std::string &path, const InputLocation &fileFrom) {
-  std::istringstream in(readInputFile(path, fileFrom, "MGF file", kMaxFileBytes));
-  std::vector<Entity> entities;
-  std::string line;
-  int lineNumber = 0;
-  Entity current;
-  while (std::getline(in, line)) {
-    ++lineNumber;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (current.words.empty()) current.line = lineNumber;
-    bool continues = !line.empty() && line.back() == '\\';
-    if (continues) line.pop_back();
-    std::istringstream words(line);
-    std::string word;
-    while (words >> word) {
-      if (current.words.empty() && word[0] == '#') break;  // a comment entity: the rest of the line
-      current.words.push_back(word);
-      if (current.words.size() > kMaxEntityWords)
-        throw InputError({path, current.line, 0, ""}, "an entity of more than 65536 words");
-    }
-    if (continues && !current.words.empty()) continue;
-    if (!current.words.empty()) entities.push_back(std::move(current));
-    current = Entity{};
-  }
-  if (!current.words.empty()) entities.push_back(std::move(current));
-  return entities;
-}
 
 /// A vertex context: its point (and normal) in the coordinates of the file.
 using Vertex = MgfPoint;
@@ -92,7 +59,11 @@ class MgfReader {
   void readFile(const std::string &path, const InputLocation &from, const Transform &includeTransform, int depth) {
     if (depth > kMaxIncludeDepth)
       throw InputError(from, "includes nested more than 16 deep (does the file include itself?)");
-    const std::vector<Entity> entities = readEntities(path, from);
+    // A file included again (by an array of includes, or from several places) is read and split once.
+    std::shared_ptr<const std::vector<MgfEntity>> &cached = entitiesOfFile_[path];
+    if (!cached) cached = std::make_shared<const std::vector<MgfEntity>>(readMgfEntities(path, from));
+    const std::shared_ptr<const std::vector<MgfEntity>> held = cached;  // the map may grow while it runs
+    const std::vector<MgfEntity> &entities = *held;
     const size_t transformDepth = transforms_.size();
     TransformContext outer;
     outer.total = (transforms_.empty() ? Transform{} : transforms_.back().total) * includeTransform;
@@ -121,6 +92,8 @@ class MgfReader {
   std::map<std::string, MgfMaterial> materials_;
   std::string currentVertex_, currentColour_, currentMaterial_;
   std::vector<TransformContext> transforms_;
+  /// Each file's entities, by the path it was read from: an array of includes replays them, not the file.
+  std::map<std::string, std::shared_ptr<const std::vector<MgfEntity>>> entitiesOfFile_;
   std::vector<std::string> objectNames_;
   std::map<std::string, uint32_t> objectIndex_;
   std::map<std::pair<std::string, uint64_t>, uint32_t> materialIndex_;
@@ -147,9 +120,11 @@ class MgfReader {
            (std::isdigit(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '+' || c == 'e' || c == 'E');
     double value = 0;
     if (ok) {
-      std::istringstream in(word);
-      in.imbue(std::locale::classic());
-      ok = static_cast<bool>(in >> value) && in.peek() == std::char_traits<char>::eof() && std::isfinite(value);
+      // std::from_chars: the "C" locale's grammar without a stream per number (an array replays millions).
+      const char *first = word.data(), *last = word.data() + word.size();
+      if (*first == '+' && last - first > 1 && first[1] != '-') ++first;
+      const auto [end, error] = std::from_chars(first, last, value);
+      ok = error == std::errc{} && end == last && std::isfinite(value);
     }
     if (!ok) fail("'" + word + "' is not a number");
     return value;
@@ -159,7 +134,7 @@ class MgfReader {
     if (v != std::floor(v) || std::abs(v) > 1e15) fail("'" + word + "' is not an integer");
     return static_cast<long long>(v);
   }
-  void expectArguments(const Entity &e, size_t least, size_t most, const char *usage) const {
+  void expectArguments(const MgfEntity &e, size_t least, size_t most, const char *usage) const {
     const size_t n = e.words.size() - 1;
     if (n < least || n > most)
       fail("'" + e.words[0] + "' takes " + usage + ", got " + std::to_string(n) + " arguments");
@@ -175,7 +150,7 @@ class MgfReader {
   /// The three context entities c, m and v share their syntax: `X` (the unnamed
   /// context, reset), `X id` (select), `X id =` (define, reset), `X id = template`.
   template <typename T>
-  void context(const Entity &e, std::map<std::string, T> &table, std::string &current, const char *kind) {
+  void context(const MgfEntity &e, std::map<std::string, T> &table, std::string &current, const char *kind) {
     expectArguments(e, 0, 3, "[id [= [template]]]");
     if (e.words.size() == 1) {
       table[""] = T{};
@@ -309,12 +284,12 @@ class MgfReader {
     return result;
   }
 
-  void run(const std::string &path, const std::vector<Entity> &entities, int depth) {
+  void run(const std::string &path, const std::vector<MgfEntity> &entities, int depth) {
     for (size_t index = 0; index < entities.size(); ++index) {
       path_ = path;
       line_ = entities[index].line;
       if (++entitiesRun_ > kMaxGeneratedEntities) fail("the arrays and includes make more than 2²⁸ entities");
-      const Entity &e = entities[index];
+      const MgfEntity &e = entities[index];
       const std::string &k = e.words[0];
       if (k == "xf") {
         if (e.words.size() == 1) {
@@ -372,7 +347,7 @@ class MgfReader {
     }
   }
 
-  void entity(const Entity &e) {
+  void entity(const MgfEntity &e) {
     const std::string &k = e.words[0];
     const size_t n = e.words.size() - 1;
     if (k == "o") {
@@ -471,7 +446,7 @@ class MgfReader {
   /// `ies FILE [-m MULTIPLIER] [xf arguments]`: an IES luminaire with its
   /// photometric centre at the origin, its nadir along −z and C = 0 along +x
   /// (MGF 2.0), placed by the transform; a point light (docs/luminaires.md).
-  void luminaire(const Entity &e) {
+  void luminaire(const MgfEntity &e) {
     expectArguments(e, 1, kMaxEntityWords, "a file name, then an optional -m multiplier and xf arguments");
     std::vector<std::string> args(e.words.begin() + 2, e.words.end());
     double multiplier = 1;
@@ -515,7 +490,7 @@ class MgfReader {
     if (warnedEntities_.insert(key).second) scene_.warnings.push_back(here().toString() + ": " + message);
   }
 
-  void face(const Entity &e) {
+  void face(const MgfEntity &e) {
     if (e.words.size() - 1 < 3) fail("'" + e.words[0] + "' needs at least three vertices");
     if (e.words.size() - 1 > kMaxFaceCorners) fail("a face of more than 4096 vertices");
     std::vector<std::vector<MgfPoint>> contours(1);
@@ -537,7 +512,7 @@ class MgfReader {
     mgfAddFace(target(), contours[0], holes, here());
   }
 
-  void primitive(const Entity &e) {
+  void primitive(const MgfEntity &e) {
     const std::string &k = e.words[0];
     auto radius = [&](const std::string &word) {
       const double r = number(word);

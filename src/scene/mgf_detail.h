@@ -16,6 +16,20 @@
 
 namespace radiant::detail {
 
+// ---- the file's entities (mgf_entities.cpp) ----
+
+/// One entity: its words (keyword first), and the line it starts on.
+struct MgfEntity {
+  std::vector<std::string> words;
+  int line = 0;
+};
+/// At most this many words in an entity (a cspec or an fh of many corners).
+constexpr size_t kMaxMgfEntityWords = size_t(1) << 16;
+/// The file's entities, comments dropped and continued lines (`\` at the end)
+/// joined: a regular file of at most 1 GiB (util/input_file.h), else an
+/// InputError naming it at `from`.
+std::vector<MgfEntity> readMgfEntities(const std::string &path, const InputLocation &from);
+
 // ---- colours and materials (mgf_material.cpp) ----
 
 /// An MGF colour: a chromaticity, and a spectrum when it was given as one
