@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "commands.h"
+#include "display/emitter_mask.h"
 #include "io/compare.h"
 #include "io/image.h"
 #include "io/output_files.h"
@@ -17,7 +18,7 @@ namespace {
 struct CompareOptions {
   std::string test, reference, differencePath, testVariance, referenceVariance;
   double differenceRange = 0.2;
-  bool json = false;
+  bool json = false, withoutEmitters = false;
 };
 }  // namespace
 
@@ -34,6 +35,9 @@ CommandRunner addCompareCommand(CLI::App &app) {
                  "Variance of each test pixel's mean (radiant render --variance): adds z-scores of the difference");
   app.add_option("--reference-variance", options->referenceVariance,
                  "Variance of each reference pixel's mean; without it the reference counts as noise-free");
+  app.add_flag("--without-emitters", options->withoutEmitters,
+               "Leave out the pixels that show a light and their eight neighbours (the reference's emitter channel, "
+               "else the test's: EXRs written by radiant render), so that the figures are the lit surfaces'");
   app.add_flag("--json", options->json, "Print the figures as JSON");
 
   return [options]() {
@@ -44,7 +48,16 @@ CommandRunner addCompareCommand(CLI::App &app) {
     }
     Image test = readImage(options->test);
     Image reference = readImage(options->reference);
-    ImageComparison c = compareImages(test, reference, options->test, options->reference);
+    std::vector<uint8_t> leaveOut;
+    if (options->withoutEmitters) {
+      const Image &covered = !reference.emitterFraction.empty() ? reference : test;
+      if (covered.emitterFraction.empty())
+        throw InputError(InputLocation{"--without-emitters"},
+                         "neither '" + options->test + "' nor '" + options->reference +
+                             "' has an emitter channel (an EXR written by radiant render has one)");
+      leaveOut = emitterPixelMask(covered);
+    }
+    ImageComparison c = compareImages(test, reference, options->test, options->reference, leaveOut);
     const char *names[4] = {"R", "G", "B", "all"};
     std::optional<NoiseAgreement> noise;
     if (!options->testVariance.empty() || !options->referenceVariance.empty()) {
@@ -60,6 +73,7 @@ CommandRunner addCompareCommand(CLI::App &app) {
     }
     if (options->json) {
       fmt::print("{{\"pixels\": {}, \"non_finite_pixels\": {}", c.pixels, c.nonFinitePixels);
+      if (options->withoutEmitters) fmt::print(", \"left_out_pixels\": {}", c.leftOut);
       for (int i = 0; i < 4; ++i) {
         const ChannelComparison &ch = i < 3 ? c.channels[i] : c.average;
         fmt::print(
@@ -91,6 +105,7 @@ CommandRunner addCompareCommand(CLI::App &app) {
             noise->blocks, noise->blockRmsZ, noise->blockMaxAbsZ, noise->blocksBeyond4);
       }
       if (c.nonFinitePixels) fmt::print("warning: {} pixels with NaN or Inf were left out\n", c.nonFinitePixels);
+      if (options->withoutEmitters) fmt::print("left out: {} pixels showing a light or next to one\n", c.leftOut);
     }
     if (!options->differencePath.empty())
       writePngBytes(differenceImage(test, reference, options->differenceRange), test.width, test.height,

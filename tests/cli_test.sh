@@ -39,6 +39,10 @@ fi
   || fail "compare --test-variance: an image against itself has z = 0"
 expect_error "variance size mismatch" "variance image size" "$radiant" compare a.exr a.exr --test-variance cornell-box.exr
 "$radiant" compare a.pfm a.exr --json | grep -q '"mean_ratio": 1' && pass || fail "compare pfm vs exr, --json"
+# --without-emitters reads the light's pixels from an EXR's emitter channel; a PFM has none.
+"$radiant" compare a.exr a.exr --without-emitters --json | grep -qE '"left_out_pixels": [1-9]' && pass ||
+  fail "compare --without-emitters left no pixel of the Cornell box's light out"
+expect_error "--without-emitters without a channel" "has an emitter channel" "$radiant" compare a.pfm a.pfm --without-emitters
 
 # Bad input: clear message, non-zero exit, and no partial output over a good file.
 cp a.png keep.png

@@ -7,7 +7,7 @@
 namespace radiant {
 
 ImageComparison compareImages(const Image &test, const Image &reference, const std::string &testName,
-                              const std::string &referenceName) {
+                              const std::string &referenceName, const std::vector<uint8_t> &leaveOut) {
   if (test.width != reference.width || test.height != reference.height)
     throw InputError(InputLocation{testName}, "image is " + std::to_string(test.width) + "x" +
                                                   std::to_string(test.height) + " but the reference '" + referenceName +
@@ -19,6 +19,10 @@ ImageComparison compareImages(const Image &test, const Image &reference, const s
   size_t n = 0;
   const size_t pixels = size_t(test.width) * test.height;
   for (size_t p = 0; p < pixels; ++p) {
+    if (p < leaveOut.size() && leaveOut[p]) {
+      ++result.leftOut;
+      continue;
+    }
     const float *t = &test.rgb[3 * p], *r = &reference.rgb[3 * p];
     if (!std::isfinite(t[0]) || !std::isfinite(t[1]) || !std::isfinite(t[2]) || !std::isfinite(r[0]) ||
         !std::isfinite(r[1]) || !std::isfinite(r[2])) {

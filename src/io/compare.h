@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@ struct ImageComparison {
   ChannelComparison average;                  ///< over all channels together
   size_t pixels = 0;
   size_t nonFinitePixels = 0;  ///< NaN/Inf in the test image (counted, excluded)
+  size_t leftOut = 0;          ///< pixels left out on request (compareImages' leaveOut)
 };
 
 /// Agreement within noise, from the variance of each pixel's mean (radiant
@@ -40,9 +42,11 @@ struct NoiseAgreement {
 NoiseAgreement noiseAgreement(const Image &test, const Image &reference, const Image &testVariance,
                               const Image &referenceVariance, int blockSize = 16);
 
-/// Throws InputError if the sizes differ.
+/// Throws InputError if the sizes differ. Pixels whose `leaveOut` entry is
+/// non-zero are left out (empty: none), as are non-finite ones.
 ImageComparison compareImages(const Image &test, const Image &reference, const std::string &testName = "test",
-                              const std::string &referenceName = "reference");
+                              const std::string &referenceName = "reference",
+                              const std::vector<uint8_t> &leaveOut = {});
 
 /// False-colour map of the signed relative luminance difference (t − r)/r:
 /// blue where the test is darker, red where brighter, white where equal,
