@@ -5,16 +5,23 @@
 // At the visible point x the irradiance is gathered from the whole mesh:
 //   L(x) = Le(x) + (ρ/π) Σ_j F(dx → A_j) V(x, A_j) B_j
 // with F the exact unoccluded point-to-polygon factor (Lambert's contour
-// integral, C&W ch. 4) and V from one shadow ray per element. Emitters
+// integral, C&W ch. 4) and V from one shadow ray per evaluation. Emitters
 // are elements like any other, so direct and indirect light come from the
 // same sum and nothing is counted twice; point lights, which are not
-// elements, add I cos θ / d² each past one shadow ray. The visibility ray goes to
-//   --ff point  the element's centre: every pixel tests the same points, so a
-//               shadow boundary shows the mesh's coherent stair-steps;
-//   --ff mc     a uniformly random point of the element: the same boundary
-//               becomes noise, which more samples per pixel average away.
-// Cost: one contour integral and one shadow ray per element per sample —
-// exact, and slow for large meshes.
+// elements, add I cos θ / d² each past one shadow ray.
+//
+// The sum runs over a cut of the elements' tree (render/source_tree.h), not
+// over every element: near, bright and large sources down to their elements,
+// far and dim ones as whole nodes, each node estimated from one of its
+// elements drawn ∝ B_j A_j and weighted by the inverse of that chance — an
+// unbiased estimate of the whole sum, whose cost follows the cut (at most
+// max-cut nodes), not the element count. cut-error 0 takes every element.
+// The two variants of the book:
+//   --ff point  visibility to the element's centre, and each node read
+//               through the same element at every pixel: a shadow boundary
+//               shows the mesh's coherent stair-steps;
+//   --ff mc     a uniformly random point of a randomly drawn element: the
+//               same errors become noise, which more samples average away.
 //
 // With --selective on a hierarchical solution (link mode), the gather runs
 // over the links of the pixel's leaf and its ancestors instead: the
@@ -24,9 +31,12 @@
 //   B(x) = B_interp(x) + ρ Σ_{re-evaluated links} (F(dx → s) V − F_link) B_s
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "radiosity/form_factor.h"
 #include "render/light_sampler.h"
 #include "render/registry.h"
+#include "render/source_tree.h"
 #include "render/two_pass.h"
 #include "util/error.h"
 
@@ -36,8 +46,13 @@ namespace {
 
 class Reichert final : public TwoPassRenderer {
  public:
-  Reichert(const RayTracer &tracer, const RenderContext &context, const SelectiveOptions &selective, bool pointSampled)
-      : TwoPassRenderer(tracer, context, selective), pointSampled_(pointSampled) {
+  Reichert(const RayTracer &tracer, const RenderContext &context, const SelectiveOptions &selective, bool pointSampled,
+           double cutError, int maxCut)
+      : TwoPassRenderer(tracer, context, selective),
+        pointSampled_(pointSampled),
+        cutError_(cutError),
+        maxCut_(maxCut),
+        sources_(solution_) {
     const RadiosityMesh &mesh = solution_.mesh;
     polygons_.resize(mesh.elements.size());
     for (uint32_t e = 0; e < mesh.elements.size(); ++e) {
@@ -77,19 +92,25 @@ class Reichert final : public TwoPassRenderer {
     return radiosity * kInvPi;
   }
 
-  /// The irradiance at a surface point, on the side its normals face: every
-  /// element's F(dx → A_j) V B_j, plus the point lights.
+  /// The irradiance at a surface point, on the side its normals face: the
+  /// cut's F(dx → A_j) V B_j, each over its chance, plus the point lights.
   Bands irradianceAt(const Hit &hit, Sampler &rng) const {
     const RadiosityMesh &mesh = solution_.mesh;
     Bands irradiance(0.0);
-    for (uint32_t j = 0; j < mesh.elements.size(); ++j) {
+    thread_local std::vector<SourceTree::CutNode> cut;
+    sources_.chooseCut(hit.position, hit.shadingNormal, cutError_, maxCut_, cut);
+    for (const SourceTree::CutNode &node : cut) {
+      // Draw the numbers first, so the random sequence does not depend on geometry.
+      const double u0 = rng.next(), u1 = rng.next(), u2 = rng.next();
+      // --ff point reads each node through one element, the same at every pixel (a fixed golden-ratio draw).
+      const double pick = pointSampled_ ? std::fmod(0.5 + 0.6180339887498949 * node.node, 1.0) : u0;
+      double probability = 1;
+      const uint32_t j = sources_.drawElement(node.node, hit.position, hit.shadingNormal, pick, probability);
       const Element &element = mesh.elements[j];
-      // Draw the sample point first, so the random sequence does not depend on geometry.
-      double u1 = rng.next(), u2 = rng.next();
       const Vec3 &nj = mesh.normalOf(j);
       if (dot(hit.position - element.centre, nj) <= 0) continue;  // x is behind j: j's front faces away
-      double f = visibleFormFactor(hit, {polygons_[j].data(), size_t(element.vertexCount)}, nj, u1, u2);
-      if (f > 0) irradiance += solution_.displayRadiosity(j) * f;
+      const double f = visibleFormFactor(hit, {polygons_[j].data(), size_t(element.vertexCount)}, nj, u1, u2);
+      if (f > 0) irradiance += solution_.displayRadiosity(j) * (f / probability);
     }
     // Point lights are no elements: their light is gathered the same way, exactly.
     if (!tracer_.scene().lights.empty()) irradiance += pointLightIrradiance(tracer_, hit);
@@ -126,6 +147,9 @@ class Reichert final : public TwoPassRenderer {
   }
 
   const bool pointSampled_;
+  const double cutError_;
+  const int maxCut_;
+  const SourceTree sources_;
   std::vector<std::array<Vec3, 4>> polygons_;
   LinksByReceiver links_;  ///< link mode: the selected links by receiver tree node
 };
@@ -134,7 +158,8 @@ std::unique_ptr<Renderer> createReichert(const RayTracer &tracer, const RenderCo
                                          const Parameters &parameters) {
   SelectiveOptions selective = SelectiveOptions::from(parameters);
   selective.linkPower = parameters.real("selective-power");
-  return std::make_unique<Reichert>(tracer, context, selective, parameters.choice("ff") == "point");
+  return std::make_unique<Reichert>(tracer, context, selective, parameters.choice("ff") == "point",
+                                    parameters.real("cut-error"), int(parameters.integer("max-cut")));
 }
 
 }  // namespace
@@ -148,10 +173,16 @@ RendererInfo reichertMethod() {
        "stair-steps at shadow edges) or to a random point of it (mc: noise that samples average away)",
        0,
        0,
-       {"point", "mc"}}};
+       {"point", "mc"}},
+      {"cut-error", ParameterType::Real, "0.02",
+       "the gather's cut of the elements' tree is split while a node could give more than this fraction of the "
+       "point's irradiance (Walter et al.'s lightcuts bound); 0: every element, the exact sum (slow on large meshes)",
+       0, 1},
+      {"max-cut", ParameterType::Integer, "256",
+       "at most this many nodes in a point's cut (each one form factor and one shadow ray)", 1, 1 << 20}};
   for (const ParameterSpec &spec : selectiveParameters()) parameters.push_back(spec);
   parameters.push_back(selectivePowerParameter());
-  return {"reichert", "form factors per pixel to every element, ray-traced visibility",
+  return {"reichert", "form factors per pixel to every element (through a cut of their tree), ray-traced visibility",
           parameters, &createReichert,
           nullptr,    true};
 }
