@@ -71,12 +71,10 @@ int main(int argc, char **argv) {
     solution.updateNodesAndErrors();
     const double perSample = secondsPerSample(scene, tracer, solution, 0.02, int(repeats));
     if (first == 0) first = perSample;
-    fmt::print("{:>9} {:>10} {:>12.1f} {:>8.2f}\n", solution.elementCount(), 0.02, 1e6 * perSample,
-               perSample / first);
+    fmt::print("{:>9} {:>10} {:>12.1f} {:>8.2f}\n", solution.elementCount(), 0.02, 1e6 * perSample, perSample / first);
     if (!everyElementDone) {
       const double every = secondsPerSample(scene, tracer, solution, 0, 1);
-      fmt::print("{:>9} {:>10} {:>12.1f} {:>8.2f}\n", solution.elementCount(), "0 (every)", 1e6 * every,
-                 every / first);
+      fmt::print("{:>9} {:>10} {:>12.1f} {:>8.2f}\n", solution.elementCount(), "0 (every)", 1e6 * every, every / first);
       everyElementDone = true;
     }
     std::fflush(stdout);

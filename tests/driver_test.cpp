@@ -1,9 +1,16 @@
 // The render driver (render/driver.h): converged pixels stop, for the
 // renderers whose estimate varies only across the pixel, and the image still
-// depends on nothing but the seed and the sample count.
+// depends on nothing but the seed and the sample count; an interrupt is heard
+// within a second or so however slow the method.
 #include "render/driver.h"
 
 #include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <thread>
+
+#include "util/interrupt.h"
 
 namespace radiant {
 namespace {
@@ -131,6 +138,45 @@ TEST(Driver, StoppingPixelsDoesNotDependOnTheThreadCount) {
     ASSERT_EQ(one.film.samples[p], two.film.samples[p]);
     ASSERT_EQ(one.film.sum[p][0], two.film.sum[p][0]);
   }
+}
+
+/// A slow method: half a millisecond a sample (reichert's order), its value the sample's index.
+class Slow final : public Renderer {
+ public:
+  Bands radiance(const Ray &, Sampler &rng) const override {
+    std::this_thread::sleep_for(std::chrono::microseconds(500));
+    return Bands(rng.next());
+  }
+};
+
+TEST(Driver, ASlowMethodHearsAnInterruptWithinASecondOrSo) {
+  // One 16 × 16 tile on one thread: a sample per pixel takes 0.13 s or more.
+  // The interrupt comes 0.1 s into the round that starts at 8 spp. Doubling,
+  // that round would be 8 spp, over a second, the interrupt heard only at its
+  // end; cut to about a second a tile, it ends within one.
+  const Slow slow;
+  const PinholeCamera camera(CameraSettings{}, 16, 16);
+  Film film(16, 16);
+  DriverOptions options;
+  options.samplesPerPixel = 1 << 20;
+  options.threads = 1;
+  clearInterrupt();
+  std::atomic<bool> roundStarted{false};
+  std::thread interrupter([&] {
+    while (!roundStarted) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    requestInterrupt();
+  });
+  std::chrono::steady_clock::time_point roundStart;
+  const RenderStats stats = renderImage(camera, slow, options, film, [&](const Progress &p) {
+    if (p.samplesDone >= 8 && !roundStarted) roundStart = std::chrono::steady_clock::now(), roundStarted = true;
+  });
+  interrupter.join();
+  clearInterrupt();
+  ASSERT_TRUE(roundStarted);
+  const double heard = std::chrono::duration<double>(std::chrono::steady_clock::now() - roundStart).count() - 0.1;
+  EXPECT_TRUE(stats.interrupted);
+  EXPECT_LT(heard, 1.4) << "stopped " << heard << " s after the interrupt, at " << stats.samplesPerPixel << " spp";
 }
 
 }  // namespace

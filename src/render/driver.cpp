@@ -188,8 +188,25 @@ RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, Fil
         const int fits = static_cast<int>((budget - elapsed) / (perPixelSample * double(activeCount)));
         roundSamples = std::min(roundSamples, std::max(0, fits));
       }
-      // Rank 0's clock decides a budgeted round, for every rank.
-      if (budget > 0) roundSamples = static_cast<int>(cluster::fromRoot(int64_t(roundSamples)));
+      // Ctrl-C and SIGTERM are heard between tiles (below), and a doubling
+      // round of a slow method (reichert: thousands of samples a second)
+      // held minutes of work in one tile. Without pixel stopping, whose
+      // decisions fall at round ends and must not depend on the clock, a
+      // round is cut so that a tile of it takes about kTileSeconds at the
+      // speed measured so far. The image stays the same: each pixel's
+      // samples, and the order they are summed in, do not depend on rounds.
+      const bool cutByTime = !stopConverged && done > 0 && roundSamples > 1;
+      if (cutByTime) {
+        constexpr double kTileSeconds = 1.0;
+        const double threadSecondsPerPixelSample = elapsed * double(std::max(1, arena.max_concurrency())) *
+                                                   double(ranks) / double(std::max<uint64_t>(1, pixelSamples));
+        const double tilePixels = double(options.tileSize) * options.tileSize;
+        const double fits = kTileSeconds / (threadSecondsPerPixelSample * tilePixels);
+        roundSamples = std::clamp(fits < double(roundSamples) ? int(fits) : roundSamples, 1, roundSamples);
+      }
+      // Rank 0's clock decides a budgeted or time-cut round, for every rank.
+      if (budget > 0 || (cutByTime && ranks > 1))
+        roundSamples = static_cast<int>(cluster::fromRoot(int64_t(roundSamples)));
     }
     resumedRoundEnd = 0;
     if (roundSamples <= 0) break;
