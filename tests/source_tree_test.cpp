@@ -24,20 +24,7 @@ namespace {
 /// into 20 × 20 elements a face, each given a radiosity that varies across
 /// the walls (a made-up field: the test is of the gather, not the solve).
 struct MeshedCube {
-  Scene scene = [] {
-    const int walls[6] = {1, 1, 1, 0, 1, 1};
-    Scene s = test::closedBox(1.0, walls);
-    Material light, wall;
-    light.name = "light";
-    light.emission = Bands(kInvPi);
-    wall.name = "wall";
-    wall.diffuse = Bands(0.5);
-    s.materials = {light, wall};
-    s.camera.eye = {0.5, 0.9, 0.5};
-    s.camera.target = {0.5, 0, 0.5};
-    s.camera.up = {0, 0, 1};
-    return s;
-  }();
+  Scene scene = test::unitCubeWithCeilingLight();
   RayTracer tracer{scene};
   Solution solution = [this] {
     MeshOptions meshOptions;

@@ -95,4 +95,23 @@ inline Scene furnace(double emission, double reflectance) {
   return s;
 }
 
+/// The unit cube of docs/two-pass.md (`rushmeier`), ceiling (y = 1) emitting
+/// E = 1 with ρ = 0, the other faces ρ = 0.5.
+inline Scene unitCubeWithCeilingLight() {
+  const int walls[6] = {1, 1, 1, 0, 1, 1};
+  Scene s = test::closedBox(1.0, walls);
+  Material light, wall;
+  light.name = "light";
+  light.diffuse = Bands(0.0);
+  light.emission = Bands(kInvPi);  // radiance 1/π: exitance E = 1
+  wall.name = "wall";
+  wall.diffuse = Bands(0.5);
+  s.materials = {light, wall};
+  s.camera.eye = {0.5, 0.9, 0.5};
+  s.camera.target = {0.5, 0.0, 0.5};
+  s.camera.up = {0, 0, 1};
+  s.camera.verticalFovDegrees = 100;
+  return s;
+}
+
 }  // namespace radiant::test

@@ -43,25 +43,6 @@ Estimate estimateRay(const Renderer &renderer, const Ray &ray, int samples) {
   return {mean, std::sqrt(variance)};
 }
 
-/// The unit cube of docs/two-pass.md (`rushmeier`), ceiling (y = 1) emitting
-/// E = 1 with ρ = 0, the other faces ρ = 0.5.
-Scene unitCubeWithCeilingLight() {
-  const int walls[6] = {1, 1, 1, 0, 1, 1};
-  Scene s = test::closedBox(1.0, walls);
-  Material light, wall;
-  light.name = "light";
-  light.diffuse = Bands(0.0);
-  light.emission = Bands(kInvPi);  // radiance 1/π: exitance E = 1
-  wall.name = "wall";
-  wall.diffuse = Bands(0.5);
-  s.materials = {light, wall};
-  s.camera.eye = {0.5, 0.9, 0.5};
-  s.camera.target = {0.5, 0.0, 0.5};
-  s.camera.up = {0, 0, 1};
-  s.camera.verticalFovDegrees = 100;
-  return s;
-}
-
 /// The cube's exact patch-level solution (docs/two-pass.md), one element per
 /// face: floor 0.1666003, walls 0.1666832, split into direct ρF·E and the rest.
 Solution exactCubeSolution(const Scene &scene) {
@@ -93,7 +74,7 @@ constexpr double kIndirectOfTheFloorElement = 0.1666003 - 0.5 * 0.1998249;
 
 /// The unit cube with its exact patch-level solution, and a renderer on it.
 struct ExactCube {
-  Scene scene = unitCubeWithCeilingLight();
+  Scene scene = test::unitCubeWithCeilingLight();
   RayTracer tracer{scene};
   Solution solution = exactCubeSolution(scene);
   RenderContext options = [this] {
@@ -252,7 +233,7 @@ TEST(TwoPass, NoMethodCountsTheEmittersTwice) {
   // add the whole direct image again. Each method's image mean must agree
   // with the path tracer within the noise of both plus the solution's own
   // bias, which `interpolate` shows; the excess is asserted to be far larger.
-  Scene scene = unitCubeWithCeilingLight();
+  Scene scene = test::unitCubeWithCeilingLight();
   RayTracer tracer(scene);
   Solution solution = meshAndSolveFor(scene, tracer, "gauss-seidel", 0.125, 1e-6);
   const int size = 24;
