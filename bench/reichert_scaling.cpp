@@ -4,8 +4,10 @@
 // elements, each with the same made-up light field (emission plus a uniform
 // reflected radiosity: the cost of the cut depends on where the power is,
 // not on a solve), rendered at 64×64, 2 samples per pixel, one thread. Prints
-// the median time per sample and its ratio to the coarsest mesh, beside the
-// gather over every element (--cut-error 0) on the coarsest.
+// the median time per sample of the gather (every sample gathers:
+// --gather-chance 1) and its ratio to the coarsest mesh, beside the gather
+// over every element (--cut-error 0) on the coarsest, and the time per sample
+// with the default --gather-chance (most samples read the solution).
 //
 //   build/reichert_scaling [scene.json] [--repeats 3]     (from the repository root)
 #include <fmt/format.h>
@@ -27,11 +29,12 @@ using namespace radiant;
 namespace {
 
 double secondsPerSample(const Scene &scene, const RayTracer &tracer, const Solution &solution, double cutError,
-                        int repeats) {
+                        const char *gatherChance, int repeats) {
   RenderContext context;
   context.solution = &solution;
   ParameterValues parameters;
   parameters.set("cut-error", fmt::format("{}", cutError), InputLocation{"bench"});
+  if (gatherChance) parameters.set("gather-chance", gatherChance, InputLocation{"bench"});
   auto renderer = createRenderer("reichert", tracer, context, parameters);
   constexpr int kSize = 64, kSamples = 2;
   const PinholeCamera camera(scene.camera, kSize, kSize);
@@ -59,7 +62,8 @@ int main(int argc, char **argv) {
   const RayTracer tracer(scene);
   fmt::print("reichert on {} at 64x64, 2 spp, 1 thread (load {:.2f}), medians of {:g} runs\n", scenePath,
              bench::loadAverage(), repeats);
-  fmt::print("{:>9} {:>10} {:>12} {:>8}\n", "elements", "cut-error", "µs/sample", "ratio");
+  fmt::print("{:>9} {:>10} {:>17} {:>8} {:>21}\n", "elements", "cut-error", "gather µs/sample", "ratio",
+             "default µs/sample");
   double first = 0;
   bool everyElementDone = false;
   for (double edge : {0.05, 0.0125, 0.003125}) {
@@ -69,12 +73,14 @@ int main(int argc, char **argv) {
     for (size_t e = 0; e < solution.elementCount(); ++e)
       solution.radiosity[e] = solution.emission[e] + solution.reflectance[e] * Bands(0.3);
     solution.updateNodesAndErrors();
-    const double perSample = secondsPerSample(scene, tracer, solution, 0.02, int(repeats));
+    const double perSample = secondsPerSample(scene, tracer, solution, 0.02, "1", int(repeats));
+    const double byDefault = secondsPerSample(scene, tracer, solution, 0.02, nullptr, int(repeats));
     if (first == 0) first = perSample;
-    fmt::print("{:>9} {:>10} {:>12.1f} {:>8.2f}\n", solution.elementCount(), 0.02, 1e6 * perSample, perSample / first);
+    fmt::print("{:>9} {:>10} {:>17.1f} {:>8.2f} {:>21.1f}\n", solution.elementCount(), 0.02, 1e6 * perSample,
+               perSample / first, 1e6 * byDefault);
     if (!everyElementDone) {
-      const double every = secondsPerSample(scene, tracer, solution, 0, 1);
-      fmt::print("{:>9} {:>10} {:>12.1f} {:>8.2f}\n", solution.elementCount(), "0 (every)", 1e6 * every, every / first);
+      const double every = secondsPerSample(scene, tracer, solution, 0, "1", 1);
+      fmt::print("{:>9} {:>10} {:>17.1f} {:>8.2f}\n", solution.elementCount(), "0 (every)", 1e6 * every, every / first);
       everyElementDone = true;
     }
     std::fflush(stdout);

@@ -8,12 +8,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 
 #include "mesh/mesh.h"
 #include "radiosity/form_factor.h"
 #include "render/registry.h"
 #include "render/renderer.h"
 #include "render_helpers.h"
+#include "scene/camera.h"
+#include "scene/load_scene.h"
 #include "scene/scene.h"
 #include "test_scenes.h"
 
@@ -116,7 +119,8 @@ TEST(SourceTree, ReichertThroughACutEqualsTheGatherOverEveryElementInExpectation
   const double exact = 0.5 * kInvPi * exactIrradiance(cube.solution, {0.3, 0, 0.6}, {0, 1, 0});
   for (const char *ff : {"point", "mc"}) {
     // Every element: the exact sum (no occluder, so visibility is 1 wherever it is sampled).
-    auto every = createRenderer("reichert", cube.tracer, context, test::parameters({{"ff", ff}, {"cut-error", "0"}}));
+    auto every = createRenderer("reichert", cube.tracer, context,
+                                test::parameters({{"ff", ff}, {"cut-error", "0"}, {"gather-chance", "1"}}));
     Sampler one{Pcg32()};
     EXPECT_NEAR(every->radiance(ray, one)[0], exact, 1e-7 * exact) << ff;  // the sums' order aside
   }
@@ -124,7 +128,8 @@ TEST(SourceTree, ReichertThroughACutEqualsTheGatherOverEveryElementInExpectation
   // element drawn at random and weighted by its chance. The mean of many
   // estimates is the exact sum within 4 standard errors, and that error is
   // small enough (below 0.2 %) to see a bias of 1 %.
-  auto cut = createRenderer("reichert", cube.tracer, context, test::parameters({{"max-cut", "8"}}));
+  auto cut =
+      createRenderer("reichert", cube.tracer, context, test::parameters({{"max-cut", "8"}, {"gather-chance", "1"}}));
   constexpr int kSamples = 20000;
   double sum = 0, sumSquares = 0;
   for (int s = 0; s < kSamples; ++s) {
@@ -136,6 +141,48 @@ TEST(SourceTree, ReichertThroughACutEqualsTheGatherOverEveryElementInExpectation
   const double standardError = std::sqrt(std::max(0.0, sumSquares / kSamples - mean * mean) / (kSamples - 1));
   EXPECT_NEAR(mean, exact, 4 * standardError);
   EXPECT_LT(standardError, 0.002 * exact);
+}
+
+TEST(SourceTree, AGathersWorkDoesNotGrowWithTheElementCount) {
+  // Issue 37: reichert's cost a sample follows the cut, not the mesh. The
+  // Cornell box meshed at 1× and 16× the elements (the same made-up light
+  // field: emission plus ρ × 0.3); at the same points on its walls, floor and
+  // blocks, the work of a gather (its cut's nodes, each a form factor and a
+  // shadow ray, plus the nodes opened and the levels descended to draw an
+  // element) grows by less than 2× (bench/reichert_scaling times it). A
+  // descent by importance to every element took 2.1× more work.
+  const Scene scene = loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json");
+  const RayTracer tracer(scene);
+  auto workPerGather = [&](double edge, size_t &elements) {
+    MeshOptions options;
+    options.maxEdgeLength = edge;
+    Solution solution = initialSolution(scene, buildMesh(scene, options));
+    elements = solution.elementCount();
+    for (size_t e = 0; e < elements; ++e)
+      solution.radiosity[e] = solution.emission[e] + solution.reflectance[e] * Bands(0.3);
+    const SourceTree tree(solution);
+    const PinholeCamera camera(scene.camera, 32, 32);
+    SourceTree::Work work;
+    std::vector<SourceTree::CutNode> cut;
+    long nodes = 0, gathers = 0;
+    for (int pixel = 0; pixel < 32 * 32; ++pixel) {
+      Hit hit;
+      if (!tracer.intersect(camera.generateRay(pixel % 32 + 0.5, pixel / 32 + 0.5), hit)) continue;
+      tree.chooseCut(hit.position, hit.shadingNormal, 0.02, 256, cut, &work);
+      double probability = 0;
+      for (const SourceTree::CutNode &node : cut)
+        tree.drawElement(node.node, hit.position, hit.shadingNormal, 0.5, probability, &work);
+      nodes += long(cut.size()), ++gathers;
+    }
+    return double(nodes + work.splits + work.levels) / double(gathers);
+  };
+  size_t coarse = 0, fine = 0;
+  const double coarseWork = workPerGather(0.05, coarse), fineWork = workPerGather(0.0125, fine);
+  EXPECT_GT(fine, 12 * coarse);
+  EXPECT_LT(fineWork, 2 * coarseWork) << coarse << " elements: " << coarseWork << "; " << fine
+                                      << " elements: " << fineWork;
+  std::cout << "work per gather: " << coarseWork << " (" << coarse << " elements), " << fineWork << " (" << fine
+            << " elements)\n";
 }
 
 }  // namespace

@@ -5,17 +5,27 @@
 // At the visible point x the irradiance is gathered from the whole mesh:
 //   L(x) = Le(x) + (ρ/π) Σ_j F(dx → A_j) V(x, A_j) B_j
 // with F the exact unoccluded point-to-polygon factor (Lambert's contour
-// integral, C&W ch. 4) and V from one shadow ray per evaluation. Emitters
-// are elements like any other, so direct and indirect light come from the
-// same sum and nothing is counted twice; point lights, which are not
-// elements, add I cos θ / d² each past one shadow ray.
-//
-// The sum runs over a cut of the elements' tree (render/source_tree.h), not
-// over every element: near, bright and large sources down to their elements,
-// far and dim ones as whole nodes, each node estimated from one of its
-// elements drawn ∝ B_j A_j and weighted by the inverse of that chance — an
-// unbiased estimate of the whole sum, whose cost follows the cut (at most
-// max-cut nodes), not the element count. cut-error 0 takes every element.
+// integral, C&W ch. 4) and V from one shadow ray per evaluation. The sum is
+// split by what the elements send, B_j = E_j + (B_j − E_j), each part
+// counted once:
+//   - their emission E_j, every sample: the visible part of each emitter
+//     exactly (backprojection, --emitters exact, where it applies: two_pass.h)
+//     or, elsewhere and with --emitters gather, through the emitters' own cut
+//     as below; point lights, which are not elements, add I cos θ / d² each;
+//   - their reflected radiosity B_j − E_j, through a cut of the reflecting
+//     elements' tree (render/source_tree.h), not over every element: near,
+//     bright and large sources down to their elements, far and dim ones as
+//     whole nodes, each node estimated from one of its elements drawn by
+//     importance and weighted by the inverse of that chance — an unbiased
+//     estimate of the whole sum, whose cost follows the cut (at most
+//     max-cut nodes), not the element count. cut-error 0 takes every element.
+// The reflected part is the costly one (hundreds of form factors and
+// shadow rays) and the smooth one, which the solution already holds: each
+// sample reads the solution's interpolated indirect radiance, and a random
+// fraction q of them (--gather-chance) add (gather − solution) / q. The mean
+// is the gather's, whatever the solution's error (a control variate, with
+// Russian roulette on the correction); the cost is q gathers a sample, so
+// many more samples cover each pixel's edges and shadows at the same time.
 // The two variants of the book:
 //   --ff point  visibility to the element's centre, and each node read
 //               through the same element at every pixel: a shadow boundary
@@ -32,6 +42,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <optional>
 
 #include "radiosity/form_factor.h"
 #include "render/light_sampler.h"
@@ -44,15 +55,31 @@ namespace radiant {
 
 namespace {
 
+/// B_j − E_j per element, as the display reads B (ambient included), never below zero.
+std::vector<Bands> reflectedRadiosities(const Solution &solution) {
+  std::vector<Bands> reflected(solution.elementCount());
+  for (uint32_t e = 0; e < reflected.size(); ++e) {
+    reflected[e] = solution.displayRadiosity(e) - solution.emission[e];
+    for (int b = 0; b < kBandCount; ++b) reflected[e][b] = std::max(0.0, reflected[e][b]);
+  }
+  return reflected;
+}
+
 class Reichert final : public TwoPassRenderer {
  public:
   Reichert(const RayTracer &tracer, const RenderContext &context, const SelectiveOptions &selective, bool pointSampled,
-           double cutError, int maxCut)
+           bool exactDirect, double cutError, int maxCut, double gatherChance)
       : TwoPassRenderer(tracer, context, selective),
         pointSampled_(pointSampled),
         cutError_(cutError),
         maxCut_(maxCut),
-        sources_(solution_) {
+        gatherChance_(gatherChance),
+        emission_(solution_.emission),
+        reflectedRadiosity_(reflectedRadiosities(solution_)),
+        emitters_(solution_.mesh, emission_),
+        reflectors_(solution_.mesh, reflectedRadiosity_),
+        indirect_(nodeField(solution_, Field::Indirect)) {
+    if (exactDirect) prepareExactDirectLight();
     const RadiosityMesh &mesh = solution_.mesh;
     polygons_.resize(mesh.elements.size());
     for (uint32_t e = 0; e < mesh.elements.size(); ++e) {
@@ -81,39 +108,57 @@ class Reichert final : public TwoPassRenderer {
 
  protected:
   Bands reflected(const VisiblePoint &x, Sampler &rng) const override {
-    Bands radiosity = x.reflectance * irradianceAt(x.hit, rng);  // ρ(x): a texture is applied directly
-    // A translucent surface passes on τ of what reaches its other side.
+    // Draw the gather's number first, so the random sequence does not depend on what the emitters take.
+    const double uGather = rng.next();
+    const std::optional<Bands> exact = exactDirectLight(x);
+    const Bands emitted = exact ? *exact : gathered(x, emitters_, emission_, true, rng);
+    if (gatherChance_ >= 1) return emitted + gathered(x, reflectors_, reflectedRadiosity_, false, rng);
+    // The solution's light after one or more reflections, with eq. 9.11 at x (radiosity/solution_query.h).
+    const Bands fromSolution = fieldRadiance(solution_, indirect_, x.at);
+    if (uGather >= gatherChance_) return emitted + fromSolution;
+    const Bands reflectedLight = gathered(x, reflectors_, reflectedRadiosity_, false, rng);
+    return emitted + fromSolution + (reflectedLight - fromSolution) / gatherChance_;
+  }
+
+  /// The radiance x reflects from `sources` (their elements sending
+  /// `radiosity`): ρ(x)/π times the irradiance they give, and through a
+  /// translucent face τ/π times the other side's; with the point lights.
+  Bands gathered(const VisiblePoint &x, const SourceTree &sources, const std::vector<Bands> &radiosity,
+                 bool withPointLights, Sampler &rng) const {
+    // ρ(x): a texture is applied directly.
+    Bands L = x.reflectance * irradianceAt(x.hit, sources, radiosity, withPointLights, rng);
     const Material &material = tracer_.scene().materials[x.hit.material];
     if (material.isTranslucent()) {
       Hit behind = x.hit;
       behind.geometricNormal = -behind.geometricNormal, behind.shadingNormal = -behind.shadingNormal;
-      radiosity += material.transmittance * irradianceAt(behind, rng);
+      L += material.transmittance * irradianceAt(behind, sources, radiosity, withPointLights, rng);
     }
-    return radiosity * kInvPi;
+    return L * kInvPi;
   }
 
   /// The irradiance at a surface point, on the side its normals face: the
   /// cut's F(dx → A_j) V B_j, each over its chance, plus the point lights.
-  Bands irradianceAt(const Hit &hit, Sampler &rng) const {
+  Bands irradianceAt(const Hit &hit, const SourceTree &sources, const std::vector<Bands> &radiosity,
+                     bool withPointLights, Sampler &rng) const {
     const RadiosityMesh &mesh = solution_.mesh;
     Bands irradiance(0.0);
     thread_local std::vector<SourceTree::CutNode> cut;
-    sources_.chooseCut(hit.position, hit.shadingNormal, cutError_, maxCut_, cut);
+    sources.chooseCut(hit.position, hit.shadingNormal, cutError_, maxCut_, cut);
     for (const SourceTree::CutNode &node : cut) {
       // Draw the numbers first, so the random sequence does not depend on geometry.
       const double u0 = rng.next(), u1 = rng.next(), u2 = rng.next();
       // --ff point reads each node through one element, the same at every pixel (a fixed golden-ratio draw).
       const double pick = pointSampled_ ? std::fmod(0.5 + 0.6180339887498949 * node.node, 1.0) : u0;
       double probability = 1;
-      const uint32_t j = sources_.drawElement(node.node, hit.position, hit.shadingNormal, pick, probability);
+      const uint32_t j = sources.drawElement(node.node, hit.position, hit.shadingNormal, pick, probability);
       const Element &element = mesh.elements[j];
       const Vec3 &nj = mesh.normalOf(j);
       if (dot(hit.position - element.centre, nj) <= 0) continue;  // x is behind j: j's front faces away
       const double f = visibleFormFactor(hit, {polygons_[j].data(), size_t(element.vertexCount)}, nj, u1, u2);
-      if (f > 0) irradiance += solution_.displayRadiosity(j) * (f / probability);
+      if (f > 0) irradiance += radiosity[j] * (f / probability);
     }
     // Point lights are no elements: their light is gathered the same way, exactly.
-    if (!tracer_.scene().lights.empty()) irradiance += pointLightIrradiance(tracer_, hit);
+    if (withPointLights && !tracer_.scene().lights.empty()) irradiance += pointLightIrradiance(tracer_, hit);
     return irradiance;
   }
 
@@ -149,7 +194,12 @@ class Reichert final : public TwoPassRenderer {
   const bool pointSampled_;
   const double cutError_;
   const int maxCut_;
-  const SourceTree sources_;
+  const double gatherChance_;          ///< q: the chance that a sample gathers the reflected light (1: every one)
+  const std::vector<Bands> emission_;  ///< E_j per element
+  const std::vector<Bands> reflectedRadiosity_;  ///< B_j − E_j per element, ambient included (as displayed)
+  const SourceTree emitters_;                    ///< the elements of positive E_j
+  const SourceTree reflectors_;                  ///< the elements of positive B_j − E_j
+  const std::vector<Bands> indirect_;            ///< node values of the solution's light after a reflection
   std::vector<std::array<Vec3, 4>> polygons_;
   LinksByReceiver links_;  ///< link mode: the selected links by receiver tree node
 };
@@ -159,7 +209,8 @@ std::unique_ptr<Renderer> createReichert(const RayTracer &tracer, const RenderCo
   SelectiveOptions selective = SelectiveOptions::from(parameters);
   selective.linkPower = parameters.real("selective-power");
   return std::make_unique<Reichert>(tracer, context, selective, parameters.choice("ff") == "point",
-                                    parameters.real("cut-error"), int(parameters.integer("max-cut")));
+                                    parameters.choice("emitters") == "exact", parameters.real("cut-error"),
+                                    int(parameters.integer("max-cut")), parameters.real("gather-chance"));
 }
 
 }  // namespace
@@ -174,12 +225,26 @@ RendererInfo reichertMethod() {
        0,
        0,
        {"point", "mc"}},
+      {"emitters",
+       ParameterType::Choice,
+       "exact",
+       "the emitters' light: the visible part of each exactly, by backprojection (at most 64 emitting faces, a "
+       "Lambertian point without bump or smooth normal, few faces in the way; elsewhere as gather), or gather: "
+       "through their cut like the other elements, visibility as --ff",
+       0,
+       0,
+       {"exact", "gather"}},
       {"cut-error", ParameterType::Real, "0.02",
        "the gather's cut of the elements' tree is split while a node could give more than this fraction of the "
        "point's irradiance (Walter et al.'s lightcuts bound); 0: every element, the exact sum (slow on large meshes)",
        0, 1},
       {"max-cut", ParameterType::Integer, "256",
-       "at most this many nodes in a point's cut (each one form factor and one shadow ray)", 1, 1 << 20}};
+       "at most this many nodes in a point's cut (each one form factor and one shadow ray)", 1, 1 << 20},
+      {"gather-chance", ParameterType::Real, "0.02",
+       "the chance that a sample gathers the reflected light; the others read the solution's interpolated "
+       "indirect light, which the gathering ones correct, unbiased (a control variate): more samples for the "
+       "pixel's edges at the same cost; 1: every one",
+       kPositive, 1}};
   for (const ParameterSpec &spec : selectiveParameters()) parameters.push_back(spec);
   parameters.push_back(selectivePowerParameter());
   return {"reichert", "form factors per pixel to every element (through a cut of their tree), ray-traced visibility",

@@ -22,7 +22,6 @@
 // solution holds diffuse transport only and shadow rays stop at glass (issue: multi-pass method).
 #include <optional>
 
-#include "radiosity/backprojection.h"
 #include "radiosity/solution_query.h"
 #include "render/bump_gather.h"
 #include "render/caustic_photons.h"
@@ -55,10 +54,7 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
     bump.reflectedOnly = true;
     bumps_.emplace(tracer, s, bump);
     if (bumps_->empty()) bumps_.reset();
-    // Direct light exact per pixel (backprojection) where there are few
-    // enough emitting faces for its cost, one pass over them per sample.
-    exactDirect_.emplace(tracer.scene());
-    if (exactDirect_->empty() || exactDirect_->emitters().size() > kMaxExactEmitters) exactDirect_.reset();
+    prepareExactDirectLight();  // exact per pixel where it applies (two_pass.h), sampled elsewhere
   }
 
  protected:
@@ -76,36 +72,6 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
   }
 
  private:
-  static constexpr size_t kMaxExactEmitters = 64;
-  /// More faces than this in a point's shaft to a light (a tessellated model
-  /// in the way): the shadow ray is cheaper than subtracting them all.
-  static constexpr size_t kMaxExactOccluders = 32;
-
-  /// ρ/π times the exact irradiance, plus through a translucent face τ/π
-  /// times the other side's; nothing where exactDirectApplies does not, or a
-  /// shaft holds too many faces.
-  std::optional<Bands> exactDirectLight(const VisiblePoint &x) const {
-    Bands exact;
-    if (!exactDirectApplies(x) ||
-        !exactDirect_->irradianceWithin(x.hit.position, x.hit.geometricNormal, kMaxExactOccluders, exact))
-      return std::nullopt;
-    Bands L = x.reflectance * exact * kInvPi;
-    if (x.material->isTranslucent()) {
-      if (!exactDirect_->irradianceWithin(x.hit.position, -x.hit.geometricNormal, kMaxExactOccluders, exact))
-        return std::nullopt;
-      L += x.material->transmittance * exact * kInvPi;
-    }
-    return L;
-  }
-
-  /// The exact direct light is ρ/π times the exact irradiance: for a
-  /// Lambertian point whose shading normal is its geometric one (a bump or
-  /// smooth normal tilts the cosine away from what the contour integral takes).
-  bool exactDirectApplies(const VisiblePoint &x) const {
-    return exactDirect_ && x.material->kind == MaterialKind::Lambertian &&
-           dot(x.hit.shadingNormal, x.hit.geometricNormal) > 0.999999;
-  }
-
   /// Light reflected by the selected secondary sources, by two strategies
   /// combined with the power heuristic (Veach 1997 ch. 9): a point on a
   /// source (good far away) and a cosine-distributed ray (good close by,
@@ -148,9 +114,8 @@ class DirectPlusInterpolatedIndirect final : public TwoPassRenderer {
   }
 
   std::optional<SecondarySources> sources_;
-  std::vector<Bands> remainingIndirect_;         ///< node values of indirect − removed
-  std::optional<BumpGather> bumps_;              ///< bump-mapped patches only
-  std::optional<DirectIrradiance> exactDirect_;  ///< scenes with at most kMaxExactEmitters emitting faces
+  std::vector<Bands> remainingIndirect_;  ///< node values of indirect − removed
+  std::optional<BumpGather> bumps_;       ///< bump-mapped patches only
 };
 
 std::unique_ptr<Renderer> createShirley(const RayTracer &tracer, const RenderContext &context,

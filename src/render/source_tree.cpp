@@ -15,16 +15,23 @@ Vec3 upper(const Vec3 &a, const Vec3 &b) {
   return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)};
 }
 
+std::vector<Bands> displayRadiosities(const Solution &solution) {
+  std::vector<Bands> radiosity(solution.elementCount());
+  for (uint32_t e = 0; e < radiosity.size(); ++e) radiosity[e] = solution.displayRadiosity(e);
+  return radiosity;
+}
+
 }  // namespace
 
-SourceTree::SourceTree(const Solution &solution) {
-  const RadiosityMesh &mesh = solution.mesh;
+SourceTree::SourceTree(const Solution &solution) : SourceTree(solution.mesh, displayRadiosities(solution)) {}
+
+SourceTree::SourceTree(const RadiosityMesh &mesh, const std::vector<Bands> &radiosity) {
   const size_t n = mesh.elements.size();
   std::vector<double> power(n, 0.0);
   std::vector<Vec3> lo(n), hi(n);
   std::vector<uint32_t> sources;
   for (uint32_t e = 0; e < n; ++e) {
-    power[e] = mesh.elements[e].area * solution.displayRadiosity(e).average();
+    power[e] = mesh.elements[e].area * radiosity[e].average();
     if (!(power[e] > 0)) continue;
     const std::vector<Vec3> polygon = mesh.polygon(e);
     lo[e] = hi[e] = polygon[0];
@@ -33,12 +40,15 @@ SourceTree::SourceTree(const Solution &solution) {
   }
   if (sources.empty()) return;
   nodes_.reserve(2 * sources.size());
-  root_ = build(sources, 0, sources.size(), solution, power, lo, hi);
+  root_ = build(sources, 0, sources.size(), mesh, power, lo, hi);
+  order_ = std::move(sources);  // build left them in tree order
+  powerThrough_.resize(order_.size());
+  double sum = 0;
+  for (size_t k = 0; k < order_.size(); ++k) powerThrough_[k] = sum += power[order_[k]];
 }
 
-uint32_t SourceTree::build(std::vector<uint32_t> &elements, size_t begin, size_t end, const Solution &solution,
+uint32_t SourceTree::build(std::vector<uint32_t> &elements, size_t begin, size_t end, const RadiosityMesh &mesh,
                            const std::vector<double> &power, const std::vector<Vec3> &lo, const std::vector<Vec3> &hi) {
-  const RadiosityMesh &mesh = solution.mesh;
   Node node;
   node.lo = lo[elements[begin]], node.hi = hi[elements[begin]];
   Vec3 areaNormal{}, centreLo = mesh.elements[elements[begin]].centre, centreHi = centreLo;
@@ -63,6 +73,7 @@ uint32_t SourceTree::build(std::vector<uint32_t> &elements, size_t begin, size_t
   node.sinSpread = std::sqrt(1 - node.cosSpread * node.cosSpread);
   node.sphereCentre = (node.lo + node.hi) * 0.5;
   node.radius = 0.5 * length(node.hi - node.lo);
+  node.first = uint32_t(begin), node.count = uint32_t(end - begin);
   const uint32_t index = uint32_t(nodes_.size());
   nodes_.push_back(node);
   if (end - begin == 1) {
@@ -90,8 +101,8 @@ uint32_t SourceTree::build(std::vector<uint32_t> &elements, size_t begin, size_t
                      const double ka = key(a), kb = key(b);
                      return ka < kb || (ka == kb && a < b);  // the same tree on every run
                    });
-  const uint32_t left = build(elements, begin, middle, solution, power, lo, hi);
-  const uint32_t right = build(elements, middle, end, solution, power, lo, hi);
+  const uint32_t left = build(elements, begin, middle, mesh, power, lo, hi);
+  const uint32_t right = build(elements, middle, end, mesh, power, lo, hi);
   nodes_[index].left = left, nodes_[index].right = right;
   return index;
 }
@@ -139,8 +150,8 @@ double SourceTree::estimate(const Node &node, const Vec3 &x, const Vec3 &n) cons
   return node.power * cosReceiver * cosSource / (kPi * r2);
 }
 
-void SourceTree::chooseCut(const Vec3 &x, const Vec3 &n, double relativeError, int maxNodes,
-                           std::vector<CutNode> &cut) const {
+void SourceTree::chooseCut(const Vec3 &x, const Vec3 &n, double relativeError, int maxNodes, std::vector<CutNode> &cut,
+                           Work *work) const {
   cut.clear();
   if (nodes_.empty()) return;
   struct Open {
@@ -173,16 +184,23 @@ void SourceTree::chooseCut(const Vec3 &x, const Vec3 &n, double relativeError, i
     std::pop_heap(open.begin(), open.end());
     open.pop_back();
     total -= split.estimate;
+    if (work) ++work->splits;
     add(nodes_[split.node].left);
     add(nodes_[split.node].right);
   }
   for (const Open &o : open) cut.push_back({o.node, false});
 }
 
-uint32_t SourceTree::drawElement(uint32_t index, const Vec3 &x, const Vec3 &n, double u, double &probability) const {
+uint32_t SourceTree::drawElement(uint32_t index, const Vec3 &x, const Vec3 &n, double u, double &probability,
+                                 Work *work) const {
   probability = 1;
   while (!nodes_[index].leaf) {
+    if (work) ++work->levels;
     const Node &node = nodes_[index];
+    // Far (every element within about ±25 % of the centre's distance) and of
+    // one orientation (normals within 25°): by power, at once.
+    const Vec3 v = node.sphereCentre - x;
+    if (node.cosSpread > 0.9 && dot(v, v) > 16 * node.radius * node.radius) return drawByPower(node, u, probability);
     double left = importance(nodes_[node.left], x, n), right = importance(nodes_[node.right], x, n);
     if (!(left + right > 0) || !std::isfinite(left + right))  // nothing known, or x inside both: by power
       left = nodes_[node.left].power, right = nodes_[node.right].power;
@@ -198,6 +216,20 @@ uint32_t SourceTree::drawElement(uint32_t index, const Vec3 &x, const Vec3 &n, d
     }
   }
   return nodes_[index].left;
+}
+
+uint32_t SourceTree::drawByPower(const Node &node, double u, double &probability) const {
+  const double before = node.first > 0 ? powerThrough_[node.first - 1] : 0.0;
+  const double total = powerThrough_[node.first + node.count - 1] - before;
+  const auto begin = powerThrough_.begin() + node.first, end = begin + node.count;
+  // The first element whose interval [through(k − 1), through(k)) holds the target.
+  auto at = std::upper_bound(begin, end, before + u * total);
+  if (at == end) --at;  // u·total rounded up to the very end
+  // Its chance is its interval's length over the node's, from the same sums the search used.
+  while (at != begin && *at == *(at - 1)) --at;  // never an empty interval (only after that rounding)
+  const double lower = at == begin ? before : *(at - 1);
+  probability *= (*at - lower) / total;
+  return order_[size_t(at - powerThrough_.begin())];
 }
 
 double SourceTree::importance(const Node &node, const Vec3 &x, const Vec3 &n) const {

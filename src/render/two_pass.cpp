@@ -97,7 +97,8 @@ Bands TwoPassRenderer::radiance(const Ray &ray, Sampler &rng) const {
     L = x.material->emission + (selective_.enabled && selectsByLinks_ ? reflectedByLinks(x, rng) : reflected(x, rng));
   }
   L = x.throughput * L;
-  for (int b = 0; b < kBandCount; ++b) L[b] = std::max(0.0, L[b]);  // a correction may undershoot a dark pixel
+  // A sample may be negative (reichert's correction of the solution): the
+  // pixel's mean is what is unbiased, and clamping samples would brighten it.
   return L.isFinite() ? L : Bands(0.0);
 }
 
@@ -133,6 +134,27 @@ bool TwoPassRenderer::trustsSolution(const VisiblePoint &x) const {
 Bands TwoPassRenderer::directLight(const VisiblePoint &x, Sampler &rng) const {
   const Bsdf bsdf(*x.material, x.hit.shadingNormal, x.hit.geometricNormal, x.wo, &x.reflectance);
   return estimateDirectLight(lights_, tracer_, x.hit, bsdf, rng, LightWeighting::Alone);
+}
+
+void TwoPassRenderer::prepareExactDirectLight() {
+  exactDirect_.emplace(scene_);
+  if (exactDirect_->empty() || exactDirect_->emitters().size() > kMaxExactEmitters) exactDirect_.reset();
+}
+
+std::optional<Bands> TwoPassRenderer::exactDirectLight(const VisiblePoint &x) const {
+  if (!exactDirect_ || x.material->kind != MaterialKind::Lambertian ||
+      dot(x.hit.shadingNormal, x.hit.geometricNormal) <= 0.999999)
+    return std::nullopt;
+  Bands exact;
+  if (!exactDirect_->irradianceWithin(x.hit.position, x.hit.geometricNormal, kMaxExactOccluders, exact))
+    return std::nullopt;
+  Bands L = x.reflectance * exact * kInvPi;
+  if (x.material->isTranslucent()) {
+    if (!exactDirect_->irradianceWithin(x.hit.position, -x.hit.geometricNormal, kMaxExactOccluders, exact))
+      return std::nullopt;
+    L += x.material->transmittance * exact * kInvPi;
+  }
+  return L;
 }
 
 }  // namespace radiant

@@ -11,8 +11,10 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
+#include "radiosity/backprojection.h"
 #include "radiosity/solution_query.h"
 #include "render/light_sampler.h"
 #include "render/renderer.h"
@@ -91,6 +93,22 @@ class TwoPassRenderer : public Renderer {
   /// True where --selective leaves the solution alone (element error below threshold).
   bool trustsSolution(const VisiblePoint &x) const;
 
+  /// Sets up exact direct light (backprojection: the visible part of each
+  /// emitter by Lambert's contour integral, radiosity/backprojection.h) when
+  /// the scene has at most kMaxExactEmitters emitting faces, for its cost:
+  /// one pass over them per sample.
+  void prepareExactDirectLight();
+  /// ρ/π times the exact irradiance, plus through a translucent face τ/π
+  /// times the other side's; nothing without prepareExactDirectLight, at a
+  /// point that is not Lambertian or whose shading normal is not its
+  /// geometric one (a bump or smooth normal tilts the cosine away from what
+  /// the contour integral takes), or where a shaft to an emitter holds more
+  /// than kMaxExactOccluders faces (a tessellated model in the way: the
+  /// shadow ray is cheaper than subtracting them all).
+  std::optional<Bands> exactDirectLight(const VisiblePoint &x) const;
+  static constexpr size_t kMaxExactEmitters = 64;
+  static constexpr size_t kMaxExactOccluders = 32;
+
   const RayTracer &tracer_;
   const Scene &scene_;
   const Solution &solution_;
@@ -98,6 +116,9 @@ class TwoPassRenderer : public Renderer {
   const SelectiveOptions selective_;
   LightSampler lights_;
   bool selectsByLinks_ = false;
+
+ private:
+  std::optional<DirectIrradiance> exactDirect_;  ///< after prepareExactDirectLight, with few emitting faces
 };
 
 /// The context's solution, or an InputError: the method needs one.
