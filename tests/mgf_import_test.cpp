@@ -18,6 +18,7 @@
 #include "path_image_comparison.h"
 #include "scene/load_scene.h"
 #include "scene/mgf_detail.h"
+#include "sanitizer.h"
 #include "temp_dir.h"
 #include "util/error.h"
 
@@ -263,6 +264,19 @@ TEST(MgfImport, RefusalsNameFileAndLine) {
       << errorOf("# self\ni bad.mgf\n");
   // A continued line is one entity, reported at its first line.
   EXPECT_NE(errorOf("v a =\n p 0 \\\n y 0\n").find("bad.mgf:2: 'y'"), std::string::npos);
+}
+
+TEST(MgfImport, AnArrayOfSpheresIsRefusedAtTheVertexLimitNotAfterGigabytes) {
+  RADIANT_SKIP_UNDER_SANITIZER();  // 8 M vertices: seconds in Release, minutes instrumented
+  // Ten lines ask for 10⁶ spheres of about 10⁴ vertices each (5·10⁹
+  // triangles: 22 GB and still growing when it was killed). The entity limit
+  // does not see it (each sphere is one entity); the vertex limit stops it at
+  // 2²³ vertices, about 830 spheres, at the sphere's line.
+  const std::string spheres =
+      "v o =\n p 0 0 0\nm white =\n c\n rd .5\n"
+      "xf -a 1000 -t 3 0 0\nxf -a 1000 -t 0 3 0\nsph o 1\nxf\nxf\n";
+  const std::string error = errorOf(spheres);
+  EXPECT_NE(error.find("bad.mgf:8: the file makes more than 2²³ vertices"), std::string::npos) << error;
 }
 
 TEST(MgfImport, UnknownEntitiesAreWarnedAndIgnored) {

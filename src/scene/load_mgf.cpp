@@ -45,6 +45,17 @@ constexpr const char *kTooManyEntities =
 constexpr long long kMaxGeneratedEntities = 1LL << 24;
 constexpr const char *kTooManyEntities = "the arrays and includes make more than 2²⁴ entities";
 #endif
+// Vertices made, every face's own (dropped repeats too): an entity makes up
+// to 2 M of them (a sphere of 1024 slices), so an array of a few of them made
+// 5·10⁹ triangles of 10 lines (22 GB before it was killed). 2²³ vertices are
+// about 2.8 M faces and 1.7 GB (200 bytes a vertex, its face's share included); under fuzzing, 2¹⁷.
+#ifdef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION
+constexpr size_t kMaxGeneratedVertices = size_t(1) << 17;
+constexpr const char *kTooManyVertices = "the file makes more than 2¹⁷ vertices (a fuzzing build's limit)";
+#else
+constexpr size_t kMaxGeneratedVertices = size_t(1) << 23;
+constexpr const char *kTooManyVertices = "the file makes more than 2²³ vertices (arrays, includes and primitives)";
+#endif
 
 /// A vertex context: its point (and normal) in the coordinates of the file.
 using Vertex = MgfPoint;
@@ -116,6 +127,7 @@ class MgfReader {
   std::map<std::string, std::string> unknown_;
   std::set<std::string> warnedEntities_;
   long long entitiesRun_ = 0;
+  size_t firstPosition_ = scene_.positions.size();  ///< the scene's vertices before this file's
   std::string path_;
   int line_ = 0;
 
@@ -354,6 +366,7 @@ class MgfReader {
         continue;
       }
       entity(e);
+      if (scene_.positions.size() - firstPosition_ > kMaxGeneratedVertices) fail(kTooManyVertices);
     }
   }
 
