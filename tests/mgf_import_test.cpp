@@ -16,9 +16,9 @@
 #include <sstream>
 
 #include "path_image_comparison.h"
+#include "sanitizer.h"
 #include "scene/load_scene.h"
 #include "scene/mgf_detail.h"
-#include "sanitizer.h"
 #include "temp_dir.h"
 #include "util/error.h"
 
