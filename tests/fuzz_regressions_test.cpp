@@ -74,9 +74,9 @@ TEST_P(FuzzRegressions, EverySavedInputIsAcceptedOrRefusedWithAnInputError) {
 // inside Debian's stb_image 2.27 (a shift of 32 or more in its JPEG bit
 // reader, memcpy from a null pointer on a zero-length PNG IDAT), which
 // UBSan reports in code Radiant does not own, and JPEGs whose headers claim
-// 13–16 M texels (2.4 s each to refuse); and an MGF file whose arrays of
-// spheres reach the limit of 2²³ vertices (4 s and 1 GB to refuse in
-// Release, minutes instrumented). The Release build still feeds them,
+// 13–16 M texels (2.4 s each to refuse); and two MGF files of spheres in
+// nested arrays (2–4 s and up to 1 GB to refuse in Release, one at the limit
+// of 2²³ vertices; minutes instrumented). The Release build still feeds them,
 // so that a crash or a hang of ours shows; the sanitizer build skips them.
 TEST(FuzzRegressions, TheThirdPartyFindingsAreAcceptedOrRefusedInRelease) {
 #if RADIANT_UNDER_SANITIZER
