@@ -55,13 +55,10 @@ namespace radiant {
 
 namespace {
 
-/// B_j − E_j per element, as the display reads B (ambient included), never below zero.
+/// Each element's own reflected radiosity (radiosity/solution_query.h: B_j − E_j as displayed, at least zero).
 std::vector<Bands> reflectedRadiosities(const Solution &solution) {
   std::vector<Bands> reflected(solution.elementCount());
-  for (uint32_t e = 0; e < reflected.size(); ++e) {
-    reflected[e] = solution.displayRadiosity(e) - solution.emission[e];
-    for (int b = 0; b < kBandCount; ++b) reflected[e][b] = std::max(0.0, reflected[e][b]);
-  }
+  for (uint32_t e = 0; e < reflected.size(); ++e) reflected[e] = reflectedRadiosity(solution, e);
   return reflected;
 }
 
@@ -74,9 +71,8 @@ class Reichert final : public TwoPassRenderer {
         cutError_(cutError),
         maxCut_(maxCut),
         gatherChance_(gatherChance),
-        emission_(solution_.emission),
         reflectedRadiosity_(reflectedRadiosities(solution_)),
-        emitters_(solution_.mesh, emission_),
+        emitters_(solution_.mesh, solution_.emission),
         reflectors_(solution_.mesh, reflectedRadiosity_),
         indirect_(nodeField(solution_, Field::Indirect)) {
     if (exactDirect) prepareExactDirectLight();
@@ -111,7 +107,7 @@ class Reichert final : public TwoPassRenderer {
     // Draw the gather's number first, so the random sequence does not depend on what the emitters take.
     const double uGather = rng.next();
     const std::optional<Bands> exact = exactDirectLight(x);
-    const Bands emitted = exact ? *exact : gathered(x, emitters_, emission_, true, rng);
+    const Bands emitted = exact ? *exact : gathered(x, emitters_, solution_.emission, true, rng);
     if (gatherChance_ >= 1) return emitted + gathered(x, reflectors_, reflectedRadiosity_, false, rng);
     // The solution's light after one or more reflections, with eq. 9.11 at x (radiosity/solution_query.h).
     const Bands fromSolution = fieldRadiance(solution_, indirect_, x.at);
@@ -194,8 +190,7 @@ class Reichert final : public TwoPassRenderer {
   const bool pointSampled_;
   const double cutError_;
   const int maxCut_;
-  const double gatherChance_;          ///< q: the chance that a sample gathers the reflected light (1: every one)
-  const std::vector<Bands> emission_;  ///< E_j per element
+  const double gatherChance_;  ///< q: the chance that a sample gathers the reflected light (1: every one)
   const std::vector<Bands> reflectedRadiosity_;  ///< B_j − E_j per element, ambient included (as displayed)
   const SourceTree emitters_;                    ///< the elements of positive E_j
   const SourceTree reflectors_;                  ///< the elements of positive B_j − E_j
