@@ -35,26 +35,25 @@ constexpr size_t kMaxEntityWords = kMaxMgfEntityWords;
 constexpr int kMaxIncludeDepth = 16;
 constexpr long long kMaxArrayCopies = 1 << 20;  // the product of an xf's -a counts
 // Entities run, with arrays and includes replayed: 2²⁴ of a face's four
-// entities made 2.4 M triangles in 3.3 s and 450 MB; under fuzzing, 2¹² (CMakeLists.txt):
-// inputs at 2¹⁸ took 1–4 s under ASan, 95 % of a campaign's time in 11 % of its inputs,
-// and at 2¹⁵ with 2¹⁷ vertices still 0.5–2 s (6 % of the inputs, a quarter of the time).
+// entities made 2.4 M triangles in 3.3 s and 450 MB. Vertices made, every
+// face's own (dropped repeats too): an entity makes up to 2 M of them (a
+// sphere of 1024 slices), so an array of a few of them made 5·10⁹ triangles
+// of 10 lines (22 GB before it was killed); 2²³ vertices are about 2.8 M
+// faces and 1.7 GB (200 bytes a vertex, its face's share included).
+// The fuzzing build (CMakeLists.txt) takes 2¹² and 2¹⁴: inputs at 2¹⁸
+// entities took 1–4 s under ASan, 95 % of a campaign's time in 11 % of its
+// inputs, and at 2¹⁵ entities and 2¹⁷ vertices still 0.5–2 s (6 % of the
+// inputs, a quarter of the time).
 #ifdef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION
 constexpr long long kMaxGeneratedEntities = 1LL << 12;
+constexpr size_t kMaxGeneratedVertices = size_t(1) << 14;
 constexpr const char *kTooManyEntities =
     "the arrays and includes make more than 2¹² entities (a fuzzing build's limit)";
-#else
-constexpr long long kMaxGeneratedEntities = 1LL << 24;
-constexpr const char *kTooManyEntities = "the arrays and includes make more than 2²⁴ entities";
-#endif
-// Vertices made, every face's own (dropped repeats too): an entity makes up
-// to 2 M of them (a sphere of 1024 slices), so an array of a few of them made
-// 5·10⁹ triangles of 10 lines (22 GB before it was killed). 2²³ vertices are
-// about 2.8 M faces and 1.7 GB (200 bytes a vertex, its face's share included); under fuzzing, 2¹⁴.
-#ifdef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION
-constexpr size_t kMaxGeneratedVertices = size_t(1) << 14;
 constexpr const char *kTooManyVertices = "the file makes more than 2¹⁴ vertices (a fuzzing build's limit)";
 #else
+constexpr long long kMaxGeneratedEntities = 1LL << 24;
 constexpr size_t kMaxGeneratedVertices = size_t(1) << 23;
+constexpr const char *kTooManyEntities = "the arrays and includes make more than 2²⁴ entities";
 constexpr const char *kTooManyVertices = "the file makes more than 2²³ vertices (arrays, includes and primitives)";
 #endif
 
