@@ -238,7 +238,7 @@ RenderStats drive(const PinholeCamera &camera, const DriverOptions &options, Fil
                     const Sampler::PixelOffsets offsets = Sampler::pixelOffsets(options.seed, pixel);
                     for (int s = first; s < last; ++s) {
                       // The first two numbers place the sample in its pixel.
-                      Sampler rng(offsets, options.seed, pixel, s);
+                      Sampler rng(offsets, options.seed, pixel, options.firstSample + uint64_t(s));
                       double jitterX = rng.next(), jitterY = rng.next();
                       shade(pixel, camera.generateRay(x + jitterX, y + jitterY), rng);
                     }

@@ -46,6 +46,10 @@ struct DriverOptions {
   int samplesPerPixel = 64;
   double timeBudgetSeconds = 0;  ///< 0: none; else stop after the round that reaches it
   uint64_t seed = 1;
+  /// The index of the first sample (render/sampler.h): a render that goes on
+  /// from `firstSample` samples of the same seed continues their
+  /// low-discrepancy sequence rather than starting another.
+  uint64_t firstSample = 0;
   int threads = 0;  ///< 0: all hardware threads
   int tileSize = 16;
   /// Restrict rendering to one pixel (debugging); −1 for the whole image.
