@@ -30,7 +30,8 @@ double sceneDiagonal(const Scene &scene) {
 
 }  // namespace
 
-CausticPhotonMap::CausticPhotonMap(const RayTracer &tracer, size_t emitted, uint64_t seed, double radius)
+CausticPhotonMap::CausticPhotonMap(const RayTracer &tracer, size_t emitted, uint64_t seed, double radius,
+                                   bool throughDiffuse)
     : emitted_(emitted) {
   const Scene &scene = tracer.scene();
   radius_ = radius > 0 ? radius : 0.01 * sceneDiagonal(scene);
@@ -59,6 +60,7 @@ CausticPhotonMap::CausticPhotonMap(const RayTracer &tracer, size_t emitted, uint
         power = light.radiance * (kPi / (light.pdfArea * double(emitted)));
         ray = tracer.spawnRay(light.position, light.normal, direction);
       }
+      bool afterSpecular = false;
       for (int bounce = 0; bounce <= kMaxSpecularBounces; ++bounce) {
         Hit hit;
         if (!tracer.intersect(ray, hit)) break;
@@ -68,11 +70,12 @@ CausticPhotonMap::CausticPhotonMap(const RayTracer &tracer, size_t emitted, uint
           // L S+ D: stored only after a specular bounce (otherwise it is direct light).
           // Rough glass ends the photon unstored: the path tracer follows
           // light through it itself (it is no delta bounce), and no one reads the map there.
-          if (bounce > 0 && !material.isSpecular())
+          if (afterSpecular && !material.isSpecular())
             stored[c].push_back(
                 {hit.position, dot(wo, hit.geometricNormal) >= 0 ? hit.geometricNormal : -hit.geometricNormal, power});
-          break;
+          if (!throughDiffuse) break;
         }
+        afterSpecular = material.isDelta() || (throughDiffuse && afterSpecular);
         Bsdf bsdf(material, hit.shadingNormal, hit.geometricNormal, wo);
         BsdfSample s;
         if (!bsdf.sample(rng.next(), rng.next(), rng.next(), s)) break;

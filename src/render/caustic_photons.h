@@ -31,7 +31,13 @@ class CausticPhotonMap {
   /// cosine-distributed: each carries Φ/emitted), deterministically for the
   /// seed whatever the thread count. `radius` (metres) of the density
   /// estimate; ≤ 0 chooses 1 % of the scene's bounding-box diagonal.
-  CausticPhotonMap(const RayTracer &tracer, size_t emitted, uint64_t seed, double radius = 0);
+  /// `throughDiffuse`: photons also bounce off non-specular surfaces (by
+  /// their BSDF, Russian roulette on what they absorb) and are stored at
+  /// every non-specular hit that follows a specular bounce: all the light
+  /// whose last bounce was specular (L (D|S)* S D), for multipass's reading
+  /// of the solution, which has mirrors and glass black (render/multipass.h).
+  CausticPhotonMap(const RayTracer &tracer, size_t emitted, uint64_t seed, double radius = 0,
+                   bool throughDiffuse = false);
 
   /// Radiance reflected towards any direction by a Lambertian point of
   /// reflectance ρ: ρ/π × the caustic irradiance, Σ power / (π r²) over the
