@@ -18,10 +18,18 @@ constexpr double kTruth = 1.0;  // every pixel, every band
 
 /// Samples of R = truth + bias + e and P = truth + a·e + s·g (e ~ N(0, σ_R²),
 /// g ~ N(0, 1)): D = P − R = −bias + (a − 1)·e + s·g, so R is biased by
-/// `bias`, and a and s set D's variance and its covariance with R.
+/// `bias` (plus `checker` on the pixels of one colour of a checkerboard, minus
+/// it on the other; plus `step` on the image's left half), and a and s set
+/// D's variance and its covariance with R.
 struct SyntheticPixels {
   double bias, sigmaR, a, s;
   Pcg32 rng;
+  double checker = 0, step = 0;
+
+  double biasAt(size_t p) const {
+    const size_t x = p % kImageSize, y = p / kImageSize;
+    return bias + ((x + y) % 2 ? checker : -checker) + (x < kImageSize / 2 ? step : 0);
+  }
 
   double gaussian() {  // Box–Muller
     const double u1 = std::max(1e-300, rng.next()), u2 = rng.next();
@@ -32,7 +40,7 @@ struct SyntheticPixels {
     for (size_t p = 0; p < film.pixelCount(); ++p)
       for (int k = 0; k < spp; ++k) {
         Bands r;
-        for (int b = 0; b < kBandCount; ++b) r[b] = kTruth + bias + sigmaR * gaussian();
+        for (int b = 0; b < kBandCount; ++b) r[b] = kTruth + biasAt(p) + sigmaR * gaussian();
         film.add(p, r);
       }
     image.addControls(film);
@@ -44,7 +52,7 @@ struct SyntheticPixels {
         Bands r, unbiased;
         for (int b = 0; b < kBandCount; ++b) {
           const double e = sigmaR * gaussian();
-          r[b] = kTruth + bias + e;
+          r[b] = kTruth + biasAt(p) + e;
           unbiased[b] = kTruth + a * e + s * gaussian();
         }
         film.add(p, unbiased, &r);
@@ -104,18 +112,21 @@ TEST(ControlVariate, TheImageIsUnbiasedWhateverTheControlsBias) {
   EXPECT_FLOAT_EQ(single.mean().rgb[0], 6.5f);
 }
 
-// The forecast is the expected squared error (R̄ + D̄ is unbiased: its
+// The forecast is the expected squared error (R̄ + D̃ is unbiased: its
 // variance), now and — from the statistics of fewer samples — after more
 // samples of either kind; with correlated R and D (a = 0.5: Cov(R, D) =
-// −σ_R²/2), averaged over independent runs. Predicted: (σ_R² + 2 Cov)/n_R +
-// σ_D²/n_P = 0 + (σ_R²/4 + s²)/8 = 0.00625 (a wrong sign of the covariance
-// gives 0.0196, its omission 0.0129).
+// −σ_R²/2), averaged over independent runs. The bias alternates by ±0.5 from
+// pixel to pixel, so only per-pixel correction tiles leave no bias and the
+// correction is D̄ itself. Predicted: (σ_R² + 2 Cov)/n_R + σ_D²/n_P = 0 +
+// (σ_R²/4 + s²)/8 = 0.00625 (a wrong sign of the covariance gives 0.0196,
+// its omission 0.0129).
 TEST(ControlVariate, TheForecastIsTheExpectedError) {
   double predictedNow = 0, measuredNow = 0, predictedLater = 0, measuredLater = 0;
   const int runs = 12;
   for (int run = 0; run < runs; ++run) {
     ControlVariateImage image(kImageSize, kImageSize);
     SyntheticPixels pixels{0.05, 0.4, 0.5, 0.1, Pcg32(100 + run, 7)};
+    pixels.checker = 0.5;
     pixels.controls(image, 16);
     pixels.pairs(image, 8);
     ControlVariateStats stats;
@@ -133,6 +144,32 @@ TEST(ControlVariate, TheForecastIsTheExpectedError) {
   std::cout << "squared error: predicted " << predictedNow / runs << ", measured " << measuredNow / runs
             << "; after more samples predicted " << predictedLater / runs << ", measured " << measuredLater / runs
             << "\n";
+}
+
+// Where the solution's bias is smooth, the correction is the mean D of a whole
+// tile, and D̄'s noise is averaged over its pixels. σ_R = 0.3, σ_D = 0.5,
+// Cov = 0, 72 R and 8 pairs per pixel: per-pixel D̄ (issue 17's estimator) has
+// a squared error of σ_R²/72 + σ_D²/8 = 0.0325; the 32² tile's mean D,
+// σ_R²/72 + σ_D²/(8·1024) = 0.00128. A bias that steps by 0.2 in the middle of
+// the image needs tiles of 16 or less (one tile of 32 would leave 0.01), and
+// the image's mean stays unbiased: over each block the tiles' corrections sum
+// to its pixels' D̄ whatever size is chosen.
+TEST(ControlVariate, ASmoothBiasIsCorrectedFromTheWholeTile) {
+  for (const double step : {0.0, 0.2}) {
+    double measured = 0, mean = 0;
+    const int runs = 4;
+    for (int run = 0; run < runs; ++run) {
+      ControlVariateImage image(kImageSize, kImageSize);
+      SyntheticPixels pixels{0.1, 0.3, 1, 0.5, Pcg32(200 + run, 9)};
+      pixels.step = step;
+      pixels.controls(image, 64);
+      pixels.pairs(image, 8);
+      measured += squaredError(image.mean()), mean += meanOf(image.mean());
+    }
+    EXPECT_LT(measured / runs, 0.002) << "step " << step;
+    // Each image's mean over 3072 values: standard deviation √(σ_R²/72 + σ_D²/8)/√3072 = 0.0033.
+    EXPECT_NEAR(mean / runs, kTruth, 4 * 0.0033 / std::sqrt(double(runs))) << "step " << step;
+  }
 }
 
 }  // namespace

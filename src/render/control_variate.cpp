@@ -78,9 +78,124 @@ PixelStats pixelStats(const Film &controls, const PairedFilm &pairs, size_t p) {
   return s;
 }
 
+/// A way to correct a block: tiles of `size` pixels on a side, the mean D
+/// added or spread in proportion to R̄ (`scaled`); what it leaves of the bias,
+/// squared, and its variance, both summed over the block's pixels and bands.
+struct CorrectionChoice {
+  int size;
+  bool scaled;
+  double within, variance;
+};
+struct Block {
+  std::vector<CorrectionChoice> choices;
+  double pixels = 0;
+};
+
 }  // namespace
 
-std::vector<ControlVariateImage::TileStats> ControlVariateImage::tileStats() const {
+ControlVariateImage::Correction ControlVariateImage::correction(double pairsLater) const {
+  Correction c;
+  const size_t count = size_t(width_) * height_;
+  c.value.assign(count, Bands(0.0));
+  c.variance.assign(count, Bands(0.0));
+  c.pixels.assign(count, 1.0);
+  // Per pixel: R̄, D̄ and the variance of D̄ (0 where it cannot be estimated yet).
+  std::vector<Bands> meanR(count), meanD(count), varianceMeanD(count);
+  std::vector<double> pairs(count);
+  for (size_t p = 0; p < count; ++p) {
+    const PixelStats s = pixelStats(controls_, pairs_, p);
+    meanR[p] = s.meanR, meanD[p] = s.meanD, pairs[p] = s.nP;
+    if (s.nP >= 2) varianceMeanD[p] = s.varianceD / s.nP;
+  }
+  // One tile, corrected by its mean D added to every pixel, or (scaled) that
+  // mean D spread in proportion to each pixel's R̄, w_p = n R̄_p / Σ R̄: the
+  // solution's error is often a share of the light, and a tile across a
+  // bright and a dark surface then corrects each by its share. Either way the
+  // corrections sum to the tile's Σ D̄_p (equal pair counts), so every tile
+  // keeps the unbiased estimator's sum. Figures, summed over pixels and
+  // bands: the squared bias left inside it, Σ (b_p − w_p b_T)², estimated
+  // from E[(D̄_p − w_p D̄_T)²] = (b_p − w_p b_T)² + v_p (1 − 2 w_p/n) + w_p² Var D̄_T,
+  // and the variance of the correction, Σ w_p² Var D̄_T.
+  struct Tile {
+    Bands mean, variance, sumR;
+    double within = 0, spread = 0, pixels = 0;
+  };
+  auto weight = [&](const Tile &t, size_t p, int b, bool scaled) {
+    return scaled && t.sumR[b] > 0 ? t.pixels * meanR[p][b] / t.sumR[b] : 1.0;
+  };
+  auto tileAt = [&](int tx, int ty, int tw, int th, bool scaled) {
+    Tile t;
+    t.pixels = double(tw) * th;
+    Bands sum(0.0), variance(0.0);
+    double samples = 0;
+    for (int y = ty; y < ty + th; ++y)
+      for (int x = tx; x < tx + tw; ++x) {
+        const size_t p = size_t(y) * width_ + x;
+        sum += pairs_.sumDifference[p], samples += pairs[p], variance += varianceMeanD[p], t.sumR += meanR[p];
+      }
+    t.mean = samples > 0 ? sum / samples : Bands(0.0), t.variance = variance / sqr(t.pixels);
+    for (int y = ty; y < ty + th; ++y)
+      for (int x = tx; x < tx + tw; ++x) {
+        const size_t p = size_t(y) * width_ + x;
+        for (int b = 0; b < kBandCount; ++b) {
+          const double w = weight(t, p, b, scaled);
+          t.within +=
+              sqr(meanD[p][b] - w * t.mean[b]) - varianceMeanD[p][b] * (1 - 2 * w / t.pixels) - sqr(w) * t.variance[b];
+          t.spread += sqr(w) * t.variance[b];
+        }
+      }
+    return t;
+  };
+  const int block = kMaxCorrectionTile;
+  for (int by = 0; by < height_; by += block)
+    for (int bx = 0; bx < width_; bx += block) {
+      const int bw = std::min(block, width_ - bx), bh = std::min(block, height_ - by);
+      auto forEachTile = [&](int size, bool scaled, auto &&visit) {
+        for (int ty = by; ty < by + bh; ty += size)
+          for (int tx = bx; tx < bx + bw; tx += size) {
+            const int tw = std::min(size, bx + bw - tx), th = std::min(size, by + bh - ty);
+            visit(tx, ty, tw, th, tileAt(tx, ty, tw, th, scaled));
+          }
+      };
+      bool varianceKnown = true;
+      for (int y = by; y < by + bh; ++y)
+        for (int x = bx; x < bx + bw; ++x) varianceKnown = varianceKnown && pairs[size_t(y) * width_ + x] >= 2;
+      // Every tile size and kind: the bias each leaves and its variance now.
+      // Without variances (fewer than 2 pairs) the block is one tile.
+      Block candidates;
+      candidates.pixels = double(bw) * bh;
+      for (int size = block; size >= (varianceKnown ? 1 : block); size /= 2)
+        for (const bool scaled : {false, true}) {
+          CorrectionChoice choice{size, scaled, 0, 0};
+          forEachTile(size, scaled, [&](int, int, int, int, const Tile &t) {
+            choice.within += std::max(0.0, t.within), choice.variance += t.spread;
+          });
+          candidates.choices.push_back(choice);
+        }
+      // The one of least squared error: now, or (forecasts) after pairsLater pairs in all.
+      const double scale = pairsLater > 0 ? pairedSpp_ / pairsLater : 1.0;
+      const CorrectionChoice *best = &candidates.choices[0];
+      for (const CorrectionChoice &choice : candidates.choices)
+        if (choice.within + scale * choice.variance < best->within + scale * best->variance) best = &choice;
+      c.within2 += best->within, c.varianceLater += scale * best->variance;
+      if (pairsLater > 0) continue;
+      forEachTile(best->size, best->scaled, [&](int tx, int ty, int tw, int th, const Tile &t) {
+        for (int y = ty; y < ty + th; ++y)
+          for (int x = tx; x < tx + tw; ++x) {
+            const size_t p = size_t(y) * width_ + x;
+            for (int b = 0; b < kBandCount; ++b) {
+              const double w = weight(t, p, b, best->scaled);
+              c.value[p][b] = w * t.mean[b], c.variance[p][b] = sqr(w) * t.variance[b];
+            }
+            c.pixels[p] = t.pixels;
+          }
+      });
+    }
+  c.within2 /= double(count) * kBandCount, c.varianceLater /= double(count) * kBandCount;
+  return c;
+}
+
+std::vector<ControlVariateImage::TileStats> ControlVariateImage::tileStats(const Correction &correction) const {
   std::vector<TileStats> tiles(size_t(tilesX_) * tilesY_);
   std::vector<Bands> meanBias(tiles.size()), meanBiasVariance(tiles.size());
   for (int y = 0; y < height_; ++y)
@@ -90,7 +205,8 @@ std::vector<ControlVariateImage::TileStats> ControlVariateImage::tileStats() con
       TileStats &tile = tiles[t];
       ++tile.pixels;
       for (int b = 0; b < kBandCount; ++b) {
-        tile.varianceR += s.varianceR[b], tile.varianceD += s.varianceD[b], tile.covarianceRD += s.covarianceRD[b];
+        // The correction is its tile's mean D: Cov(R̄_p, D̃_p) ≈ C_RD/(n_R·n).
+        tile.varianceR += s.varianceR[b], tile.covarianceRD += s.covarianceRD[b] / correction.pixels[p];
         // E[D̄²] = b² + Var D̄: each pixel's share of the squared bias.
         if (s.nP >= 2) tile.bias2 += sqr(s.meanD[b]) - s.varianceD[b] / s.nP;
         meanBias[t][b] += s.meanD[b];
@@ -100,7 +216,7 @@ std::vector<ControlVariateImage::TileStats> ControlVariateImage::tileStats() con
   for (size_t t = 0; t < tiles.size(); ++t) {
     TileStats &tile = tiles[t];
     const double n = double(tile.pixels) * kBandCount, pixels = double(tile.pixels);
-    tile.varianceR /= n, tile.varianceD /= n, tile.covarianceRD /= n, tile.bias2 /= n;
+    tile.varianceR /= n, tile.covarianceRD /= n, tile.bias2 /= n;
     // The tile's mean bias squared is a second, far less noisy lower bound on
     // the mean of b² (a smooth error of the solution shows there first): the larger is taken.
     double meanBias2 = 0;
@@ -114,8 +230,9 @@ std::vector<ControlVariateImage::TileStats> ControlVariateImage::tileStats() con
 double ControlVariateImage::mse(const TileStats &t, double nR, double nP) {
   if (nR < 1) return INFINITY;
   // Without pairs the image is R̄, biased by b; with them R̄ + D̄, unbiased.
+  // Without pairs the image is R̄, biased by b; with them the corrections' share is added by the caller.
   if (nP < 1) return t.bias2 + t.varianceR / nR;
-  return std::max(0.0, (t.varianceR + 2 * t.covarianceRD) / nR + t.varianceD / nP);
+  return std::max(0.0, (t.varianceR + 2 * t.covarianceRD) / nR);
 }
 
 double ControlVariateImage::meanMse(const std::vector<TileStats> &tiles, double nR, double nP) {
@@ -128,36 +245,54 @@ double ControlVariateImage::meanMse(const std::vector<TileStats> &tiles, double 
 }
 
 double ControlVariateImage::forecastMse(double moreControls, double morePairs) const {
-  return meanMse(tileStats(), controlSpp_ + moreControls + morePairs, pairedSpp_ + morePairs);
+  const double pairsLater = pairedSpp_ + morePairs;
+  const double corrections = pairedSpp_ > 0 ? [&] {
+    const Correction later = correction(pairsLater);
+    return later.within2 + later.varianceLater;
+  }()
+                                            : 0.0;
+  return meanMse(tileStats(correction()), controlSpp_ + moreControls + morePairs, pairsLater) + corrections;
 }
 
 Image ControlVariateImage::mean(ControlVariateStats *stats) const {
   Image image(width_, height_);
+  const Correction c = correction();
   for (size_t p = 0; p < controls_.pixelCount(); ++p) {
-    // R̄ + D̄ with weight 1 on D̄ (control_variate.h: any other weight, or
-    // one estimated from these samples, biases the image).
-    const PixelStats s = pixelStats(controls_, pairs_, p);
-    const Bands value = s.meanR + s.meanD;
+    // R̄ + D̃: the mean D of the pixel's correction tile (control_variate.h).
+    const Bands value = controls_.mean(p) + c.value[p];
     for (int b = 0; b < 3; ++b) image.rgb[3 * p + b] = float(value[b]);
   }
   if (stats) {
-    const std::vector<TileStats> tiles = tileStats();
+    const std::vector<TileStats> tiles = tileStats(c);
     double bias2 = 0, pixels = 0;
     for (const TileStats &t : tiles) bias2 += t.pixels * t.bias2, pixels += t.pixels;
     stats->biasRms = pixels > 0 ? std::sqrt(bias2 / pixels) : 0;
-    stats->predictedRmse = std::sqrt(meanMse(tiles, controlSpp_, pairedSpp_));
+    // Σ_p D̃_p = Σ_p D̄_p (equal pair counts): the image mean's variance is R̄ + D̄'s, pixel by pixel.
+    double meanVariance = 0;
+    for (size_t p = 0; p < controls_.pixelCount(); ++p) {
+      const PixelStats s = pixelStats(controls_, pairs_, p);
+      for (int b = 0; b < kBandCount; ++b) {
+        if (s.nR >= 1) meanVariance += (s.varianceR[b] + 2 * s.covarianceRD[b]) / s.nR;
+        if (s.nP >= 1) meanVariance += s.varianceD[b] / s.nP;
+      }
+    }
+    const double values = double(controls_.pixelCount()) * kBandCount;
+    stats->meanStandardError = values > 0 ? std::sqrt(std::max(0.0, meanVariance)) / values : 0;
+    stats->predictedRmse =
+        std::sqrt(meanMse(tiles, controlSpp_, pairedSpp_) + (pairedSpp_ > 0 ? c.within2 + c.varianceLater : 0.0));
   }
   return image;
 }
 
 Image ControlVariateImage::variance() const {
   Image image(width_, height_);
+  const Correction c = correction();
   for (size_t p = 0; p < controls_.pixelCount(); ++p) {
     const PixelStats s = pixelStats(controls_, pairs_, p);
     for (int b = 0; b < 3; ++b) {
-      // Var(R̄ + D̄) = Var R̄ + Var D̄ + 2 Cov(R̄, D̄), Cov(R̄, D̄) = C_RD / n_R (the pairs' R are in R̄).
-      double v = s.nR >= 1 ? (s.varianceR[b] + 2 * s.covarianceRD[b]) / s.nR : 0;
-      if (s.nP >= 1) v += s.varianceD[b] / s.nP;
+      // Var(R̄ + D̃) = Var R̄ + Var D̃ + 2 Cov(R̄, D̃), Cov(R̄, D̃) = C_RD / (n_R·n) (the pairs' R are in R̄).
+      double v = s.nR >= 1 ? (s.varianceR[b] + 2 * s.covarianceRD[b] / c.pixels[p]) / s.nR : 0;
+      if (s.nP >= 1) v += c.variance[p][b];
       image.rgb[3 * p + b] = float(std::max(0.0, v));
     }
   }

@@ -4,50 +4,56 @@
 //
 // Two estimators of each pixel, from the same path tracer:
 //   R — the path reads the solution's reflected radiosity after one
-//       non-specular bounce (rushmeier-like): cheap, low variance, biased
-//       by the solution's error b = E[R] − E[P];
+//       non-specular bounce (rushmeier-like), with its caustics from photon
+//       maps: cheap, low variance, biased by the solution's error and the
+//       maps' blur, b = E[R] − E[P];
 //   P — the same path continued to its end: `path`'s estimator, number for
 //       number, so E[P] is exactly `path`'s expected value.
 // Paired samples give both from the same random numbers, so D = P − R is
 // small where the solution is good. With n_R samples of R (from R-only
-// rounds and from the pairs) and n_P pairs, the pixel's estimate is
+// rounds and from the pairs) and n_P pairs, the per-pixel estimate
 //
-//   I = R̄ + D̄,   E[I] = E[R] + E[P − R] = E[P]:
+//   R̄ + D̄,   E = E[R] + E[P − R] = E[P]
 //
-// unbiased, not only consistent, for every n_R ≥ n_P ≥ 1, as long as every
-// R sample has the same expectation (one solution; no photon map whose
-// radius shrinks from sample to sample) and the numbers of samples are fixed
-// before the samples are drawn. This is the control variate whose mean is
-// not known but estimated from more, cheaper samples: the two-model
-// multifidelity Monte Carlo estimator of Peherstorfer, Willcox & Gunzburger,
-// "Optimal model management for multifidelity Monte Carlo estimation" (SIAM
-// J. Sci. Comput. 2016), with its coefficient α = 1. Rousselle, Jarosz &
-// Novák, "Image-space control variates for rendering" (SIGGRAPH Asia 2016),
-// render a control image and a difference image the same way (their
-// fig. 1: many samples of the control, few of the difference).
+// is unbiased (the two-model multifidelity Monte Carlo estimator of
+// Peherstorfer, Willcox & Gunzburger, SIAM J. Sci. Comput. 2016, with α = 1;
+// the control and difference images of Rousselle, Jarosz & Novák,
+// "Image-space control variates for rendering", SIGGRAPH Asia 2016), but D̄
+// has P's variance wherever the solution is not what makes P noisy (the
+// mirror-and-glass box: 1.03–1.23 × `path`'s RMSE at equal time, issue 37).
 //
-// Why the weight of D̄ is 1 and not estimated: the version before issue 17
-// weighed D̄ by λ ∈ [0, 1] chosen per tile to minimise the mean squared error,
-// from the same samples. Any λ < 1 leaves (1 − λ)·b of R's bias in the image
-// (2.4 % dark at 60 s on the specular box), and a λ estimated from the
-// samples it weighs is biased even when its expectation is 1 (Glynn &
-// Szechtman, "Some new perspectives on the method of control variates",
-// 2002: a coefficient estimated from the same samples leaves an O(1/n) bias;
-// only a fixed one, or one from independent samples, keeps the estimator
-// unbiased). With weight 1, R lowers the variance only by what it explains
-// of P's (V_P − V_D per sample, below); where that is little, the scheduler
-// buys pairs and the image is `path`'s (the specular box: docs/multipass.md).
+// The image instead corrects R̄ tile by tile: each pixel gets its tile's mean
+// D, added (or spread in proportion to the pixel's R̄: the solution's error is
+// often a share of the light). The solution's error is smooth where its own
+// variance is not, and a tile of n pixels averages D̄'s noise n-fold. Per
+// block of kMaxCorrectionTile² pixels the tile size (32 … 1) and the kind are
+// those of least predicted squared error,
 //
-// The same per-sample statistics forecast the image's variance after more
-// samples of either kind,
+//   Σ_p (b_p − w_p b_T)²  +  Σ_p w_p² Var D̄_T,
 //
-//   MSE(n_R, n_P) = (V_R + 2 C_RD) / n_R + V_D / n_P
+// the bias left inside the tiles (estimated from the spread of the pixels' D̄
+// about the tile's, less what noise explains) plus the corrections' variance.
+// Properties:
+// - every tile's corrections sum to Σ_p D̄_p (equal pair counts per pixel),
+//   so the sum over any block — and the image's mean — is the unbiased
+//   estimator's, whatever tile size the data choose
+//   (tests/multipass_bias_test.cpp);
+// - consistent: as pairs accumulate, the variance term falls as 1/n_P while
+//   a bias left inside a tile does not, so the tiles shrink towards pixels
+//   wherever R is biased, and the image converges to `path`'s;
+// - where a pixel's tile is one pixel, it is R̄ + D̄ exactly.
+// The weight of D̄ in a tile stays 1, never estimated: the λ < 1 of before
+// issue 17, chosen from the same samples, left (1 − λ)·b of R's bias in
+// the image (Glynn & Szechtman, 2002).
 //
-// (V_R, V_D the per-sample variances of R and D, C_RD their covariance; the
-// pairs' R are among the n_R), which decides what multipass renders next.
-// It depends on the data only through image-wide second moments, never on a
-// pixel's mean, so the schedule it sets does not bias the image
-// (tests/multipass_bias_test.cpp measures that it does not).
+// The same statistics forecast the image's squared error after more samples
+// of either kind,
+//
+//   MSE(n_R, n_P) = (V_R + 2 C_RD / n) / n_R + min over tile choices of
+//                   (bias left + variance · n_P,now / n_P),
+//
+// (V_R the per-sample variance of R, C_RD its covariance with D), which
+// decides what multipass renders next: more pairs buy smaller tiles.
 #pragma once
 
 #include <vector>
@@ -60,6 +66,10 @@ namespace radiant {
 struct ControlVariateStats {
   double biasRms = 0;        ///< √(estimated mean b²) of R, W·sr⁻¹·m⁻²: what D̄ corrects
   double predictedRmse = 0;  ///< √(estimated mean MSE) of the combined image
+  /// The standard error of the image's mean value (over pixels and bands):
+  /// the corrections of a tile are one number, so it is not the pixels'
+  /// variances summed; by the tiles' sums it is the per-pixel estimator's.
+  double meanStandardError = 0;
 };
 
 class ControlVariateImage {
@@ -106,7 +116,21 @@ class ControlVariateImage {
     double varianceR = 0, varianceD = 0, covarianceRD = 0, bias2 = 0;
     size_t pixels = 0;
   };
-  std::vector<TileStats> tileStats() const;
+  /// The correction added to each pixel's R̄: the mean D of its correction
+  /// tile (added, or spread in proportion to R̄), the tile of
+  /// kMaxCorrectionTile pixels on a side or a power of two less, chosen per
+  /// block of that size to minimise the predicted squared error.
+  struct Correction {
+    std::vector<Bands> value, variance;  ///< the correction, and its variance
+    std::vector<double> pixels;          ///< in the pixel's correction tile
+    double within2 = 0;                  ///< the bias the tiles leave, squared, per pixel and band
+    double varianceLater = 0;            ///< the corrections' variance per pixel and band (after pairsLater)
+  };
+  static constexpr int kMaxCorrectionTile = 32;
+  /// The corrections now; with pairsLater > 0, only the figures of the
+  /// choice that would be best with that many pairs per pixel (forecasts).
+  Correction correction(double pairsLater = 0) const;
+  std::vector<TileStats> tileStats(const Correction &correction) const;
   /// The tile's predicted MSE with n_R, n_P samples (R̄ alone, biased, without pairs).
   static double mse(const TileStats &t, double nR, double nP);
   /// The predicted MSE over the image.

@@ -166,18 +166,19 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
   // Passes 3…: path tracing that reads the solution after one non-specular
   // bounce (control samples R), and the same paths continued to their end
   // beside it (paired samples: P and R from the same numbers). The image is
-  // R̄ + D̄ (render/control_variate.h), unbiased; each pass adds the kind of
-  // sample that the forecast says lowers its variance more per second.
+  // R̄ plus the pairs' mean difference over a correction tile
+  // (render/control_variate.h): its tiles' sums are the unbiased estimator's,
+  // and the tiles shrink towards pixels as pairs accumulate, so the image is
+  // consistent; each pass adds the kind of sample that the forecast says
+  // lowers its error more per second.
   //
-  // No photon map here, in P or in R. In P, a progressive map's caustic is
-  // consistent but biased (blurred over its radius), and P must be `path`
-  // itself for E[image] = E[path]. In R, D would correct a map's bias only
-  // if every R sample had the same expectation, which a radius shrinking
-  // from map to map breaks (R̄ over all samples and the pairs' R would then
-  // expect different values); and without the map, the caustic a path finds
-  // through the glass before it reads the solution is the same in P and R,
-  // so it cancels in D and is averaged over all n_R samples of R̄ instead of
-  // the n_P pairs.
+  // R takes its caustics from photon maps, P never (it is `path`, so the
+  // image converges to `path`'s): at the first non-specular vertex the
+  // caustic map (L S+ D), and where it reads the solution, a second map of
+  // all light that took a specular bounce on its way (the solution has
+  // mirrors and glass black: on the specular box it was 6 % dark without the
+  // maps, 0.1 % with them). Both maps are new each pass, of the same radius;
+  // their blur and noise are R's bias, which the correction removes.
   ControlVariateImage combined(width, height);
   // One film of each kind, cleared for every pass rather than allocated anew.
   Film pairedFilm(width, height, {"control"}), controlFilm(width, height);
@@ -193,6 +194,7 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
   // The pass in progress saves its film beside the checkpoint, in a file of its own.
   auto passCheckpoint = [&](int index) { return passFilePath(options.checkpointPath, index); };
   int index = resumed ? resumed->pass : 3;
+  size_t scenePhotons = 1;  // stored by the last pass's map: none, and no later pass builds one
   if (resumed && progress && cluster::isRoot())
     fmt::print(stderr, "radiant: resumed from {} at pass {} ({} spp reading the solution done)\n",
                options.checkpointPath, index, combined.controlSamples());
@@ -241,6 +243,12 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
     pass = {index, paired ? "unbiased, the solution as control variate" : "low frequency, solution after 1 bounce",
             spp};
     DriverOptions driver = driverFor(pass, spp, 0);
+    // Passes 3… draw one sequence of samples between them (render/sampler.h):
+    // R̄'s samples, from whichever pass, keep the low-discrepancy sequence's
+    // even cover (split into passes of fresh seeds they lost it: R̄'s
+    // variance at 441 samples on the knots room was 2.3× one sequence's).
+    driver.seed = hashSeed(options.seed, 3ULL << 32);
+    driver.firstSample = uint64_t(combined.controlSamples());
     if (checkpointing) {
       // The state before this pass, with its plan; then the last pass's film is no longer needed.
       MultipassCheckpoint state;
@@ -262,9 +270,23 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
       driver.checkpointWhenDone = true;  // a kill before the next pass's save finds it complete
     }
     {
+      // A fresh caustic map each pass, of the same radius: R takes its
+      // caustics from it (P never: it is `path`), and the correction moves
+      // R̄'s blur and photon noise back towards P's mean (control_variate.h).
+      std::optional<CausticPhotonMap> caustics, specularLast;
+      if (scenePhotons != 0) {
+        caustics.emplace(tracer, options.photonsPerPass, hashSeed(options.seed, 0xCA05ULL << 48 | uint64_t(index)),
+                         options.photonRadius);
+        scenePhotons = caustics->stored();
+        if (scenePhotons)
+          specularLast.emplace(tracer, options.photonsPerPass,
+                               hashSeed(options.seed, 0x5105ULL << 48 | uint64_t(index)), caustics->radius(), true);
+      }
       RenderContext o = options.context;
       o.solution = &solution;
       o.readSolutionDepth = 1;
+      if (caustics && caustics->stored()) o.caustics = &*caustics, o.causticsInControlOnly = true;
+      if (specularLast) o.specularLastLight = &*specularLast;
       const auto renderer = createRenderer("path", tracer, o, forMethod(options.parameters, "path"));
       Film &film = paired ? pairedFilm : controlFilm;
       film.clear();
@@ -288,6 +310,7 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
     pass.controlSamples = combined.controlSamples();
     pass.pairedSamples = combined.pairedSamples();
     pass.estimatedBias = stats.biasRms;
+    pass.meanStandardError = stats.meanStandardError;
     output(pass, mean, combined.variance());
   }
   // Finished (not stopped): the checkpoints have served.
