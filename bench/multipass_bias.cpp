@@ -26,7 +26,8 @@
 // than a pixel: the table prints each region's reference standard error.
 //
 // Usage: multipass_bias [scene.json] [--budget 60] [--repeats 4] [--threads 2] [--solver auto]
-//          [--methods multipass,path] [--reference FILE.exr] [--reference-spp 4096]
+//          [--methods multipass,path] [--reference FILE.exr] [--reference-spp 4096] [--images DIR]
+// --images DIR also writes each run's image there as METHOD-REPEAT.exr.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -106,7 +107,7 @@ std::vector<double> regionMeans(const Image &image, const Region &region) {
 int main(int argc, char **argv) {
   std::string scenePath = "scenes/cornell-specular/scene.json",
               referencePath = "build/cornell-specular-reference-256.exr", solverName = "auto",
-              methodList = "multipass,path";
+              methodList = "multipass,path", imageFolder;
   int referenceSpp = 4096, threads = 2, repeats = 4;
   double budget = 60;
   for (int i = 1; i < argc; ++i) {
@@ -126,12 +127,14 @@ int main(int argc, char **argv) {
       threads = std::atoi(argv[++i]);
     else if (arg == "--repeats" && hasValue)
       repeats = std::atoi(argv[++i]);
+    else if (arg == "--images" && hasValue)
+      imageFolder = argv[++i];
     else if (arg.rfind("--", 0) != 0)
       scenePath = arg;
     else {
       std::fprintf(stderr,
                    "usage: %s [scene.json] [--budget 60] [--repeats 4] [--threads 2] [--solver auto] "
-                   "[--methods multipass,path] [--reference FILE.exr] [--reference-spp 4096]\n",
+                   "[--methods multipass,path] [--reference FILE.exr] [--reference-spp 4096] [--images DIR]\n",
                    argv[0]);
       return 2;
     }
@@ -239,6 +242,9 @@ int main(int argc, char **argv) {
         }
         std::fprintf(stderr, "%s %d/%d: %.1f s; %s\n", method.c_str(), repeat, repeats, secondsSince(start),
                      detail.c_str());
+        if (!imageFolder.empty())  // for `radiant compare --without-emitters` against the reference
+          writeImage(image,
+                     (std::filesystem::path(imageFolder) / (method + "-" + std::to_string(repeat) + ".exr")).string());
         for (size_t r = 0; r < regions.size(); ++r) {
           std::vector<double> ratio = regionMeans(image, regions[r]);
           for (int b = 0; b < kBands; ++b) ratio[b] /= referenceMeans[r][b];
