@@ -175,9 +175,9 @@ TEST(Multipass, TheMapAgreesWithPathThroughAPaneAndOnAGlossyFloor) {
 
 // The control variate's pairs (render/control_variate.h) are the two
 // estimators, from the same random numbers: the control is exactly the
-// low-frequency pass's reading of the solution (with the pass's caustic map
-// where it has one), and control + difference exactly `path`'s sample (no
-// map in P, with or without one in R). So E[P] = E[path] by construction.
+// low-frequency pass's reading of the solution (with the pass's map of light
+// after a specular bounce where it has one), and control + difference
+// exactly `path`'s sample (no map in P). So E[P] = E[path] by construction.
 TEST(Multipass, PairedSamplesAreTheTwoEstimatorsFromTheSameNumbers) {
   Scene scene = loadScene(kSpecularBox);
   RayTracer tracer(scene);
@@ -188,13 +188,14 @@ TEST(Multipass, PairedSamplesAreTheTwoEstimatorsFromTheSameNumbers) {
   const Solution coarse = meshAndSolve(scene, tracer, mesh, solver);
   const int size = 24, spp = 8;
   PinholeCamera camera(scene.camera, size, size);
-  // Without a map, and with one that only R takes (passes 3…): P stays `path`'s sample.
-  const CausticPhotonMap map(tracer, 100000, 5);
+  // Without a map, and with the map of light after a specular bounce that R
+  // reads with the solution (passes 3…): P stays `path`'s sample.
+  const CausticPhotonMap map(tracer, 100000, 5, 0, true);
   ASSERT_GT(map.stored(), 0u);
   for (const bool withMap : {false, true}) {
     RenderContext reading, plain;
     reading.solution = &coarse, reading.readSolutionDepth = 1;
-    if (withMap) reading.caustics = &map, reading.causticsInControlOnly = true;
+    if (withMap) reading.specularLastLight = &map;
     const Film controls = renderWith(tracer, reading, "path", size, spp, 3);
     const Film paths = renderWith(tracer, plain, "path", size, spp, 3);
     Film paired(size, size, {"control"});
@@ -206,12 +207,7 @@ TEST(Multipass, PairedSamplesAreTheTwoEstimatorsFromTheSameNumbers) {
     double differs = 0;
     for (size_t p = 0; p < pairs.pixelCount(); ++p)
       for (int b = 0; b < kBandCount; ++b) {
-        // Bit for bit without a map; with one, the control's sum is taken in another order.
-        if (withMap)
-          EXPECT_NEAR(pairs.sumControl[p][b], controls.sum[p][b], 1e-12 * std::max(1.0, controls.sum[p][b]))
-              << "pixel " << p << ", map";
-        else
-          EXPECT_EQ(pairs.sumControl[p][b], controls.sum[p][b]) << "pixel " << p;
+        EXPECT_EQ(pairs.sumControl[p][b], controls.sum[p][b]) << "pixel " << p << (withMap ? ", map" : "");
         const double total = pairs.sumControl[p][b] + pairs.sumDifference[p][b];
         EXPECT_NEAR(total, paths.sum[p][b], 1e-9 * std::max(1.0, paths.sum[p][b]))
             << "pixel " << p << (withMap ? ", map" : "");

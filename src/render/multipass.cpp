@@ -270,23 +270,20 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
       driver.checkpointWhenDone = true;  // a kill before the next pass's save finds it complete
     }
     {
-      // A fresh caustic map each pass, of the same radius: R takes its
-      // caustics from it (P never: it is `path`), and the correction moves
-      // R̄'s blur and photon noise back towards P's mean (control_variate.h).
-      std::optional<CausticPhotonMap> caustics, specularLast;
+      // A fresh map each pass, of the same radius, of all light that took a
+      // specular bounce: R reads it with the solution at y (P never: it is
+      // `path`), and the correction moves R̄'s blur and photon noise back
+      // towards P's mean (control_variate.h). None where nothing is specular.
+      std::optional<CausticPhotonMap> specularLight;
       if (scenePhotons != 0) {
-        caustics.emplace(tracer, options.photonsPerPass, hashSeed(options.seed, 0xCA05ULL << 48 | uint64_t(index)),
-                         options.photonRadius);
-        scenePhotons = caustics->stored();
-        if (scenePhotons)
-          specularLast.emplace(tracer, options.photonsPerPass,
-                               hashSeed(options.seed, 0x5105ULL << 48 | uint64_t(index)), caustics->radius(), true);
+        specularLight.emplace(tracer, options.photonsPerPass, hashSeed(options.seed, 0x5105ULL << 48 | uint64_t(index)),
+                              options.photonRadius, true);
+        scenePhotons = specularLight->stored();
       }
       RenderContext o = options.context;
       o.solution = &solution;
       o.readSolutionDepth = 1;
-      if (caustics && caustics->stored()) o.caustics = &*caustics, o.causticsInControlOnly = true;
-      if (specularLast) o.specularLastLight = &*specularLast;
+      if (specularLight && specularLight->stored()) o.specularLastLight = &*specularLight;
       const auto renderer = createRenderer("path", tracer, o, forMethod(options.parameters, "path"));
       Film &film = paired ? pairedFilm : controlFilm;
       film.clear();

@@ -36,7 +36,6 @@ class PathTracer final : public Renderer {
         maxDepth_(maxDepth),
         irradiance_(context.irradiance),
         caustics_(context.caustics),
-        causticsInControlOnly_(context.causticsInControlOnly),
         readCaustics_(context.specularLastLight ? context.specularLastLight : context.caustics),
         solution_(context.solution),
         readDepth_(context.solution ? context.readSolutionDepth : 0) {
@@ -73,13 +72,6 @@ class PathTracer final : public Renderer {
     // bounces since the last one, and whether that one took its caustics from the map.
     int diffuseVertices = 0, specularSinceDiffuse = 0;
     bool lastUsedMap = false;
-    // With causticsInControlOnly, a paired path's P (L) takes no map and its
-    // control does: controlDelta is what the control's prefix adds to L's
-    // (the map's caustics, less the emission the map stands for).
-    const CausticPhotonMap *map = control && causticsInControlOnly_ ? nullptr : caustics_;
-    const bool controlMap = control && caustics_ && causticsInControlOnly_;
-    bool controlUsedMap = false;
-    Bands controlDelta(0.0);
 
     for (int depth = 0;; ++depth) {
       Hit hit;
@@ -114,8 +106,6 @@ class PathTracer final : public Renderer {
           weight = powerHeuristic(previousBsdfPdf, lightPdf);
         }
         L += throughput * material.emission * weight;
-        if (controlMap && controlUsedMap && specularSinceDiffuse > 0)
-          controlDelta = controlDelta - throughput * material.emission * weight;
       }
       if (maxDepth_ > 0 && depth >= maxDepth_) break;  // max depth counts bounces
       if (!material.isDelta()) {
@@ -129,7 +119,7 @@ class PathTracer final : public Renderer {
         // Multipass's low-frequency passes: past readDepth non-specular bounces
         // the solution's reflected radiosity stands for the rest of the path (as rushmeier does at depth 1).
         if (readable && readDepth_ > 0 && diffuseVertices == readDepth_ + 1) {
-          Bands read = L + controlDelta + throughput * readSolution(hit, wo, diffuse);
+          Bands read = L + throughput * readSolution(hit, wo, diffuse);
           if (readCaustics_) read += throughput * readCaustics_->reflectedRadiance(hit.position, facing, diffuse);
           if (!control) return read.isFinite() ? read : Bands(0.0);
           *control = read.isFinite() ? read : Bands(0.0), *controlSet = true;
@@ -137,16 +127,9 @@ class PathTracer final : public Renderer {
         // The map holds the caustic a Lambertian point reflects; at a glossy
         // point its lobe's share would be lost, so there the path tracer finds
         // the whole caustic itself, as without a map (review).
-        const bool lambertian = meterHere || material.kind == MaterialKind::Lambertian;
-        lastUsedMap = map && lambertian;
+        lastUsedMap = caustics_ && (meterHere || material.kind == MaterialKind::Lambertian);
         if (lastUsedMap)
-          L += throughput * map->reflectedRadiance(hit.position, facing, meterHere ? Bands(1.0) : diffuse);
-        if (controlMap && !*controlSet) {
-          controlUsedMap = lambertian;
-          if (lambertian)
-            controlDelta +=
-                throughput * caustics_->reflectedRadiance(hit.position, facing, meterHere ? Bands(1.0) : diffuse);
-        }
+          L += throughput * caustics_->reflectedRadiance(hit.position, facing, meterHere ? Bands(1.0) : diffuse);
       } else {
         ++specularSinceDiffuse;
       }
@@ -175,10 +158,6 @@ class PathTracer final : public Renderer {
       ray = tracer_.spawnRay(hit.position, hit.geometricNormal, s.wi);
       if (depth > 100000) break;  // a path this long carries nothing measurable; guards against NaN loops
     }
-    if (control && !*controlSet) {  // ended before the read: the control is the path, with its own caustics
-      const Bands c = L + controlDelta;
-      *control = c.isFinite() ? c : Bands(0.0), *controlSet = true;
-    }
     return L.isFinite() ? L : Bands(0.0);
   }
 
@@ -197,8 +176,7 @@ class PathTracer final : public Renderer {
 
   bool irradiance_;
   const CausticPhotonMap *caustics_;
-  bool causticsInControlOnly_;
-  const CausticPhotonMap *readCaustics_;  ///< at the read vertex
+  const CausticPhotonMap *readCaustics_;  ///< read with the solution: specularLastLight, else caustics_
   const Solution *solution_;
   int readDepth_;
   Material meter_;  ///< Lambertian, ρ = 1: the irradiance meter

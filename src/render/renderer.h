@@ -73,13 +73,10 @@ struct RenderContext {
   /// solution's reflected radiosity instead of continuing (its channel "control":
   /// that reading is the control, and the path goes on); 0: never.
   int readSolutionDepth = 0;
-  /// path with a solution and caustics, sampled with its control: only the
-  /// control (the solution-reading estimate) takes the caustic map; the
-  /// path itself is `path`'s estimator, number for number.
-  bool causticsInControlOnly = false;
-  /// path with readSolutionDepth: read at that vertex, with the solution,
+  /// path with readSolutionDepth: read at that vertex with the solution,
   /// instead of `caustics` (CausticPhotonMap's throughDiffuse: all the light
-  /// whose last bounce was specular, which the solution lacks). nullptr: `caustics`.
+  /// that took a specular bounce on its way, which the solution lacks); the
+  /// path that goes on past the read (the pair's P) never uses it. nullptr: `caustics`.
   const CausticPhotonMap *specularLastLight = nullptr;
 };
 
