@@ -267,17 +267,6 @@ Image ControlVariateImage::mean(ControlVariateStats *stats) const {
     double bias2 = 0, pixels = 0;
     for (const TileStats &t : tiles) bias2 += t.pixels * t.bias2, pixels += t.pixels;
     stats->biasRms = pixels > 0 ? std::sqrt(bias2 / pixels) : 0;
-    // Σ_p D̃_p = Σ_p D̄_p (equal pair counts): the image mean's variance is R̄ + D̄'s, pixel by pixel.
-    double meanVariance = 0;
-    for (size_t p = 0; p < controls_.pixelCount(); ++p) {
-      const PixelStats s = pixelStats(controls_, pairs_, p);
-      for (int b = 0; b < kBandCount; ++b) {
-        if (s.nR >= 1) meanVariance += (s.varianceR[b] + 2 * s.covarianceRD[b]) / s.nR;
-        if (s.nP >= 1) meanVariance += s.varianceD[b] / s.nP;
-      }
-    }
-    const double values = double(controls_.pixelCount()) * kBandCount;
-    stats->meanStandardError = values > 0 ? std::sqrt(std::max(0.0, meanVariance)) / values : 0;
     stats->predictedRmse =
         std::sqrt(meanMse(tiles, controlSpp_, pairedSpp_) + (pairedSpp_ > 0 ? c.within2 + c.varianceLater : 0.0));
   }
@@ -286,13 +275,16 @@ Image ControlVariateImage::mean(ControlVariateStats *stats) const {
 
 Image ControlVariateImage::variance() const {
   Image image(width_, height_);
-  const Correction c = correction();
   for (size_t p = 0; p < controls_.pixelCount(); ++p) {
     const PixelStats s = pixelStats(controls_, pairs_, p);
     for (int b = 0; b < 3; ++b) {
-      // Var(R̄ + D̃) = Var R̄ + Var D̃ + 2 Cov(R̄, D̃), Cov(R̄, D̃) = C_RD / (n_R·n) (the pairs' R are in R̄).
-      double v = s.nR >= 1 ? (s.varianceR[b] + 2 * s.covarianceRD[b] / c.pixels[p]) / s.nR : 0;
-      if (s.nP >= 1) v += c.variance[p][b];
+      // The per-pixel estimator R̄ + D̄'s variance, Var R̄ + Var D̄ + 2 Cov(R̄, D̄),
+      // Cov = C_RD / n_R (the pairs' R are in R̄). Summed over a block it is
+      // the variance of the block's mean, which the tiles keep (control_variate.h);
+      // per pixel it bounds the tile correction's squared error, bias left included,
+      // which was chosen because it predicted less over the block.
+      double v = s.nR >= 1 ? (s.varianceR[b] + 2 * s.covarianceRD[b]) / s.nR : 0;
+      if (s.nP >= 1) v += s.varianceD[b] / s.nP;
       image.rgb[3 * p + b] = float(std::max(0.0, v));
     }
   }

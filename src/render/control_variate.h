@@ -4,9 +4,9 @@
 //
 // Two estimators of each pixel, from the same path tracer:
 //   R — the path reads the solution's reflected radiosity after one
-//       non-specular bounce (rushmeier-like), with its caustics from photon
-//       maps: cheap, low variance, biased by the solution's error and the
-//       maps' blur, b = E[R] − E[P];
+//       non-specular bounce (rushmeier-like), with the light after specular
+//       bounces from a photon map: cheap, low variance, biased by the
+//       solution's error and the map's blur, b = E[R] − E[P];
 //   P — the same path continued to its end: `path`'s estimator, number for
 //       number, so E[P] is exactly `path`'s expected value.
 // Paired samples give both from the same random numbers, so D = P − R is
@@ -66,10 +66,6 @@ namespace radiant {
 struct ControlVariateStats {
   double biasRms = 0;        ///< √(estimated mean b²) of R, W·sr⁻¹·m⁻²: what D̄ corrects
   double predictedRmse = 0;  ///< √(estimated mean MSE) of the combined image
-  /// The standard error of the image's mean value (over pixels and bands):
-  /// the corrections of a tile are one number, so it is not the pixels'
-  /// variances summed; by the tiles' sums it is the per-pixel estimator's.
-  double meanStandardError = 0;
 };
 
 class ControlVariateImage {
@@ -85,7 +81,9 @@ class ControlVariateImage {
   /// read in place.
   void addPairs(const Film &film);
 
-  /// The combined image R̄ + D̄ (R̄ alone before any pair) and the variance of each pixel's estimate.
+  /// The combined image R̄ + D̃ (R̄ alone before any pair), and each pixel's
+  /// variance as the per-pixel estimator R̄ + D̄ has it: summed over a block,
+  /// the variance of its mean; per pixel, a bound on the tiles' squared error.
   Image mean(ControlVariateStats *stats = nullptr) const;
   Image variance() const;
 

@@ -172,13 +172,12 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
   // consistent; each pass adds the kind of sample that the forecast says
   // lowers its error more per second.
   //
-  // R takes its caustics from photon maps, P never (it is `path`, so the
-  // image converges to `path`'s): at the first non-specular vertex the
-  // caustic map (L S+ D), and where it reads the solution, a second map of
-  // all light that took a specular bounce on its way (the solution has
-  // mirrors and glass black: on the specular box it was 6 % dark without the
-  // maps, 0.1 % with them). Both maps are new each pass, of the same radius;
-  // their blur and noise are R's bias, which the correction removes.
+  // Where R reads the solution it also reads a photon map of all light that
+  // took a specular bounce on its way (the solution has mirrors and glass
+  // black: on the specular box R was 6 % dark without it, 0.1 % with it);
+  // P never does (it is `path`, so the image converges to `path`'s). At the
+  // first vertex R finds caustics as P does, by BSDF samples: a caustic map
+  // there blurred the sharp caustic, which no correction tile could undo.
   ControlVariateImage combined(width, height);
   // One film of each kind, cleared for every pass rather than allocated anew.
   Film pairedFilm(width, height, {"control"}), controlFilm(width, height);
@@ -194,7 +193,9 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
   // The pass in progress saves its film beside the checkpoint, in a file of its own.
   auto passCheckpoint = [&](int index) { return passFilePath(options.checkpointPath, index); };
   int index = resumed ? resumed->pass : 3;
-  size_t scenePhotons = 1;  // stored by the last pass's map: none, and no later pass builds one
+  // Stored by the last pass's map: none, and no later pass builds one; none at all without mirrors or glass.
+  const std::vector<Material> &materials = tracer.scene().materials;
+  size_t scenePhotons = std::any_of(materials.begin(), materials.end(), [](const Material &m) { return m.isDelta(); });
   if (resumed && progress && cluster::isRoot())
     fmt::print(stderr, "radiant: resumed from {} at pass {} ({} spp reading the solution done)\n",
                options.checkpointPath, index, combined.controlSamples());
@@ -307,7 +308,6 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
     pass.controlSamples = combined.controlSamples();
     pass.pairedSamples = combined.pairedSamples();
     pass.estimatedBias = stats.biasRms;
-    pass.meanStandardError = stats.meanStandardError;
     output(pass, mean, combined.variance());
   }
   // Finished (not stopped): the checkpoints have served.

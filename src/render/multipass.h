@@ -12,8 +12,8 @@
 //           the rest read from the solution
 //   pass 3… the solution corrected by Monte Carlo (render/control_variate.h):
 //           low-frequency passes trace paths that read the solution after one
-//           non-specular bounce, with caustics and the light that mirrors and
-//           glass throw from photon maps (R); paired passes trace the same
+//           non-specular bounce, with the light that mirrors and glass throw
+//           from a photon map (R); paired passes trace the same
 //           paths to their end beside R, from the same numbers (P, which is
 //           `path`'s estimator exactly). The image is R̄ plus P − R averaged
 //           over correction tiles that shrink as pairs accumulate: every
@@ -60,11 +60,10 @@ struct MultipassPass {
   double seconds = 0;       ///< wall time of this pass, solving included
   bool unbiased = false;    ///< passes 3…: it rendered paired (unbiased) samples, not only R
   // Passes 3…, all passes so far together (render/control_variate.h):
-  int controlSamples = 0;        ///< R samples per pixel (R-only passes and pairs)
-  int pairedSamples = 0;         ///< paired samples per pixel
-  double estimatedBias = 0;      ///< RMS of R's bias as the pairs measure it, W·sr⁻¹·m⁻²
-  double meanStandardError = 0;  ///< of the image's mean value (ControlVariateStats), W·sr⁻¹·m⁻²
-  size_t causticPhotons = 0;     ///< stored in this pass's map (pass 2)
+  int controlSamples = 0;     ///< R samples per pixel (R-only passes and pairs)
+  int pairedSamples = 0;      ///< paired samples per pixel
+  double estimatedBias = 0;   ///< RMS of R's bias as the pairs measure it, W·sr⁻¹·m⁻²
+  size_t causticPhotons = 0;  ///< stored in this pass's map (pass 2)
   double photonRadius = 0;
 };
 
