@@ -277,7 +277,7 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
       // towards P's mean (control_variate.h). None where nothing is specular.
       std::optional<CausticPhotonMap> specularLight;
       if (scenePhotons != 0) {
-        specularLight.emplace(tracer, options.photonsPerPass, hashSeed(options.seed, 0x5105ULL << 48 | uint64_t(index)),
+        specularLight.emplace(tracer, options.photonsPerPass / 4, hashSeed(options.seed, 0x5105ULL << 48 | uint64_t(index)),
                               options.photonRadius, true);
         scenePhotons = specularLight->stored();
       }
