@@ -137,7 +137,7 @@ grep -q "bump-orientations: must be even, got 9" <<<"$odd" && ! grep -q "solved"
 if "$radiant" render "$specular" --method multipass --solver stochastic --spp 16 --width 16 --height 16 --mesh-size 200 -o mp.exr -o mp.png \
     2>mp.txt; then
   for f in mp.pass1.exr mp.pass2.png mp.pass5.exr mp.exr mp.png; do [ -s "$f" ] && pass || fail "multipass did not write $f"; done
-  grep -q "multipass 3 (unbiased, the solution as control variate)" mp.txt && grep -q "multipass 4 (low frequency" mp.txt &&
+  grep -q "multipass 3 (paired: path samples that correct the solution)" mp.txt && grep -q "multipass 4 (low frequency" mp.txt &&
     pass || { fail "multipass does not report its passes"; cat mp.txt; }
 else
   fail "multipass render"; cat mp.txt

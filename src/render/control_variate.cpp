@@ -86,10 +86,6 @@ struct CorrectionChoice {
   bool scaled;
   double within, variance;
 };
-struct Block {
-  std::vector<CorrectionChoice> choices;
-  double pixels = 0;
-};
 
 }  // namespace
 
@@ -162,20 +158,19 @@ ControlVariateImage::Correction ControlVariateImage::correction(double pairsLate
         for (int x = bx; x < bx + bw; ++x) varianceKnown = varianceKnown && pairs[size_t(y) * width_ + x] >= 2;
       // Every tile size and kind: the bias each leaves and its variance now.
       // Without variances (fewer than 2 pairs) the block is one tile.
-      Block candidates;
-      candidates.pixels = double(bw) * bh;
+      std::vector<CorrectionChoice> candidates;
       for (int size = block; size >= (varianceKnown ? 1 : block); size /= 2)
         for (const bool scaled : {false, true}) {
           CorrectionChoice choice{size, scaled, 0, 0};
           forEachTile(size, scaled, [&](int, int, int, int, const Tile &t) {
             choice.within += std::max(0.0, t.within), choice.variance += t.spread;
           });
-          candidates.choices.push_back(choice);
+          candidates.push_back(choice);
         }
       // The one of least squared error: now, or (forecasts) after pairsLater pairs in all.
       const double scale = pairsLater > 0 ? pairedSpp_ / pairsLater : 1.0;
-      const CorrectionChoice *best = &candidates.choices[0];
-      for (const CorrectionChoice &choice : candidates.choices)
+      const CorrectionChoice *best = &candidates[0];
+      for (const CorrectionChoice &choice : candidates)
         if (choice.within + scale * choice.variance < best->within + scale * best->variance) best = &choice;
       c.within2 += best->within, c.varianceLater += scale * best->variance;
       if (pairsLater > 0) continue;

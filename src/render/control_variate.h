@@ -107,11 +107,11 @@ class ControlVariateImage {
   void restore(Sums sums);
 
  private:
-  /// Per tile, averaged over its pixels and bands: per-sample variances of R
-  /// and D, their per-sample covariance, and the estimated squared bias of R
-  /// (reported only: D̄ corrects it whatever its size).
+  /// Per tile of the forecast, averaged over its pixels and bands: the
+  /// per-sample variance of R, its covariance with the correction, and the
+  /// estimated squared bias of R (what R̄ alone would leave; reported).
   struct TileStats {
-    double varianceR = 0, varianceD = 0, covarianceRD = 0, bias2 = 0;
+    double varianceR = 0, covarianceRD = 0, bias2 = 0;
     size_t pixels = 0;
   };
   /// The correction added to each pixel's R̄: the mean D of its correction

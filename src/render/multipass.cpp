@@ -241,7 +241,7 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
     if (planned) paired = resumed->paired, spp = resumed->samplesPerPixel;
 
     passStart = Clock::now();
-    pass = {index, paired ? "unbiased, the solution as control variate" : "low frequency, solution after 1 bounce",
+    pass = {index, paired ? "paired: path samples that correct the solution" : "low frequency, solution after 1 bounce",
             spp};
     DriverOptions driver = driverFor(pass, spp, 0);
     // Passes 3… draw one sequence of samples between them (render/sampler.h):
@@ -277,8 +277,8 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
       // towards P's mean (control_variate.h). None where nothing is specular.
       std::optional<CausticPhotonMap> specularLight;
       if (scenePhotons != 0) {
-        specularLight.emplace(tracer, options.photonsPerPass / 4, hashSeed(options.seed, 0x5105ULL << 48 | uint64_t(index)),
-                              options.photonRadius, true);
+        specularLight.emplace(tracer, options.photonsPerPass / 4,
+                              hashSeed(options.seed, 0x5105ULL << 48 | uint64_t(index)), options.photonRadius, true);
         scenePhotons = specularLight->stored();
       }
       RenderContext o = options.context;
