@@ -51,11 +51,11 @@ constexpr double kMinPairedShare = 0.1;
 /// cost this fraction of a paired one (measured 0.5–0.55 on the Cornell boxes).
 constexpr double kControlCostRatio = 0.5;
 /// Under a time budget, passes 1 and 2 and the solve of the solution the
-/// later passes read are overhead: no unbiased image uses their samples, and
+/// later passes read are overhead: the final image uses none of their samples, and
 /// at 2 s on the specular box they took 1.3 s of it (the RMSE of `path` at
 /// equal time 2.1×). So, measured against the preview's time t₁: a budget
 /// under kOwnSolveBudget·t₁ keeps the preview's solution as the control
-/// variate instead of solving again (any fixed solution keeps the image
+/// variate instead of solving again (any fixed solution keeps the blocks' means
 /// unbiased; a poorer one only raises D's variance), and pass 2 (the solve
 /// and kok with its photon map, 3–4 t₁ on the boxes) runs only when the
 /// budget is at least kHighFrequencyBudget·(time spent by then), so that the
@@ -363,7 +363,7 @@ RendererInfo multipassMethod() {
     if (spec.name != "source-visibility-grid") parameters.push_back(spec);  // pass 2 is a preview: 1
   parameters.push_back(bumpOrientationsParameter());
   return {"multipass",
-          "progressive passes from a radiosity preview to an unbiased image with caustics (Chen et al. 1991)",
+          "progressive passes from a radiosity preview to the path-traced image with caustics (Chen et al. 1991)",
           parameters,
           nullptr,
           &renderMultipassJob,

@@ -81,7 +81,7 @@ using MultipassProgress = std::function<ProgressCallback(const std::string &labe
 /// fraction of a second on the boxes (the specular box: 4652 elements) where
 /// "auto" elsewhere picks hierarchical-exact (27 701 elements, 8.5 s there).
 /// The solution is a control variate: its error raises the variance of the
-/// correction, never the image's bias, and a solve no short budget can pay
+/// correction, never a block's mean, and a solve no short budget can pay
 /// for leaves it no samples.
 std::string multipassSolverName(const std::string &requested, double timeBudgetSeconds);
 
