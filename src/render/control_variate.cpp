@@ -78,18 +78,25 @@ PixelStats pixelStats(const Film &controls, const PairedFilm &pairs, size_t p) {
   return s;
 }
 
-/// A way to correct a block: tiles of `size` pixels on a side, the mean D
-/// added or spread in proportion to R̄ (`scaled`); what it leaves of the bias,
-/// squared, and its variance, both summed over the block's pixels and bands.
-struct CorrectionChoice {
-  int size;
-  bool scaled;
-  double within, variance;
-};
-
 }  // namespace
 
-ControlVariateImage::Correction ControlVariateImage::correction(double pairsLater) const {
+const ControlVariateImage::CorrectionChoice &ControlVariateImage::Correction::best(size_t block, double scale) const {
+  const CorrectionChoice *best = &blocks[block][0];
+  for (const CorrectionChoice &choice : blocks[block])
+    if (choice.within + scale * choice.variance < best->within + scale * best->variance) best = &choice;
+  return *best;
+}
+
+double ControlVariateImage::Correction::meanError(double scale) const {
+  double sum = 0;
+  for (size_t block = 0; block < blocks.size(); ++block) {
+    const CorrectionChoice &choice = best(block, scale);
+    sum += choice.within + scale * choice.variance;
+  }
+  return sum / (double(value.size()) * kBandCount);
+}
+
+ControlVariateImage::Correction ControlVariateImage::correction() const {
   Correction c;
   const size_t count = size_t(width_) * height_;
   c.value.assign(count, Bands(0.0));
@@ -158,7 +165,7 @@ ControlVariateImage::Correction ControlVariateImage::correction(double pairsLate
         for (int x = bx; x < bx + bw; ++x) varianceKnown = varianceKnown && pairs[size_t(y) * width_ + x] >= 2;
       // Every tile size and kind: the bias each leaves and its variance now.
       // Without variances (fewer than 2 pairs) the block is one tile.
-      std::vector<CorrectionChoice> candidates;
+      std::vector<CorrectionChoice> &candidates = c.blocks.emplace_back();
       for (int size = block; size >= (varianceKnown ? 1 : block); size /= 2)
         for (const bool scaled : {false, true}) {
           CorrectionChoice choice{size, scaled, 0, 0};
@@ -167,26 +174,20 @@ ControlVariateImage::Correction ControlVariateImage::correction(double pairsLate
           });
           candidates.push_back(choice);
         }
-      // The one of least squared error: now, or (forecasts) after pairsLater pairs in all.
-      const double scale = pairsLater > 0 ? pairedSpp_ / pairsLater : 1.0;
-      const CorrectionChoice *best = &candidates[0];
-      for (const CorrectionChoice &choice : candidates)
-        if (choice.within + scale * choice.variance < best->within + scale * best->variance) best = &choice;
-      c.within2 += best->within, c.varianceLater += scale * best->variance;
-      if (pairsLater > 0) continue;
-      forEachTile(best->size, best->scaled, [&](int tx, int ty, int tw, int th, const Tile &t) {
+      // The one of least squared error.
+      const CorrectionChoice &best = c.best(c.blocks.size() - 1, 1.0);
+      forEachTile(best.size, best.scaled, [&](int tx, int ty, int tw, int th, const Tile &t) {
         for (int y = ty; y < ty + th; ++y)
           for (int x = tx; x < tx + tw; ++x) {
             const size_t p = size_t(y) * width_ + x;
             for (int b = 0; b < kBandCount; ++b) {
-              const double w = weight(t, p, b, best->scaled);
+              const double w = weight(t, p, b, best.scaled);
               c.value[p][b] = w * t.mean[b], c.variance[p][b] = sqr(w) * t.variance[b];
             }
             c.pixels[p] = t.pixels;
           }
       });
     }
-  c.within2 /= double(count) * kBandCount, c.varianceLater /= double(count) * kBandCount;
   return c;
 }
 
@@ -224,7 +225,6 @@ std::vector<ControlVariateImage::TileStats> ControlVariateImage::tileStats(const
 
 double ControlVariateImage::mse(const TileStats &t, double nR, double nP) {
   if (nR < 1) return INFINITY;
-  // Without pairs the image is R̄, biased by b; with them R̄ + D̄, unbiased.
   // Without pairs the image is R̄, biased by b; with them the corrections' share is added by the caller.
   if (nP < 1) return t.bias2 + t.varianceR / nR;
   return std::max(0.0, (t.varianceR + 2 * t.covarianceRD) / nR);
@@ -241,12 +241,10 @@ double ControlVariateImage::meanMse(const std::vector<TileStats> &tiles, double 
 
 double ControlVariateImage::forecastMse(double moreControls, double morePairs) const {
   const double pairsLater = pairedSpp_ + morePairs;
-  const double corrections = pairedSpp_ > 0 ? [&] {
-    const Correction later = correction(pairsLater);
-    return later.within2 + later.varianceLater;
-  }()
-                                            : 0.0;
-  return meanMse(tileStats(correction()), controlSpp_ + moreControls + morePairs, pairsLater) + corrections;
+  const Correction c = correction();
+  // More pairs scale the corrections' variance by n_P/n_P' and may make smaller tiles the best.
+  const double corrections = pairedSpp_ > 0 ? c.meanError(pairedSpp_ / pairsLater) : 0.0;
+  return meanMse(tileStats(c), controlSpp_ + moreControls + morePairs, pairsLater) + corrections;
 }
 
 Image ControlVariateImage::mean(ControlVariateStats *stats) const {
@@ -263,7 +261,7 @@ Image ControlVariateImage::mean(ControlVariateStats *stats) const {
     for (const TileStats &t : tiles) bias2 += t.pixels * t.bias2, pixels += t.pixels;
     stats->biasRms = pixels > 0 ? std::sqrt(bias2 / pixels) : 0;
     stats->predictedRmse =
-        std::sqrt(meanMse(tiles, controlSpp_, pairedSpp_) + (pairedSpp_ > 0 ? c.within2 + c.varianceLater : 0.0));
+        std::sqrt(meanMse(tiles, controlSpp_, pairedSpp_) + (pairedSpp_ > 0 ? c.meanError(1.0) : 0.0));
   }
   return image;
 }

@@ -114,20 +114,30 @@ class ControlVariateImage {
     double varianceR = 0, covarianceRD = 0, bias2 = 0;
     size_t pixels = 0;
   };
+  /// A way to correct a block: tiles of `size` pixels on a side, the mean D
+  /// added or spread in proportion to R̄ (`scaled`); what it leaves of the
+  /// bias, squared, and its variance, both summed over the block's pixels and bands.
+  struct CorrectionChoice {
+    int size;
+    bool scaled;
+    double within, variance;
+  };
   /// The correction added to each pixel's R̄: the mean D of its correction
   /// tile (added, or spread in proportion to R̄), the tile of
   /// kMaxCorrectionTile pixels on a side or a power of two less, chosen per
   /// block of that size to minimise the predicted squared error.
   struct Correction {
-    std::vector<Bands> value, variance;  ///< the correction, and its variance
-    std::vector<double> pixels;          ///< in the pixel's correction tile
-    double within2 = 0;                  ///< the bias the tiles leave, squared, per pixel and band
-    double varianceLater = 0;            ///< the corrections' variance per pixel and band (after pairsLater)
+    std::vector<Bands> value, variance;                 ///< the correction, and its variance
+    std::vector<double> pixels;                         ///< in the pixel's correction tile
+    std::vector<std::vector<CorrectionChoice>> blocks;  ///< every choice, per block
+    /// The block's choice of least error when the variances are scaled by `scale`
+    /// (1 now; n_P/n_P' after more pairs).
+    const CorrectionChoice &best(size_t block, double scale) const;
+    /// The best choices' squared error per pixel and band.
+    double meanError(double scale) const;
   };
   static constexpr int kMaxCorrectionTile = 32;
-  /// The corrections now; with pairsLater > 0, only the figures of the
-  /// choice that would be best with that many pairs per pixel (forecasts).
-  Correction correction(double pairsLater = 0) const;
+  Correction correction() const;
   std::vector<TileStats> tileStats(const Correction &correction) const;
   /// The tile's predicted MSE with n_R, n_P samples (R̄ alone, biased, without pairs).
   static double mse(const TileStats &t, double nR, double nP);

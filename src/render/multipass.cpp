@@ -193,9 +193,9 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
   // The pass in progress saves its film beside the checkpoint, in a file of its own.
   auto passCheckpoint = [&](int index) { return passFilePath(options.checkpointPath, index); };
   int index = resumed ? resumed->pass : 3;
-  // Stored by the last pass's map: none, and no later pass builds one; none at all without mirrors or glass.
+  // R's photon map: none without mirrors or glass, nor after a map that stored nothing.
   const std::vector<Material> &materials = tracer.scene().materials;
-  size_t scenePhotons = std::any_of(materials.begin(), materials.end(), [](const Material &m) { return m.isDelta(); });
+  bool tracePhotons = std::any_of(materials.begin(), materials.end(), [](const Material &m) { return m.isDelta(); });
   if (resumed && progress && cluster::isRoot())
     fmt::print(stderr, "radiant: resumed from {} at pass {} ({} spp reading the solution done)\n",
                options.checkpointPath, index, combined.controlSamples());
@@ -276,10 +276,10 @@ void renderMultipass(const RayTracer &tracer, const PinholeCamera &camera, int w
       // `path`), and the correction moves R̄'s blur and photon noise back
       // towards P's mean (control_variate.h). None where nothing is specular.
       std::optional<CausticPhotonMap> specularLight;
-      if (scenePhotons != 0) {
+      if (tracePhotons) {
         specularLight.emplace(tracer, options.photonsPerPass / 4,
                               hashSeed(options.seed, 0x5105ULL << 48 | uint64_t(index)), options.photonRadius, true);
-        scenePhotons = specularLight->stored();
+        tracePhotons = specularLight->stored() > 0;
       }
       RenderContext o = options.context;
       o.solution = &solution;
