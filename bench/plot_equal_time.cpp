@@ -4,6 +4,7 @@
 //
 // No plotting library: a canvas, lines and stb_easy_font labels
 // (display/bitmap_text.h), written with writePngBytes.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -51,9 +52,12 @@ int main(int argc, char **argv) {
     std::vector<std::string> f;
     std::stringstream s(row);
     for (std::string field; std::getline(s, field, ',');) f.push_back(field);
-    if (f.size() < 6) continue;
+    if (f.size() < 6 || f[0] == "budget_s") continue;  // short, or the header of a CSV joined on
     series[f[1]].push_back({std::stod(f[0]), std::stod(f[5])});
   }
+  // Several CSVs may have been joined (one per budget range): draw each line left to right.
+  for (auto &[name, points] : series)
+    std::sort(points.begin(), points.end(), [](const Point &a, const Point &b) { return a.seconds < b.seconds; });
   if (series.empty()) {
     std::fprintf(stderr, "plot_equal_time: no rows in %s\n", argv[1]);
     return 1;
@@ -87,11 +91,13 @@ int main(int argc, char **argv) {
   }
   line(canvas, left, bottom, right, bottom, black), line(canvas, left, top, left, bottom, black);
   drawText(canvas, left, 15, argc > 3 ? argv[3] : "RMSE against the converged image, equal time", 2, black);
-  static const unsigned char palette[][3] = {{31, 119, 180},  {255, 127, 14}, {44, 160, 44},  {214, 39, 40},
-                                             {148, 103, 189}, {140, 86, 75},  {227, 119, 194}};
+  static const unsigned char palette[][3] = {{31, 119, 180},  {255, 127, 14}, {44, 160, 44},   {214, 39, 40},
+                                             {148, 103, 189}, {140, 86, 75},  {227, 119, 194}, {188, 189, 34},
+                                             {23, 190, 207},  {127, 127, 127}};
+  constexpr int kColours = int(sizeof palette / sizeof palette[0]);
   int index = 0;
   for (const auto &[name, points] : series) {
-    const unsigned char *colour = palette[index % 7];
+    const unsigned char *colour = palette[index % kColours];
     for (size_t i = 0; i + 1 < points.size(); ++i)
       if (points[i].rmse > 0 && points[i + 1].rmse > 0)
         line(canvas, X(points[i].seconds), Y(points[i].rmse), X(points[i + 1].seconds), Y(points[i + 1].rmse), colour);

@@ -5,7 +5,8 @@
 // pays for its radiosity solution up front, so here the solve counts against
 // the budget. For each budget (--budgets, default 1,2,5,10 s) and method
 // (path, interpolate, rushmeier, shirley, kok, reichert, multipass), --repeats times
-// (default 3, seeds 1..N for both the solve and the render):
+// (default 3, seeds 1..N for both the solve and the render; multipass solves
+// and renders within its budget itself, as `radiant render --method multipass --time`):
 //
 //   1. meshAndSolve() (--solver, default "auto"; --mesh-size in metres,
 //      default the `radiant` CLI's: 1/8 of the scene's largest side) and
@@ -16,7 +17,9 @@
 //      are marked "*" (reichert, one form factor and shadow ray per element per
 //      sample, is the usual one);
 //   3. compares the mean image with the reference: RMSE over all pixels and
-//      channels with the reference's own noise removed,
+//      channels (--without-emitters: leaving out the pixels that show a light
+//      and their neighbours, as `radiant compare --without-emitters`, so that
+//      the figure is the lit surfaces'), with the reference's own noise removed,
 //      √max(0, MSE − mean variance of the reference's pixel means), and the
 //      bias of the image mean, |mean test / mean reference − 1| averaged over
 //      the bands.
@@ -30,7 +33,8 @@
 // (docs/PERFORMANCE.md: the machine is shared).
 //
 // Usage: two_pass_equal_time [scene.json] [--budgets 1,2,5,10] [--repeats 3] [--threads 2] [--solver auto]
-//          [--mesh-size METRES] [--methods a,b,…] [--reference FILE.exr] [--reference-spp 4096] [--csv FILE]
+//          [--mesh-size METRES] [--methods a,b,…] [--reference FILE.exr] [--reference-spp 4096]
+//          [--without-emitters] [--csv FILE]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -42,6 +46,7 @@
 #include <vector>
 
 #include "bench_common.h"
+#include "display/emitter_mask.h"
 #include "io/compare.h"
 #include "io/image.h"
 #include "mesh/mesh.h"
@@ -65,7 +70,7 @@ namespace {
 
 constexpr int kSize = 256;                    // pixels, both sides
 constexpr uint64_t kReferenceSeed = 1000003;  // not one of the test seeds 1..repeats
-const char *const kAllMethods = "path,interpolate,rushmeier,shirley,kok,reichert";
+const char *const kAllMethods = "path,flat,interpolate,rushmeier,shirley,kok,reichert,multipass";
 
 struct Measurement {
   double solveSeconds = 0, totalSeconds = 0, spp = 0, rmse = 0, biasPercent = 0;
@@ -87,6 +92,7 @@ int main(int argc, char **argv) {
   std::string solverName = "auto", csvPath, budgetList = "1,2,5,10", methodList = kAllMethods;
   int referenceSpp = 4096, threads = 2, repeats = 3;
   double meshSizeMetres = 0;  // 0: MeshOptions' default, as `radiant` without --mesh-size
+  bool withoutEmitters = false;
   for (int i = 1; i < argc; ++i) {
     std::string arg = argv[i];
     bool hasValue = i + 1 < argc;
@@ -106,6 +112,8 @@ int main(int argc, char **argv) {
       threads = std::atoi(argv[++i]);
     else if (arg == "--repeats" && hasValue)
       repeats = std::atoi(argv[++i]);
+    else if (arg == "--without-emitters")
+      withoutEmitters = true;
     else if (arg == "--csv" && hasValue)
       csvPath = argv[++i];
     else if (arg.rfind("--", 0) != 0)
@@ -114,7 +122,7 @@ int main(int argc, char **argv) {
       std::fprintf(stderr,
                    "usage: %s [scene.json] [--budgets 1,2,5,10] [--repeats 3] [--threads 2] [--solver auto] "
                    "[--mesh-size METRES] [--methods path,shirley,...] [--reference FILE.exr] [--reference-spp 4096] "
-                   "[--csv FILE]\n",
+                   "[--without-emitters] [--csv FILE]\n",
                    argv[0]);
       return 2;
     }
@@ -171,9 +179,22 @@ int main(int argc, char **argv) {
     if (reference.width != kSize || reference.height != kSize || referenceVariance.width != kSize ||
         referenceVariance.height != kSize)
       throw InputError(InputLocation{referencePath}, "the reference and its variance must be 256x256");
-    double referenceNoise = 0;  // mean variance of the reference's pixel means, over pixels and channels
-    for (float v : referenceVariance.rgb) referenceNoise += v;
-    referenceNoise /= double(referenceVariance.rgb.size());
+    std::vector<uint8_t> leaveOut;  // --without-emitters: the pixels that show a light, and their neighbours
+    if (withoutEmitters) {
+      if (reference.emitterFraction.empty())
+        throw InputError(InputLocation{referencePath},
+                         "--without-emitters needs the reference's emitter channel (an EXR written by radiant render)");
+      leaveOut = emitterPixelMask(reference);
+    }
+    // The mean variance of the reference's pixel means, over the compared pixels and channels.
+    double referenceNoise = 0;
+    size_t comparedValues = 0;
+    for (size_t i = 0; i < referenceVariance.rgb.size(); ++i)
+      if (leaveOut.empty() || !leaveOut[i / 3]) {
+        referenceNoise += referenceVariance.rgb[i];
+        ++comparedValues;
+      }
+    referenceNoise /= double(std::max<size_t>(comparedValues, 1));
 
     std::vector<Row> rows;
     std::string solvedWith;  // what "auto" picked, and the elements it ended with (hierarchical: leaves)
@@ -209,7 +230,7 @@ int main(int argc, char **argv) {
                               pairs = pass.pairedSamples;
                             });
             m.totalSeconds = secondsSince(start);
-            ImageComparison c = compareImages(last, reference);
+            ImageComparison c = compareImages(last, reference, "test", "reference", leaveOut);
             m.rmse = std::sqrt(std::max(0.0, c.average.rmse * c.average.rmse - referenceNoise));
             for (const ChannelComparison &channel : c.channels)
               m.biasPercent += 100 * std::abs(channel.meanRatio - 1) / 3;
@@ -249,7 +270,7 @@ int main(int argc, char **argv) {
           m.totalSeconds = secondsSince(start);
           m.spp = stats.samplesPerPixel;
 
-          ImageComparison c = compareImages(meanImage(film), reference);
+          ImageComparison c = compareImages(meanImage(film), reference, "test", "reference", leaveOut);
           m.rmse = std::sqrt(std::max(0.0, c.average.rmse * c.average.rmse - referenceNoise));
           for (const ChannelComparison &channel : c.channels)
             m.biasPercent += 100 * std::abs(channel.meanRatio - 1) / 3;
@@ -283,8 +304,9 @@ int main(int argc, char **argv) {
         "median of %d repeats\n",
         scenePath.c_str(), kSize, kSize, threads, solverName.c_str(), solvedWith.c_str(), solvedElements,
         meshSize.c_str(), repeats);
-    std::printf("reference: %s, noise removed: mean variance of its pixel means %.3g (RMSE floor %.3g)\n\n",
-                referencePath.c_str(), referenceNoise, std::sqrt(referenceNoise));
+    std::printf("reference: %s, noise removed: mean variance of its pixel means %.3g (RMSE floor %.3g)%s\n\n",
+                referencePath.c_str(), referenceNoise, std::sqrt(referenceNoise),
+                withoutEmitters ? "; pixels showing a light and their neighbours left out" : "");
     std::printf("| budget s | method | solve s | total s | spp | RMSE | RMSE / path | mean bias %% |\n");
     std::printf("|---:|---|---:|---:|---:|---:|---:|---:|\n");
     FILE *csv = csvPath.empty() ? nullptr : std::fopen(csvPath.c_str(), "w");
