@@ -1,5 +1,6 @@
 // plot_equal_time — draws the CSV of two_pass_equal_time as a PNG: RMSE
-// against the converged image over the time budget, log–log, one line per
+// against the converged image over the wall time each run took (its budget, or
+// more where the solve alone overran it), log–log, one line per
 // method. Usage: plot_equal_time results.csv plot.png [title]
 //
 // No plotting library: a canvas, lines and stb_easy_font labels
@@ -53,7 +54,7 @@ int main(int argc, char **argv) {
     std::stringstream s(row);
     for (std::string field; std::getline(s, field, ',');) f.push_back(field);
     if (f.size() < 6 || f[0] == "budget_s") continue;  // short, or the header of a CSV joined on
-    series[f[1]].push_back({std::stod(f[0]), std::stod(f[5])});
+    series[f[1]].push_back({std::stod(f[3]), std::stod(f[5])});  // at the wall time taken: a solve may overrun the budget
   }
   // Several CSVs may have been joined (one per budget range): draw each line left to right.
   for (auto &[name, points] : series)
