@@ -11,6 +11,10 @@
 #include "display_options.h"
 #include "export/baked_mesh.h"
 #include "export/gltf_writer.h"
+#include "export/lightmap_atlas.h"
+#include "export/lightmap_bake.h"
+#include "export/lightmap_encoding.h"
+#include "export/lightmap_mesh.h"
 #include "export/ply_writer.h"
 #include "interrupt_handler.h"
 #include "io/output_files.h"
@@ -41,6 +45,10 @@ struct ExportCommandOptions {
   uint64_t seed = 1;
   int threads = 0;
   bool quiet = false;
+  // --lightmap: the scene's own faces with the light in a texture (export/lightmap_*.h)
+  bool lightmap = false;
+  int lightmapSize = 1024, lightmapPadding = 4, lightmapSamples = 3;
+  double texelSize = 0;
 };
 
 /// The file's format: --format, else the output's extension; the two must agree.
@@ -118,6 +126,61 @@ std::vector<std::pair<std::string, double>> toneParameterList(const DisplaySetti
   return list;
 }
 
+/// The lightmap's irradiance beside the glTF file: out.glb → out.lightmap.exr.
+std::string lightmapExrPathFor(const std::string &output) {
+  std::filesystem::path path(output);
+  path.replace_extension(".lightmap.exr");
+  return path.string();
+}
+
+/// `radiant export --lightmap`: the scene's own faces, their light in an atlas (docs/export.md, "Lightmaps").
+void writeLightmapped(const Scene &scene, const Solution &solution, const ExportCommandOptions &o,
+                      const DisplaySettings &display, const DisplayMapping &mapping,
+                      const DisplayLinearFunction &displayLinear, const std::string &exrPath) {
+  const std::vector<LightmapTriangle> triangles = lightmapTriangles(scene, solution);
+  AtlasOptions atlasOptions;
+  atlasOptions.size = o.lightmapSize;
+  atlasOptions.texelSize = o.texelSize * scene.metresPerUnit;  // --texel-size is in the scene's units, as --mesh-size
+  atlasOptions.padding = o.lightmapPadding;
+  const LightmapAtlas atlas = buildLightmapAtlas(triangles, atlasOptions);
+  LightmapBakeOptions bakeOptions;
+  bakeOptions.samples = o.lightmapSamples;
+  bakeOptions.dilation = o.lightmapPadding + 2;  // both neighbours' rings meet across the padding
+  const LightmapImages images = bakeLightmap(scene, solution, triangles, atlas, bakeOptions);
+
+  std::vector<bool> faceHasLight(scene.faces.size(), false);
+  for (size_t f = 0; f < scene.faces.size() && f < solution.mesh.patchOfFace.size(); ++f)
+    faceHasLight[f] = solution.mesh.patchOfFace[f] >= 0;
+  const BakedMesh baked = lightmapMesh(scene, triangles, atlas, faceHasLight, solution.elementCount());
+  GltfLightmap lightmap;
+  lightmap.displayPng = lightmapDisplayPng(images, displayLinear);
+  lightmap.irradiancePng = lightmapIrradiancePng(images);
+  lightmap.width = atlas.width;
+  lightmap.height = atlas.height;
+  lightmap.texelSize = atlas.texelSize;
+  lightmap.charts = atlas.charts.size();
+  lightmap.utilisation = double(images.coveredTexels) / (double(atlas.width) * atlas.height);
+  ExportProvenance provenance;
+  provenance.solver = solution.stats.solver;
+  provenance.toneOperator = display.toneOperator;
+  provenance.toneParameters = toneParameterList(display);
+  provenance.adaptedTo = mapping.describe();
+  writeGltf(scene, baked, provenance, o.outputPath, &lightmap);
+
+  Image irradiance(atlas.width, atlas.height);
+  irradiance.rgb = images.irradiance;
+  irradiance.quantity = "irradiance";
+  writeImage(irradiance, exrPath);
+  if (!o.quiet) {
+    size_t faceTriangles = 0;
+    for (const BakedPrimitive &p : baked.primitives) faceTriangles += p.triangleCount();
+    fmt::print(stderr,
+               "radiant: lightmap {}x{} texels of {:.3g} mm, {} charts, {:.0f} % of the texels covered; {} triangles\n",
+               atlas.width, atlas.height, atlas.texelSize * 1e3, atlas.charts.size(), 100 * lightmap.utilisation,
+               faceTriangles);
+  }
+}
+
 }  // namespace
 
 CommandRunner addExportCommand(CLI::App &app) {
@@ -138,6 +201,25 @@ CommandRunner addExportCommand(CLI::App &app) {
       ->default_val(0)
       ->check(CLI::Range(0, 4096));
   app.add_flag("-q,--quiet", o->quiet, "No progress or summary on stderr");
+  app.add_flag("--lightmap", o->lightmap,
+               "Write the scene's own faces with the light in a lightmap on TEXCOORD_1 (glTF only; docs/export.md, "
+               "\"Lightmaps\"), and the lightmap's irradiance as an EXR beside the file");
+  app.add_option("--lightmap-size", o->lightmapSize,
+                 "With --lightmap: the lightmap's side in texels; the texel size is the smallest that fits")
+      ->default_val(1024)
+      ->check(CLI::Range(8, kMaxLightmapSide));
+  app.add_option("--texel-size", o->texelSize,
+                 "With --lightmap: the texel's side in scene units (as --mesh-size) instead of --lightmap-size; the "
+                 "atlas grows to fit")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--lightmap-padding", o->lightmapPadding,
+                 "With --lightmap: texels between charts, filled by dilation so that filtering does not bleed")
+      ->default_val(4)
+      ->check(CLI::Range(2, 64));
+  app.add_option("--lightmap-samples", o->lightmapSamples,
+                 "With --lightmap: samples per texel side where the texel is read from the solution")
+      ->default_val(3)
+      ->check(CLI::Range(1, 16));
 
   return [o, &app]() {
     const std::string format = exportFormat(*o);
@@ -147,13 +229,26 @@ CommandRunner addExportCommand(CLI::App &app) {
     if (format != "ply" && (app.count("--gamma") || app.count("--srgb")))
       throw InputError(InputLocation{app.count("--gamma") ? "--gamma" : "--srgb"},
                        "glTF vertex colours are linear: the viewer applies its display's transfer curve");
-    checkOutputFiles({{o->outputPath, InputLocation{"--output"}}}, {o->scenePath, o->solutionPath});
+    for (const char *flag : {"--lightmap-size", "--texel-size", "--lightmap-padding", "--lightmap-samples"})
+      if (app.count(flag) && !o->lightmap) throw InputError(InputLocation{flag}, "needs --lightmap");
+    if (o->lightmap && format == "ply")
+      throw InputError(InputLocation{"--lightmap"}, "a lightmap needs glTF (.glb or .gltf): PLY has no textures");
+    if (app.count("--lightmap-size") && app.count("--texel-size"))
+      throw InputError(InputLocation{"--texel-size"}, "give --lightmap-size or --texel-size, not both");
+    const std::string lightmapExrPath = o->lightmap ? lightmapExrPathFor(o->outputPath) : std::string();
+    std::vector<OutputFile> outputs{{o->outputPath, InputLocation{"--output"}}};
+    if (o->lightmap) outputs.push_back({lightmapExrPath, InputLocation{"--lightmap"}});
+    checkOutputFiles(outputs, {o->scenePath, o->solutionPath});
     InterruptHandler interrupts;
     const auto start = std::chrono::steady_clock::now();
     Scene scene = loadScene(o->scenePath);
     const WhiteBalance balance = applyColourOptions(app, o->colour, scene);
     applyViewOptions(o->view, scene);
     const DisplaySettings display = displaySettings(app, o->display, scene.render.exposure);
+    if (o->lightmap && scene.spectral.enabled())
+      throw InputError(InputLocation{"--lightmap"},
+                       "a spectral scene's lightmap is not written yet: export it "
+                       "per vertex (without --lightmap), or give the scene RGB colours");
     if (!o->quiet)
       for (const std::string &warning : scene.warnings) fmt::print(stderr, "radiant: warning: {}\n", warning);
 
@@ -175,8 +270,20 @@ CommandRunner addExportCommand(CLI::App &app) {
 
     const DisplayMapping mapping(cameraView(scene, tracer, solutions, balance, o->threads), display);
     if (!o->quiet) reportDisplayMapping(mapping, app.count("--tonemap") > 0);
+    const DisplayLinearFunction displayLinear = [&](const float radiance[3], double out[3]) {
+      mapping.displayLinear(radiance, out);
+    };
+    if (o->lightmap) {
+      writeLightmapped(scene, solutions[0], *o, display, mapping, displayLinear, lightmapExrPath);
+      if (!o->quiet) {
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        fmt::print(stderr, "radiant: wrote {} ({:.2f} MB) and {} in {:.2f} s\n", o->outputPath,
+                   double(std::filesystem::file_size(o->outputPath)) * 1e-6, lightmapExrPath, seconds);
+      }
+      return 0;
+    }
     BakedMesh baked = bakeSolutions(scene, solutions, balance);
-    applyDisplayColours(baked, [&](const float radiance[3], double out[3]) { mapping.displayLinear(radiance, out); });
+    applyDisplayColours(baked, displayLinear);
     if (format == "ply") {
       writePly(
           baked, [&](const float radiance[3], double out[3]) { mapping.encode(radiance, out); }, o->outputPath);

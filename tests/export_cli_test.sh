@@ -41,6 +41,30 @@ quick=(--solver gauss-seidel --mesh-size 150 --width 64 --height 64 -q)
   awk '$1 == "all" { exit !($6 < 1e-10) }' compare.txt && pass ||
   fail "a saved solution's light differs from solving in place by more than f32 rounding: $(cat compare.txt)"
 
+# --lightmap (docs/export.md, "Lightmaps"): the scene's own triangles with TEXCOORD_1 and the lightmap's two
+# images in the file, its irradiance as an EXR beside; the same bytes whatever the thread count.
+"$radiant" export "$cornell" -o lit.glb --lightmap --lightmap-size 128 "${quick[@]}" &&
+  [ "$(head -c 4 lit.glb)" = "glTF" ] && grep -aq '"TEXCOORD_1"' lit.glb && grep -aq '"RADIANT_lightmap"' lit.glb &&
+  [ -s lit.lightmap.exr ] && pass || fail "export --lightmap"
+"$radiant" export "$cornell" -o lit1.glb --lightmap --lightmap-size 128 "${quick[@]}" --threads 1 &&
+  cmp -s lit.glb lit1.glb && cmp -s lit.lightmap.exr lit1.lightmap.exr && pass ||
+  fail "export --lightmap with --threads 1 differs from all threads"
+"$radiant" export "$cornell" -o lit.gltf --lightmap --texel-size 10 "${quick[@]}" &&
+  grep -q '"TEXCOORD_1"' lit.gltf && grep -q 'data:application/octet-stream;base64,' lit.gltf && [ -s lit.lightmap.exr ] && pass ||
+  fail "export --lightmap to .gltf (one file, images in the embedded buffer)"
+cp lit.glb lit-kept.glb
+expect_error "lightmap to PLY" "--lightmap: a lightmap needs glTF" "$radiant" export "$cornell" -o lit.ply --lightmap -q
+expect_error "lightmap size without --lightmap" "--lightmap-size: needs --lightmap" \
+  "$radiant" export "$cornell" -o lit.glb --lightmap-size 64 -q
+expect_error "size and texel size" "--texel-size: give --lightmap-size or --texel-size, not both" \
+  "$radiant" export "$cornell" -o lit.glb --lightmap --lightmap-size 64 --texel-size 10 -q
+expect_error "texel too small" "--texel-size: a texel of" \
+  "$radiant" export "$cornell" -o lit.glb --lightmap --texel-size 0.01 "${quick[@]}"
+expect_error "spectral lightmap" "--lightmap: a spectral scene's lightmap is not written yet" \
+  "$radiant" export "$source_dir/scenes/cornell-box-spectral/scene.json" -o lit.glb --lightmap -q
+cmp -s lit.glb lit-kept.glb && pass || fail "a refused lightmap export changed the existing file"
+[ -e lit.ply ] && fail "a refused lightmap export wrote lit.ply" || pass
+
 # Refusals name the flag or file, exit non-zero, and leave a good file alone.
 cp box.glb kept.glb
 expect_error "unknown extension" "unknown extension .expected .glb, .gltf or .ply" "$radiant" export "$cornell" -o box.obj -q

@@ -31,10 +31,6 @@ VertexLight meanLight(std::span<const VertexLight> lights) {
   return mean;
 }
 
-/// Below this ρ̄ a band reflects (almost) nothing: its irradiance cannot be
-/// recovered from B − E, and is taken from the elements' own H instead.
-constexpr double kSmallestReflectance = 1e-4;
-
 /// The light at every node, as the `interpolate` display reads it: B̂ (ambient
 /// included), L = max(B̂, E)/π, and H such that ρ̄H = B̂ − E at the node, so
 /// that a viewer's E + ρ(x)·H reproduces C&W eq. 9.11's E + (B̂ − E)·ρ(x)/ρ̄.

@@ -28,6 +28,8 @@ struct BakedPrimitive {
   std::vector<float> positions;    ///< 3: metres
   std::vector<float> normals;      ///< 3: the front side's unit normal
   std::vector<float> uvs;          ///< 2: the material's texture coordinates (uvScale applied, v up); hasUv only
+  std::vector<float> lightmapUvs;  ///< 2: a lightmap's coordinates, (0, 0) its top-left corner (lightmap_mesh.h)
+  // Light at the vertices: the per-vertex export's (a lightmapped mesh leaves them empty, but for black colours).
   std::vector<float> radiance;     ///< 3: L = max(B, E)/π, W·sr⁻¹·m⁻², RGB
   std::vector<float> irradiance;   ///< 3: H arriving at the front, W·m⁻²
   std::vector<float> reflectance;  ///< 3: ρ̄, the mean reflectance the solution used there (not written)
@@ -43,6 +45,10 @@ struct BakedMesh {
   std::vector<BakedPrimitive> primitives;  ///< in material order, only materials with triangles
   size_t elements = 0;                     ///< radiosity elements baked
 };
+
+/// Below this ρ̄ a band reflects (almost) nothing: its irradiance cannot be
+/// recovered from B − E, and is taken from the elements' own H instead.
+constexpr double kSmallestReflectance = 1e-4;
 
 /// Display-linear values (tone operator and gamut rule, display/display_mapping.h)
 /// of a radiance, each channel in [0, 1].

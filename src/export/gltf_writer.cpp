@@ -1,6 +1,5 @@
 #include "export/gltf_writer.h"
 
-#include <stb/stb_image_write.h>
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -83,12 +82,6 @@ int addIndexAccessor(tinygltf::Model &model, const std::vector<uint32_t> &indice
   return int(model.accessors.size() - 1);
 }
 
-void appendBytes(void *context, void *data, int size) {
-  auto *out = static_cast<std::vector<unsigned char> *>(context);
-  const auto *bytes = static_cast<const unsigned char *>(data);
-  out->insert(out->end(), bytes, bytes + size);
-}
-
 /// The texture as glTF holds it: the PNG or JPEG file as it is, or for any
 /// other file (EXR) its linear texels sRGB-encoded into an 8-bit PNG.
 std::pair<std::vector<unsigned char>, std::string> textureImage(const Scene &scene, const Material &material) {
@@ -103,11 +96,11 @@ std::pair<std::vector<unsigned char>, std::string> textureImage(const Scene &sce
   std::vector<unsigned char> encoded(texels.size());
   for (size_t i = 0; i < texels.size(); ++i)
     encoded[i] = (unsigned char)std::lround(255 * std::clamp(srgbEncode(texels[i]), 0.0, 1.0));
-  std::vector<unsigned char> png;
-  if (!stbi_write_png_to_func(appendBytes, &png, texture.width(), texture.height(), 3, encoded.data(),
-                              texture.width() * 3))
+  try {
+    return {encodePng(encoded, texture.width(), texture.height(), 3), "image/png"};
+  } catch (const std::runtime_error &) {
     throw InputError(material.diffuseTextureFrom, "cannot encode texture '" + path + "' as PNG");
-  return {std::move(png), "image/png"};
+  }
 }
 
 int addTexture(tinygltf::Model &model, const Scene &scene, const Material &material) {
@@ -174,6 +167,67 @@ tinygltf::Material gltfMaterial(tinygltf::Model &model, const Scene &scene, cons
   return out;
 }
 
+/// The name of the extension that carries the lightmap's irradiance and the
+/// material's own colour (docs/export.md, "Lightmaps"): glTF has no ratified one.
+constexpr const char *kLightmapExtension = "RADIANT_lightmap";
+
+struct LightmapTextures {
+  int display = -1, irradiance = -1;
+};
+
+int addPngTexture(tinygltf::Model &model, const std::vector<unsigned char> &png, const std::string &name, bool smooth) {
+  tinygltf::Image image;
+  image.name = name;
+  image.mimeType = "image/png";
+  image.bufferView = addBufferView(model, png.data(), png.size(), 0);
+  model.bufferViews.back().target = 0;  // images are not vertex data
+  model.images.push_back(image);
+  tinygltf::Sampler sampler;
+  sampler.wrapS = sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+  // RGBE must not be blended across texels (the exponents differ): nearest; a decoder filters the floats.
+  sampler.magFilter = smooth ? TINYGLTF_TEXTURE_FILTER_LINEAR : TINYGLTF_TEXTURE_FILTER_NEAREST;
+  sampler.minFilter = smooth ? TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR : TINYGLTF_TEXTURE_FILTER_NEAREST;
+  model.samplers.push_back(sampler);
+  tinygltf::Texture texture;
+  texture.name = name;
+  texture.sampler = int(model.samplers.size() - 1);
+  texture.source = int(model.images.size() - 1);
+  model.textures.push_back(texture);
+  return int(model.textures.size() - 1);
+}
+
+LightmapTextures addLightmapTextures(tinygltf::Model &model, const GltfLightmap &lightmap) {
+  return {addPngTexture(model, lightmap.displayPng, "lightmap", true),
+          addPngTexture(model, lightmap.irradiancePng, "lightmap irradiance (RGBE)", false)};
+}
+
+/// A material drawn with the lightmap: unlit, its base colour the display
+/// image on TEXCOORD_1 (what plain viewers show); the material's own base
+/// colour and texture, and the irradiance, in RADIANT_lightmap for engines
+/// that light the albedo themselves (three.js: map and lightMap).
+void lightmapMaterial(tinygltf::Material &material, const LightmapTextures &textures) {
+  auto &pbr = material.pbrMetallicRoughness;
+  Value::Object extension{
+      {"irradianceTexture", Value(Value::Object{{"index", Value(textures.irradiance)}, {"texCoord", Value(1)}})},
+      {"encoding", Value(std::string("rgbe"))},
+      {"quantity", Value(std::string("irradiance"))},
+      {"unit", Value(std::string("W/m²"))},
+      {"baseColorFactor", Value(Value::Array{number(pbr.baseColorFactor[0]), number(pbr.baseColorFactor[1]),
+                                             number(pbr.baseColorFactor[2])})}};
+  if (pbr.baseColorTexture.index >= 0)
+    extension["baseColorTexture"] =
+        Value(Value::Object{{"index", Value(pbr.baseColorTexture.index)}, {"texCoord", Value(0)}});
+  // The display image holds an emitter's light already (its L_e stays in extras.radiant.emission).
+  material.extensions.erase("KHR_materials_emissive_strength");
+  material.emissiveFactor = {0, 0, 0};
+  material.extensions["KHR_materials_unlit"] = Value(Value::Object{});
+  material.extensions[kLightmapExtension] = Value(std::move(extension));
+  pbr.baseColorFactor = {1, 1, 1, 1};
+  pbr.baseColorTexture = tinygltf::TextureInfo();
+  pbr.baseColorTexture.index = textures.display;
+  pbr.baseColorTexture.texCoord = 1;
+}
+
 /// The rotation that takes a glTF camera's axes (looking down −Z, +Y up) to
 /// the scene camera's, as a unit quaternion (x, y, z, w).
 std::vector<double> cameraRotation(const CameraSettings &camera) {
@@ -206,8 +260,9 @@ std::vector<double> cameraRotation(const CameraSettings &camera) {
 
 }  // namespace
 
-void writeGltf(const Scene &scene, const BakedMesh &baked, const ExportProvenance &provenance,
-               const std::string &path) {
+void writeGltf(const Scene &scene, const BakedMesh &baked, const ExportProvenance &provenance, const std::string &path,
+               const GltfLightmap *lightmap) {
+  LightmapTextures lightmapTextures;
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = std::string("Radiant ") + RADIANT_VERSION;
@@ -222,6 +277,10 @@ void writeGltf(const Scene &scene, const BakedMesh &baked, const ExportProvenanc
     int &material = materialIndex[p.material];
     if (material < 0) {
       model.materials.push_back(gltfMaterial(model, scene, scene.materials[p.material]));
+      if (lightmap && !p.lightmapUvs.empty()) {
+        if (lightmapTextures.display < 0) lightmapTextures = addLightmapTextures(model, *lightmap);
+        lightmapMaterial(model.materials.back(), lightmapTextures);
+      }
       material = int(model.materials.size() - 1);
       anyEmissiveStrength |= model.materials.back().extensions.count("KHR_materials_emissive_strength") > 0;
       anyTransmission |= model.materials.back().extensions.count("KHR_materials_transmission") > 0;
@@ -237,9 +296,17 @@ void writeGltf(const Scene &scene, const BakedMesh &baked, const ExportProvenanc
       for (size_t i = 1; i < st.size(); i += 2) st[i] = 1.0f - st[i];
       primitive.attributes["TEXCOORD_0"] = addFloatAccessor(model, st, 2, false);
     }
-    primitive.attributes["COLOR_0"] = addFloatAccessor(model, p.colour, 3, false);
-    primitive.attributes["_RADIANCE"] = addFloatAccessor(model, p.radiance, 3, false);
-    primitive.attributes["_IRRADIANCE"] = addFloatAccessor(model, p.irradiance, 3, false);
+    if (!p.lightmapUvs.empty()) {
+      const int lightmap = addFloatAccessor(model, p.lightmapUvs, 2, false);
+      primitive.attributes["TEXCOORD_1"] = lightmap;
+      // glTF numbers a semantic's sets from 0 without gaps (the validator's
+      // MESH_PRIMITIVE_INDEXED_SEMANTIC_CONTINUITY): an untextured material's
+      // TEXCOORD_0, which nothing reads, is the lightmap's, sharing its data.
+      if (!p.hasUv) primitive.attributes["TEXCOORD_0"] = lightmap;
+    }
+    if (!p.colour.empty()) primitive.attributes["COLOR_0"] = addFloatAccessor(model, p.colour, 3, false);
+    if (!p.radiance.empty()) primitive.attributes["_RADIANCE"] = addFloatAccessor(model, p.radiance, 3, false);
+    if (!p.irradiance.empty()) primitive.attributes["_IRRADIANCE"] = addFloatAccessor(model, p.irradiance, 3, false);
     primitive.indices = addIndexAccessor(model, p.indices, p.vertexCount());
     mesh.primitives.push_back(primitive);
     const tinygltf::Accessor &positions = model.accessors[size_t(primitive.attributes["POSITION"])];
@@ -278,6 +345,7 @@ void writeGltf(const Scene &scene, const BakedMesh &baked, const ExportProvenanc
   model.defaultScene = 0;
 
   model.extensionsUsed = {"KHR_materials_unlit"};
+  if (lightmapTextures.display >= 0) model.extensionsUsed.push_back(kLightmapExtension);
   if (anyEmissiveStrength) model.extensionsUsed.push_back("KHR_materials_emissive_strength");
   if (anyTransmission) {
     model.extensionsUsed.push_back("KHR_materials_transmission");
@@ -299,6 +367,14 @@ void writeGltf(const Scene &scene, const BakedMesh &baked, const ExportProvenanc
                                                           {"irradianceUnit", Value(std::string("W/m²"))},
                                                           {"luminousEfficacy", number(kLuminousEfficacy)},
                                                           {"tonemap", Value(std::move(tonemap))}})}});
+  if (lightmapTextures.display >= 0) {
+    Value::Object &radiant = model.asset.extras.Get<Value::Object>()["radiant"].Get<Value::Object>();
+    radiant["lightmap"] = Value(Value::Object{{"width", Value(lightmap->width)},
+                                              {"height", Value(lightmap->height)},
+                                              {"texelSize", number(lightmap->texelSize)},
+                                              {"charts", Value(int(lightmap->charts))},
+                                              {"utilisation", number(lightmap->utilisation)}});
+  }
 
   const bool binary = std::filesystem::path(path).extension() == ".glb";
   writeAtomically(path, [&](const std::string &temporary) {

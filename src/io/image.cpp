@@ -151,6 +151,18 @@ void writePngBytes(const std::vector<unsigned char> &rgb, int width, int height,
   });
 }
 
+std::vector<unsigned char> encodePng(const std::vector<unsigned char> &pixels, int width, int height, int channels) {
+  std::vector<unsigned char> png;
+  auto append = [](void *context, void *data, int size) {
+    auto *out = static_cast<std::vector<unsigned char> *>(context);
+    const auto *bytes = static_cast<const unsigned char *>(data);
+    out->insert(out->end(), bytes, bytes + size);
+  };
+  if (!stbi_write_png_to_func(append, &png, width, height, channels, pixels.data(), width * channels))
+    throw std::runtime_error("PNG encoder failed");
+  return png;
+}
+
 void writePng16(const std::vector<uint16_t> &rgb, int width, int height, const std::string &path) {
   writeAtomically(path, [&](const std::string &temporary) {
     std::FILE *out = std::fopen(temporary.c_str(), "wb");

@@ -60,6 +60,9 @@ void writeHdr(const Image &image, const std::string &path);
 void writePng(const Image &image, const std::string &path, double exposureStops = 0);
 /// 8-bit PNG from already display-encoded RGB bytes.
 void writePngBytes(const std::vector<unsigned char> &rgb, int width, int height, const std::string &path);
+/// An 8-bit PNG in memory, `channels` (1–4) bytes per pixel, rows top first.
+/// Throws std::runtime_error if the encoder fails.
+std::vector<unsigned char> encodePng(const std::vector<unsigned char> &pixels, int width, int height, int channels);
 /// 16-bit PNG (libpng) from display-encoded RGB values 0…65535, like the 8-bit
 /// writer without colour-space chunks (viewers take untagged PNG as sRGB).
 void writePng16(const std::vector<uint16_t> &rgb, int width, int height, const std::string &path);
