@@ -54,7 +54,8 @@ int main(int argc, char **argv) {
     std::stringstream s(row);
     for (std::string field; std::getline(s, field, ',');) f.push_back(field);
     if (f.size() < 6 || f[0] == "budget_s") continue;  // short, or the header of a CSV joined on
-    series[f[1]].push_back({std::stod(f[3]), std::stod(f[5])});  // at the wall time taken: a solve may overrun the budget
+    series[f[1]].push_back(
+        {std::stod(f[3]), std::stod(f[5])});  // at the wall time taken: a solve may overrun the budget
   }
   // Several CSVs may have been joined (one per budget range): draw each line left to right.
   for (auto &[name, points] : series)

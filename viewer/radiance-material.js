@@ -33,19 +33,23 @@ void main() {
 }
 `;
 
-const fragmentShader = /* glsl */ `
+/** What every radiance fragment shader declares: the output switch, ρ, L_e, the emitter flag, the texture, the target. */
+export const FRAGMENT_DECLARATIONS = /* glsl */ `
 precision highp float;
 uniform int uOutput;
 uniform vec3 uBaseColor;
 uniform vec3 uEmission;
 uniform float uEmitter;
-in vec3 vRadiance;
-in vec3 vIrradiance;
 #ifdef USE_BASE_TEXTURE
 uniform sampler2D uBaseTexture;
 in vec2 vUv;
 #endif
 layout(location = 0) out vec4 fragColor;
+`;
+
+const fragmentShader = /* glsl */ `${FRAGMENT_DECLARATIONS}
+in vec3 vRadiance;
+in vec3 vIrradiance;
 void main() {
   if (uOutput == ${OUTPUT_IRRADIANCE}) {
     fragColor = vec4(vIrradiance, uEmitter);

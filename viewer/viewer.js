@@ -1,4 +1,5 @@
-// Radiant's viewer: loads a .glb from `radiant export` (docs/export.md),
+// Radiant's viewer: loads a .glb from `radiant export` (docs/export.md; with
+// --lightmap, the light read from the lightmap: lightmap-material.js),
 // draws its radiance into a float target, and shows it with radiant's display
 // mapping, the tone operator adapted to the current view (viewer/README.md).
 //
@@ -14,6 +15,7 @@ import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { DisplayPass } from './display-pass.js';
 import { Overlay, showError } from './overlay.js';
+import { createLightmapMaterial, lightmapOf } from './lightmap-material.js';
 import { OUTPUT_IRRADIANCE, OUTPUT_RADIANCE, createRadianceMaterial } from './radiance-material.js';
 import { viewStatistics } from './statistics.js';
 import {
@@ -64,24 +66,39 @@ async function loadModel(url) {
     throw new Error(`cannot load the model '${url}': ${reason}`);
   }
   const json = gltf.parser.json;
-  let meshes = 0;
-  gltf.scene.traverse((object) => {
-    if (!object.isMesh) return;
-    ++meshes;
+  const meshes = [];
+  gltf.scene.traverse((object) => object.isMesh && meshes.push(object));
+  if (meshes.length === 0) throw new Error(`'${url}' holds no mesh`);
+  const lightmapped = json.extensionsUsed?.includes('RADIANT_lightmap');
+  for (const object of meshes) {
     const geometry = object.geometry;
-    if (!geometry.getAttribute('_radiance'))
-      throw new Error(`'${url}' is not a radiant export: mesh '${object.name}' has no _RADIANCE attribute (docs/export.md)`);
+    const index = gltf.parser.associations.get(object.material)?.materials;
+    const materialDef = index !== undefined ? json.materials[index] : undefined;
+    const lightmap = lightmapOf(materialDef);
+    // The shaders read only these; COLOR_0 (for plain viewers) and NORMAL would take GPU memory for nothing.
+    geometry.deleteAttribute('color');
+    geometry.deleteAttribute('normal');
+    if (lightmap) {
+      // docs/export.md "Lightmaps": the light on TEXCOORD_1, the material's own colour in the extension.
+      if (!geometry.getAttribute('uv1'))
+        throw new Error(`'${url}': mesh '${object.name}' has a RADIANT_lightmap material but no TEXCOORD_1`);
+      const irradiance = await gltf.parser.getDependency('texture', lightmap.irradianceTexture.index);
+      const base = lightmap.baseColorTexture ? await gltf.parser.getDependency('texture', lightmap.baseColorTexture.index) : null;
+      object.material = createLightmapMaterial(materialDef, irradiance, base);
+      continue;
+    }
+    if (!geometry.getAttribute('_radiance')) {
+      // A lightmapped file's mirrors and glass carry no light of their own (docs/export.md): black, as in the solution.
+      if (!lightmapped)
+        throw new Error(`'${url}' is not a radiant export: mesh '${object.name}' has no _RADIANCE attribute (docs/export.md)`);
+      geometry.setAttribute('_radiance', new THREE.BufferAttribute(new Float32Array(3 * geometry.getAttribute('position').count), 3));
+    }
     if (!geometry.getAttribute('_irradiance')) {
       const count = geometry.getAttribute('position').count;
       geometry.setAttribute('_irradiance', new THREE.BufferAttribute(new Float32Array(3 * count), 3));
     }
-    // The shader reads only these; COLOR_0 (for plain viewers) and NORMAL would take GPU memory for nothing.
-    geometry.deleteAttribute('color');
-    geometry.deleteAttribute('normal');
-    const index = gltf.parser.associations.get(object.material)?.materials;
-    object.material = createRadianceMaterial(index !== undefined ? json.materials[index] : undefined, object.material);
-  });
-  if (meshes === 0) throw new Error(`'${url}' holds no mesh`);
+    object.material = createRadianceMaterial(materialDef, object.material);
+  }
   return gltf;
 }
 

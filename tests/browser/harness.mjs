@@ -188,3 +188,50 @@ export function runRadiant(radiant, args, options = {}) {
     throw new Error(`radiant ${args.join(' ')} failed (${error.status}):\n${error.stdout ?? ''}${error.stderr ?? ''}`);
   }
 }
+
+/**
+ * The Khronos glTF validator's report on a file (its external resources read beside it), and its lines to print:
+ * errors, warnings and infos.
+ */
+export async function validateGltf(repo, file) {
+  const { default: validator } = await importViewerPackage(repo, 'gltf-validator');
+  const report = await validator.validateBytes(new Uint8Array(fs.readFileSync(file)), {
+    uri: path.basename(file),
+    maxIssues: 100,
+    externalResourceFunction: (uri) => Promise.resolve(new Uint8Array(fs.readFileSync(path.join(path.dirname(file), decodeURIComponent(uri))))),
+  });
+  const { numErrors, numWarnings, numInfos, messages } = report.issues;
+  const lines = [];
+  for (const m of messages) if (m.severity > 0) lines.push(`     ${['error', 'warning', 'info', 'hint'][m.severity]} ${m.code} ${m.pointer ?? ''}: ${m.message}`);
+  for (const m of messages) if (m.severity === 0) lines.push(`     error ${m.code} ${m.pointer ?? ''}: ${m.message}`);
+  return { numErrors, numWarnings, numInfos, lines, version: validator.version() };
+}
+
+/** A browser test's checks: each printed "ok" or "FAIL", counted, and the exit status they make. */
+export function checkList() {
+  let failures = 0;
+  return {
+    check(ok, message) {
+      console.log(`${ok ? 'ok  ' : 'FAIL'} ${message}`);
+      if (!ok) ++failures;
+    },
+    /** Ends the process: 1 when any check failed. */
+    finish() {
+      if (failures > 0) {
+        console.log(`${failures} check(s) failed`);
+        process.exit(1);
+      }
+      console.log('all checks passed');
+    },
+  };
+}
+
+/** A screenshot of the viewer at `query` (size × size), decoded, with the page's title, errors and load time. */
+export function viewerShooter(browser, baseUrl, size) {
+  return async (query) => {
+    const viewer = await openViewer(browser, baseUrl, query, size, size);
+    const png = await viewer.page.screenshot({ type: 'png' });
+    await viewer.page.close();
+    return { ...viewer, image: decodePng(Buffer.from(png)), png };
+  };
+}

@@ -19,7 +19,7 @@ import { spawn } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { decodePng, importViewerPackage, launchChromium, openViewer, requireBrowserDependencies, runRadiant, serveStatic } from './harness.mjs';
+import { checkList, decodePng, launchChromium, openViewer, requireBrowserDependencies, runRadiant, serveStatic, validateGltf, viewerShooter } from './harness.mjs';
 import { compareImages } from './image-compare.mjs';
 
 const [radiant, repo] = process.argv.slice(2, 4).map((p) => path.resolve(p));
@@ -43,23 +43,12 @@ const ADAPTIVE = [
   ['aces', ['--tonemap', 'aces'], 'tonemap=aces'],
 ];
 
-let failures = 0;
-function check(ok, message) {
-  console.log(`${ok ? 'ok  ' : 'FAIL'} ${message}`);
-  if (!ok) ++failures;
-}
+const { check, finish } = checkList();
 
 async function validate(file) {
-  const { default: validator } = await importViewerPackage(repo, 'gltf-validator');
-  const report = await validator.validateBytes(new Uint8Array(fs.readFileSync(file)), {
-    uri: path.basename(file),
-    maxIssues: 100,
-    externalResourceFunction: (uri) => Promise.resolve(new Uint8Array(fs.readFileSync(path.join(path.dirname(file), decodeURIComponent(uri))))),
-  });
-  const { numErrors, numWarnings, numInfos, messages } = report.issues;
-  for (const m of messages) if (m.severity > 0) console.log(`     ${['error', 'warning', 'info', 'hint'][m.severity]} ${m.code} ${m.pointer ?? ''}: ${m.message}`);
-  for (const m of messages) if (m.severity === 0) console.log(`     error ${m.code} ${m.pointer ?? ''}: ${m.message}`);
-  check(numErrors === 0, `gltf-validator ${validator.version()}: ${numErrors} errors, ${numWarnings} warnings, ${numInfos} infos`);
+  const report = await validateGltf(repo, file);
+  for (const line of report.lines) console.log(line);
+  check(report.numErrors === 0, `gltf-validator ${report.version}: ${report.numErrors} errors, ${report.numWarnings} warnings, ${report.numInfos} infos`);
 }
 
 /** The checks made on the Cornell box only: the adaptive operators, the readout, walking, the test's power, errors. */
@@ -164,12 +153,7 @@ async function main() {
   const browser = await launchChromium(repo);
   try {
     started = performance.now();
-    const shoot = async (query) => {
-      const viewer = await openViewer(browser, server.url, query, SIZE, SIZE);
-      const png = await viewer.page.screenshot({ type: 'png' });
-      await viewer.page.close();
-      return { ...viewer, image: decodePng(Buffer.from(png)), png };
-    };
+    const shoot = viewerShooter(browser, server.url, SIZE);
     const expected = decodePng(fs.readFileSync(reference));
 
     const linear = await shoot('model=box.glb&ui=0&tonemap=linear&exposure=0');
@@ -193,11 +177,7 @@ async function main() {
     await server.close();
     fs.rmSync(work, { recursive: true, force: true });
   }
-  if (failures > 0) {
-    console.log(`${failures} check(s) failed`);
-    process.exit(1);
-  }
-  console.log('all checks passed');
+  finish();
 }
 
 main().catch((error) => {
