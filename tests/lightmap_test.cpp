@@ -274,7 +274,8 @@ constexpr double kLookupReachTexels = 3.5 * 1.4142135623730951;
 
 /// A scene's solution baked into an atlas `size` texels a side, with its triangles by face.
 struct Baked {
-  Baked(Scene sceneIn, double meshSize, int size) : scene(std::move(sceneIn)), solution(solveWith(scene, meshSize, 1e-4)) {
+  Baked(Scene sceneIn, double meshSize, int size)
+      : scene(std::move(sceneIn)), solution(solveWith(scene, meshSize, 1e-4)) {
     triangles = lightmapTriangles(scene, solution);
     AtlasOptions options;
     options.size = size;
@@ -357,8 +358,8 @@ void expectSeamsFollowTheSolution(const Baked &baked) {
       }
       if (!visible) continue;
       for (int c = 0; c < 3; ++c) {
-        const double allowed = std::abs(here[0][c] - here[1][c]) + (high[0][c] - low[0][c]) +
-                               (high[1][c] - low[1][c]) + 1e-5 * std::max(high[0][c], high[1][c]);
+        const double allowed = std::abs(here[0][c] - here[1][c]) + (high[0][c] - low[0][c]) + (high[1][c] - low[1][c]) +
+                               1e-5 * std::max(high[0][c], high[1][c]);
         ASSERT_LE(std::abs(looked[0][c] - looked[1][c]), allowed) << "band " << c;
       }
       ++seams;
@@ -465,8 +466,8 @@ TEST(LightmapExport, TheGlbHoldsTheLightmapAsDocumented) {
       const LightmapTriangle &tri = *found->second;
       if (!visiblePiece(solution, tri.face, centre)) continue;
       const Bands looked = bilinear(images, images.irradiance, x, y);
-      const auto [low, high] = solutionRange(scene, solution, byFace.at(tri.face), centre,
-                                             kLookupReachTexels * atlas.texelSize);
+      const auto [low, high] =
+          solutionRange(scene, solution, byFace.at(tri.face), centre, kLookupReachTexels * atlas.texelSize);
       for (int c = 0; c < 3; ++c) {
         EXPECT_GE(looked[c], low[c] - 1e-5 * high[c]) << "triangle " << t << " band " << c;
         EXPECT_LE(looked[c], high[c] + 1e-5 * high[c]) << "triangle " << t << " band " << c;
@@ -487,7 +488,8 @@ TEST(LightmapExport, TheGlbHoldsTheLightmapAsDocumented) {
     const std::array<uint8_t, 4> texel{rgbe.image[4 * i], rgbe.image[4 * i + 1], rgbe.image[4 * i + 2],
                                        rgbe.image[4 * i + 3]};
     const auto h = decodeRgbe(texel);
-    const float largest = std::max({images.irradiance[3 * i], images.irradiance[3 * i + 1], images.irradiance[3 * i + 2]});
+    const float largest =
+        std::max({images.irradiance[3 * i], images.irradiance[3 * i + 1], images.irradiance[3 * i + 2]});
     for (size_t c = 0; c < 3; ++c) EXPECT_NEAR(h[c], images.irradiance[3 * i + c], largest / 256.0 + 1e-30);
   }
 }

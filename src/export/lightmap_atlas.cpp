@@ -24,9 +24,8 @@ double cross2(const Point2 &o, const Point2 &a, const Point2 &b) {
 
 /// Andrew's monotone chain: the convex hull, counter-clockwise, no repeated point.
 std::vector<Point2> convexHull(std::vector<Point2> points) {
-  std::sort(points.begin(), points.end(), [](const Point2 &a, const Point2 &b) {
-    return a.x < b.x || (a.x == b.x && a.y < b.y);
-  });
+  std::sort(points.begin(), points.end(),
+            [](const Point2 &a, const Point2 &b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
   if (points.size() < 3) return points;
   std::vector<Point2> hull(2 * points.size());
   size_t k = 0;
@@ -142,8 +141,8 @@ struct Placement {
 };
 
 /// Shelf packing (tallest first) into rows `width` texels wide. Height: as many rows as it takes.
-Placement packShelves(const std::vector<FlatChart> &charts, const std::vector<uint32_t> &tallestFirst,
-                      double texelSize, int width, int padding) {
+Placement packShelves(const std::vector<FlatChart> &charts, const std::vector<uint32_t> &tallestFirst, double texelSize,
+                      int width, int padding) {
   Placement placement;
   placement.corner.resize(charts.size());
   placement.width = width;
@@ -213,7 +212,8 @@ LightmapAtlas buildLightmapAtlas(std::span<const LightmapTriangle> triangles, co
   std::vector<uint32_t> tallestFirst(charts.size());
   std::iota(tallestFirst.begin(), tallestFirst.end(), 0u);
   std::stable_sort(tallestFirst.begin(), tallestFirst.end(), [&](uint32_t a, uint32_t b) {
-    return charts[a].height > charts[b].height || (charts[a].height == charts[b].height && charts[a].width > charts[b].width);
+    return charts[a].height > charts[b].height ||
+           (charts[a].height == charts[b].height && charts[a].width > charts[b].width);
   });
   const int padding = options.padding;
   auto widest = [&](double texelSize) {

@@ -69,8 +69,8 @@ class SolutionReader {
       const double reflected = std::max(radiosity[c] - emitted[c], 0.0);
       const bool recoverable = meanReflectance[c] > kSmallestReflectance;
       light.irradiance[c] = recoverable ? reflected / meanReflectance[c] : std::max(fallback[c], 0.0);
-      const double reflectedHere = material.diffuseTextureIndex >= 0 && recoverable ? light.irradiance[c] * rho[c]
-                                                                                     : reflected;
+      const double reflectedHere =
+          material.diffuseTextureIndex >= 0 && recoverable ? light.irradiance[c] * rho[c] : reflected;
       light.radiance[c] = (emitted[c] + reflectedHere) * kInvPi;
     }
     return light;

@@ -15,7 +15,8 @@ std::array<uint8_t, 4> encodeRgbe(const float rgb[3]) {
   if (exponent > 127) return {255, 255, 255, 255};         // beyond RGBE's range: its largest value
   const double scale = mantissa * 256.0 / largest;
   std::array<uint8_t, 4> out{};
-  for (int c = 0; c < 3; ++c) out[size_t(c)] = uint8_t(std::clamp(std::floor(std::max(double(rgb[c]), 0.0) * scale), 0.0, 255.0));
+  for (int c = 0; c < 3; ++c)
+    out[size_t(c)] = uint8_t(std::clamp(std::floor(std::max(double(rgb[c]), 0.0) * scale), 0.0, 255.0));
   out[3] = uint8_t(exponent + 128);
   return out;
 }
@@ -26,7 +27,8 @@ std::array<float, 3> decodeRgbe(const std::array<uint8_t, 4> &rgbe) {
   return {float((rgbe[0] + 0.5) * f), float((rgbe[1] + 0.5) * f), float((rgbe[2] + 0.5) * f)};
 }
 
-std::vector<unsigned char> lightmapDisplayPng(const LightmapImages &images, const DisplayLinearFunction &displayLinear) {
+std::vector<unsigned char> lightmapDisplayPng(const LightmapImages &images,
+                                              const DisplayLinearFunction &displayLinear) {
   const size_t texels = size_t(images.width) * size_t(images.height);
   std::vector<unsigned char> encoded(3 * texels);
   for (size_t i = 0; i < texels; ++i) {

@@ -56,8 +56,8 @@ BakedMesh lightmapMesh(const Scene &scene, std::span<const LightmapTriangle> tri
         p.lightmapUvs.push_back(float(uv[0] / atlas.width));
         p.lightmapUvs.push_back(float(uv[1] / atlas.height));
         if (p.hasUv) {
-          const SurfaceParameterisation s = surfaceParameterisation(scene, triangle, kCornerBarycentrics[sceneCorner][0],
-                                                                    kCornerBarycentrics[sceneCorner][1]);
+          const SurfaceParameterisation s = surfaceParameterisation(
+              scene, triangle, kCornerBarycentrics[sceneCorner][0], kCornerBarycentrics[sceneCorner][1]);
           p.uvs.push_back(float(s.u));
           p.uvs.push_back(float(s.v));
         }
