@@ -170,6 +170,32 @@ TEST(LightmapAtlas, ACurvedSurfaceIsCutIntoChartsWithinTheNormalCone) {
   expectPaddedRectangles(atlas, options.padding);
 }
 
+// A ramp winding round one and a half times (a car park's): every normal
+// within a degree of vertical, so one cone would take it all, and its
+// projection onto the horizontal would cover the first turn twice. The
+// atlas must cut it into charts that do not fold.
+TEST(LightmapAtlas, AChartThatWouldFoldOverItselfIsCut) {
+  std::vector<LightmapTriangle> ramp;
+  constexpr int kSteps = 90;
+  constexpr double kTurns = 1.5, kRise = 0.05;  // metres per turn
+  auto at = [&](double r, int step) {
+    const double theta = 2 * kPi * kTurns * step / kSteps;
+    return Vec3(r * std::cos(theta), kRise * theta / (2 * kPi), r * std::sin(theta));
+  };
+  for (int i = 0; i < kSteps; ++i) {
+    const Vec3 a = at(1, i), b = at(2, i), c = at(2, i + 1), d = at(1, i + 1);
+    ramp.push_back({{a, c, b}, 0, 0, false});  // counter-clockwise seen from above (+y)
+    ramp.push_back({{a, d, c}, 0, 0, false});
+  }
+  for (const LightmapTriangle &t : ramp) ASSERT_GT(normalOf(t).y, std::cos(kPi / 180));
+  AtlasOptions options;
+  options.texelSize = 0.01;
+  const LightmapAtlas atlas = buildLightmapAtlas(ramp, options);
+  EXPECT_GE(atlas.charts.size(), 2u);
+  expectNoOverlap(atlas, ramp.size());
+  expectPaddedRectangles(atlas, options.padding);
+}
+
 TEST(LightmapAtlas, ATexelTooSmallForTheSceneIsAClearError) {
   const Scene scene = roomWithSphere(16);
   const Solution solution = solveWith(scene, 0.2, 1e-3);

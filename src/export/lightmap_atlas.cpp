@@ -129,6 +129,51 @@ FlatChart flattenChart(std::span<const LightmapTriangle> triangles, std::vector<
   return chart;
 }
 
+/// True when two triangles of the flattened chart overlap: interiors that
+/// intersect, by the separating axis theorem on their six edge normals (two
+/// convex polygons with disjoint interiors are separated along one of them).
+/// Triangles that only touch (a shared edge or corner) do not overlap. The
+/// candidates are the pairs that share a cell of a grid over the chart.
+bool chartFolds(const FlatChart &chart) {
+  const size_t n = chart.triangles.size();
+  if (n < 2) return false;
+  const double size = std::max(chart.width, chart.height);
+  const double tolerance = 1e-9 * size;
+  const int cells = std::clamp(int(std::sqrt(double(n))), 1, 1024);
+  const double cellWidth = std::max(chart.width, tolerance) / cells,
+               cellHeight = std::max(chart.height, tolerance) / cells;
+  std::vector<std::vector<uint32_t>> grid(size_t(cells) * size_t(cells));
+  auto cell = [&](double v, double step) { return std::clamp(int(v / step), 0, cells - 1); };
+  for (uint32_t i = 0; i < n; ++i) {
+    const Point2 *p = &chart.corners[3 * i];
+    const double x0 = std::min({p[0].x, p[1].x, p[2].x}), x1 = std::max({p[0].x, p[1].x, p[2].x});
+    const double y0 = std::min({p[0].y, p[1].y, p[2].y}), y1 = std::max({p[0].y, p[1].y, p[2].y});
+    for (int y = cell(y0, cellHeight); y <= cell(y1, cellHeight); ++y)
+      for (int x = cell(x0, cellWidth); x <= cell(x1, cellWidth); ++x)
+        grid[size_t(y) * size_t(cells) + size_t(x)].push_back(i);
+  }
+  auto separated = [&](const Point2 *a, const Point2 *b) {
+    for (const Point2 *edges : {a, b})
+      for (int k = 0; k < 3; ++k) {
+        const Point2 &e0 = edges[k], &e1 = edges[(k + 1) % 3];
+        const double nx = e0.y - e1.y, ny = e1.x - e0.x, length = std::hypot(nx, ny);
+        if (!(length > 0)) continue;
+        double aMin = INFINITY, aMax = -INFINITY, bMin = INFINITY, bMax = -INFINITY;
+        for (int v = 0; v < 3; ++v) {
+          const double pa = (a[v].x * nx + a[v].y * ny) / length, pb = (b[v].x * nx + b[v].y * ny) / length;
+          aMin = std::min(aMin, pa), aMax = std::max(aMax, pa), bMin = std::min(bMin, pb), bMax = std::max(bMax, pb);
+        }
+        if (aMax <= bMin + tolerance || bMax <= aMin + tolerance) return true;
+      }
+    return false;
+  };
+  for (const std::vector<uint32_t> &inCell : grid)
+    for (size_t i = 0; i < inCell.size(); ++i)
+      for (size_t j = i + 1; j < inCell.size(); ++j)
+        if (!separated(&chart.corners[3 * inCell[i]], &chart.corners[3 * inCell[j]])) return true;
+  return false;
+}
+
 /// A chart's rectangle at a texel size: the chart spans [0.5, 0.5 + extent/texel]
 /// texels from the rectangle's corner, so its edges lie at least half a texel inside.
 int texelsAcross(double metres, double texelSize) {
@@ -188,7 +233,6 @@ LightmapAtlas buildLightmapAtlas(std::span<const LightmapTriangle> triangles, co
 
   // Charts, grown from the largest triangles outwards across shared edges (breadth first).
   const auto neighbours = edgeNeighbours(triangles);
-  const double cosMax = std::cos(options.maxChartAngleDegrees * kPi / 180);
   std::vector<uint32_t> bySize(triangles.size());
   std::iota(bySize.begin(), bySize.end(), 0u);
   std::stable_sort(bySize.begin(), bySize.end(), [&](uint32_t a, uint32_t b) { return areas[a] > areas[b]; });
@@ -197,16 +241,27 @@ LightmapAtlas buildLightmapAtlas(std::span<const LightmapTriangle> triangles, co
   for (uint32_t seed : bySize) {
     if (atlas.chartOfTriangle[seed] >= 0 || !(areas[seed] > degenerateArea)) continue;
     const int32_t chart = int32_t(charts.size());
-    members.assign(1, seed);
-    atlas.chartOfTriangle[seed] = chart;
-    for (size_t next = 0; next < members.size(); ++next)
-      for (const auto &across : neighbours[members[next]])
-        for (uint32_t t : across)
-          if (atlas.chartOfTriangle[t] < 0 && areas[t] > degenerateArea && dot(normals[t], normals[seed]) >= cosMax) {
-            atlas.chartOfTriangle[t] = chart;
-            members.push_back(t);
-          }
-    charts.push_back(flattenChart(triangles, members, normals, areas));
+    // A chart whose projection folds over itself (a ramp winding round, within the cone) is grown
+    // again with half the angle, until it does not: one triangle never folds. Its released
+    // triangles come after the seed in size order, so later charts take them.
+    for (double angle = options.maxChartAngleDegrees;; angle /= 2) {
+      const double cosMax = std::cos(angle * kPi / 180);
+      members.assign(1, seed);
+      atlas.chartOfTriangle[seed] = chart;
+      for (size_t next = 0; next < members.size(); ++next)
+        for (const auto &across : neighbours[members[next]])
+          for (uint32_t t : across)
+            if (atlas.chartOfTriangle[t] < 0 && areas[t] > degenerateArea && dot(normals[t], normals[seed]) >= cosMax) {
+              atlas.chartOfTriangle[t] = chart;
+              members.push_back(t);
+            }
+      FlatChart flat = flattenChart(triangles, members, normals, areas);
+      if (members.size() == 1 || !chartFolds(flat)) {
+        charts.push_back(std::move(flat));
+        break;
+      }
+      for (uint32_t t : members) atlas.chartOfTriangle[t] = -1;
+    }
   }
 
   std::vector<uint32_t> tallestFirst(charts.size());

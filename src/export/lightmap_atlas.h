@@ -9,7 +9,9 @@
 // as xatlas (Young, 2016–) and Lévy et al.'s LSCM charts do by normal
 // deviation. A chart is flattened by projection onto the plane of its mean
 // normal: exact on a plane; on a curved chart a texel covers at most
-// 1/cos(angle) of its nominal area (15 % at 30°), and no triangle flips.
+// 1/cos(angle) of its nominal area (15 % at 30°), and no triangle flips. A
+// chart that would still cover itself in projection (a ramp winding round
+// within the cone) is grown again with half the angle until it does not.
 //
 // Each chart is turned to the smallest bounding rectangle (one of its convex
 // hull's edge directions, Freeman & Shapira 1975), scaled to the texel size,
