@@ -29,12 +29,11 @@
 namespace radiant {
 
 /// One triangle of the geometry to lay out, counter-clockwise from its front.
-/// (`face`, `triangle` and `reversed` are the bake's: the atlas reads only the corners.)
+/// (`face` and `triangle` are the bake's: the atlas reads only the corners.)
 struct LightmapTriangle {
   Vec3 corners[3];
-  uint32_t face = 0;      ///< the scene face it belongs to (a two-sided face's back is its own face)
-  uint32_t triangle = 0;  ///< the Scene::triangles entry with its geometry (the front's, for a back face)
-  bool reversed = false;  ///< corners 1 and 2 are the scene triangle's 2 and 1 (a back face's winding)
+  uint32_t face = 0;      ///< the scene face it belongs to (a two-sided face's back is a face of its own)
+  uint32_t triangle = 0;  ///< its Scene::triangles entry (texture coordinates, material)
 };
 
 struct AtlasOptions {

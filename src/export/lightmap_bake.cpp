@@ -53,8 +53,8 @@ class SolutionReader {
     if (material.diffuseTextureIndex >= 0) {
       Hit hit;
       hit.triangle = t.triangle;
-      hit.b1 = t.reversed ? b[2] : b[1];
-      hit.b2 = t.reversed ? b[1] : b[2];
+      hit.b1 = b[1];
+      hit.b2 = b[2];
       hit.material = scene_.faces[t.face].material;
       hit.face = t.face;
       hit.position = p;
@@ -183,18 +183,13 @@ std::vector<LightmapTriangle> lightmapTriangles(const Scene &scene, const Soluti
   std::vector<LightmapTriangle> out;
   for (uint32_t f = 0; f < scene.faces.size(); ++f) {
     if (f >= mesh.patchOfFace.size() || mesh.patchOfFace[f] < 0) continue;
-    const Face &face = scene.faces[f];
-    // A back face the scene added has no triangles of its own: its front's, wound the other way.
-    const bool reversed = trianglesOfFace[f].empty() && face.back && face.twin >= 0;
-    for (uint32_t t : reversed ? trianglesOfFace[size_t(face.twin)] : trianglesOfFace[f]) {
+    // A two-sided surface's back (Scene::addBackFaces) is a face with triangles of its own, wound the other way.
+    for (uint32_t t : trianglesOfFace[f]) {
       const Triangle &triangle = scene.triangles[t];
       LightmapTriangle lt;
       lt.face = f;
       lt.triangle = t;
-      lt.reversed = reversed;
-      lt.corners[0] = scene.positions[triangle.v[0]];
-      lt.corners[1] = scene.positions[triangle.v[reversed ? 2 : 1]];
-      lt.corners[2] = scene.positions[triangle.v[reversed ? 1 : 2]];
+      for (int k = 0; k < 3; ++k) lt.corners[k] = scene.positions[triangle.v[k]];
       out.push_back(lt);
     }
   }

@@ -45,10 +45,8 @@ BakedMesh lightmapMesh(const Scene &scene, std::span<const LightmapTriangle> tri
     std::vector<Vec3> &normals = normalsOfPrimitive[primitiveIndex];
     const Vec3 areaNormal = cross(lt.corners[1] - lt.corners[0], lt.corners[2] - lt.corners[0]);
     for (int k = 0; k < 3; ++k) {
-      const int sceneCorner = lt.reversed && k > 0 ? 3 - k : k;  // a back face's corners 1, 2 are the front's 2, 1
       auto [found, added] = vertexOf.emplace(
-          std::make_tuple(uint32_t(primitiveIndex), chart, triangle.v[sceneCorner], triangle.uv[sceneCorner]),
-          uint32_t(p.vertexCount()));
+          std::make_tuple(uint32_t(primitiveIndex), chart, triangle.v[k], triangle.uv[k]), uint32_t(p.vertexCount()));
       if (added) {
         const Vec3 &position = lt.corners[k];
         for (int c = 0; c < 3; ++c) p.positions.push_back(float(position[c]));
@@ -56,8 +54,8 @@ BakedMesh lightmapMesh(const Scene &scene, std::span<const LightmapTriangle> tri
         p.lightmapUvs.push_back(float(uv[0] / atlas.width));
         p.lightmapUvs.push_back(float(uv[1] / atlas.height));
         if (p.hasUv) {
-          const SurfaceParameterisation s = surfaceParameterisation(
-              scene, triangle, kCornerBarycentrics[sceneCorner][0], kCornerBarycentrics[sceneCorner][1]);
+          const SurfaceParameterisation s =
+              surfaceParameterisation(scene, triangle, kCornerBarycentrics[k][0], kCornerBarycentrics[k][1]);
           p.uvs.push_back(float(s.u));
           p.uvs.push_back(float(s.v));
         }
