@@ -126,6 +126,11 @@ std::vector<std::pair<std::string, double>> toneParameterList(const DisplaySetti
   return list;
 }
 
+/// What the glTF file records of how it was made.
+ExportProvenance provenanceOf(const Solution &solution, const DisplaySettings &display, const DisplayMapping &mapping) {
+  return {solution.stats.solver, display.toneOperator, toneParameterList(display), mapping.describe()};
+}
+
 /// The lightmap's irradiance beside the glTF file: out.glb → out.lightmap.exr.
 std::string lightmapExrPathFor(const std::string &output) {
   std::filesystem::path path(output);
@@ -135,8 +140,7 @@ std::string lightmapExrPathFor(const std::string &output) {
 
 /// `radiant export --lightmap`: the scene's own faces, their light in an atlas (docs/export.md, "Lightmaps").
 void writeLightmapped(const Scene &scene, const Solution &solution, const ExportCommandOptions &o,
-                      const DisplaySettings &display, const DisplayMapping &mapping,
-                      const DisplayLinearFunction &displayLinear, const std::string &exrPath) {
+                      const DisplaySettings &display, const DisplayMapping &mapping, const std::string &exrPath) {
   const std::vector<LightmapTriangle> triangles = lightmapTriangles(scene, solution);
   AtlasOptions atlasOptions;
   atlasOptions.size = o.lightmapSize;
@@ -148,24 +152,17 @@ void writeLightmapped(const Scene &scene, const Solution &solution, const Export
   bakeOptions.dilation = o.lightmapPadding + 2;  // both neighbours' rings meet across the padding
   const LightmapImages images = bakeLightmap(scene, solution, triangles, atlas, bakeOptions);
 
-  std::vector<bool> faceHasLight(scene.faces.size(), false);
-  for (size_t f = 0; f < scene.faces.size() && f < solution.mesh.patchOfFace.size(); ++f)
-    faceHasLight[f] = solution.mesh.patchOfFace[f] >= 0;
-  const BakedMesh baked = lightmapMesh(scene, triangles, atlas, faceHasLight, solution.elementCount());
+  const BakedMesh baked = lightmapMesh(scene, triangles, atlas, solution.elementCount());
   GltfLightmap lightmap;
-  lightmap.displayPng = lightmapDisplayPng(images, displayLinear);
+  lightmap.displayPng =
+      lightmapDisplayPng(images, [&](const float radiance[3], double out[3]) { mapping.displayLinear(radiance, out); });
   lightmap.irradiancePng = lightmapIrradiancePng(images);
   lightmap.width = atlas.width;
   lightmap.height = atlas.height;
   lightmap.texelSize = atlas.texelSize;
   lightmap.charts = atlas.charts.size();
   lightmap.utilisation = double(images.coveredTexels) / (double(atlas.width) * atlas.height);
-  ExportProvenance provenance;
-  provenance.solver = solution.stats.solver;
-  provenance.toneOperator = display.toneOperator;
-  provenance.toneParameters = toneParameterList(display);
-  provenance.adaptedTo = mapping.describe();
-  writeGltf(scene, baked, provenance, o.outputPath, &lightmap);
+  writeGltf(scene, baked, provenanceOf(solution, display, mapping), o.outputPath, &lightmap);
 
   Image irradiance(atlas.width, atlas.height);
   irradiance.rgb = images.irradiance;
@@ -270,11 +267,8 @@ CommandRunner addExportCommand(CLI::App &app) {
 
     const DisplayMapping mapping(cameraView(scene, tracer, solutions, balance, o->threads), display);
     if (!o->quiet) reportDisplayMapping(mapping, app.count("--tonemap") > 0);
-    const DisplayLinearFunction displayLinear = [&](const float radiance[3], double out[3]) {
-      mapping.displayLinear(radiance, out);
-    };
     if (o->lightmap) {
-      writeLightmapped(scene, solutions[0], *o, display, mapping, displayLinear, lightmapExrPath);
+      writeLightmapped(scene, solutions[0], *o, display, mapping, lightmapExrPath);
       if (!o->quiet) {
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         fmt::print(stderr, "radiant: wrote {} ({:.2f} MB) and {} in {:.2f} s\n", o->outputPath,
@@ -283,17 +277,12 @@ CommandRunner addExportCommand(CLI::App &app) {
       return 0;
     }
     BakedMesh baked = bakeSolutions(scene, solutions, balance);
-    applyDisplayColours(baked, displayLinear);
+    applyDisplayColours(baked, [&](const float radiance[3], double out[3]) { mapping.displayLinear(radiance, out); });
     if (format == "ply") {
       writePly(
           baked, [&](const float radiance[3], double out[3]) { mapping.encode(radiance, out); }, o->outputPath);
     } else {
-      ExportProvenance provenance;
-      provenance.solver = solutions[0].stats.solver;
-      provenance.toneOperator = display.toneOperator;
-      provenance.toneParameters = toneParameterList(display);
-      provenance.adaptedTo = mapping.describe();
-      writeGltf(scene, baked, provenance, o->outputPath);
+      writeGltf(scene, baked, provenanceOf(solutions[0], display, mapping), o->outputPath);
     }
     if (!o->quiet) {
       size_t vertices = 0, triangles = 0;

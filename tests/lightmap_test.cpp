@@ -262,10 +262,7 @@ Bands solutionIrradiance(const Scene &scene, const Solution &solution, uint32_t 
 
 /// False in a piece of the face that the mesh left out (under a block, behind the lamp).
 bool visiblePiece(const Solution &solution, uint32_t face, const Vec3 &p) {
-  const Patch &patch = solution.mesh.patches[size_t(solution.mesh.patchAt(face, p))];
-  for (int v = 0; v < patch.vertexCount; ++v)
-    if (dot(p - patch.corners[v], patch.inwardEdgeNormals[v]) < 0) return false;
-  return true;
+  return solution.mesh.patches[size_t(solution.mesh.patchAt(face, p))].depthInside(p) >= 0;
 }
 
 /// The range of the solution's irradiance over the points of the face within
@@ -449,9 +446,7 @@ TEST(LightmapEncoding, RgbeKeepsEightBitsOfTheLargestChannel) {
 TEST(LightmapExport, TheGlbHoldsTheLightmapAsDocumented) {
   const Baked bakedScene(loadScene(RADIANT_SOURCE_DIR "/scenes/cornell-box/scene.json"), 0.1, 128);
   const auto &[scene, solution, triangles, atlas, images, byFace] = bakedScene;
-  std::vector<bool> faceHasLight(scene.faces.size());
-  for (size_t f = 0; f < scene.faces.size(); ++f) faceHasLight[f] = solution.mesh.patchOfFace[f] >= 0;
-  const BakedMesh baked = lightmapMesh(scene, triangles, atlas, faceHasLight, solution.elementCount());
+  const BakedMesh baked = lightmapMesh(scene, triangles, atlas, solution.elementCount());
   GltfLightmap lightmap;
   lightmap.displayPng = lightmapDisplayPng(images, test::identityDisplay);
   lightmap.irradiancePng = lightmapIrradiancePng(images);

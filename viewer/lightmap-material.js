@@ -12,13 +12,12 @@
 // around the point blended (bilinear) after decoding, never before, since
 // neighbouring texels' exponents differ.
 import * as THREE from 'three';
-import { FRAGMENT_DECLARATIONS, OUTPUT_IRRADIANCE, OUTPUT_RADIANCE, emissionOf } from './radiance-material.js';
+import { FRAGMENT_DECLARATIONS, OUTPUT_IRRADIANCE, radianceShaderMaterial } from './radiance-material.js';
 
 const vertexShader = /* glsl */ `
 in vec2 uv1;
 out vec2 vLightmapUv;
 #ifdef USE_BASE_TEXTURE
-uniform mat3 uBaseTextureTransform;
 out vec2 vUv;
 #endif
 void main() {
@@ -80,36 +79,15 @@ export function createLightmapMaterial(materialDef, irradiance, baseTexture) {
   const lightmap = lightmapOf(materialDef);
   if (lightmap.encoding !== 'rgbe' || lightmap.quantity !== 'irradiance')
     throw new Error(`material '${materialDef.name}': a RADIANT_lightmap of ${lightmap.quantity} in ${lightmap.encoding}, expected irradiance in rgbe`);
-  const baseColor = lightmap.baseColorFactor ?? [1, 1, 1];
-  const emission = emissionOf(materialDef);
   // The bytes as they are: no colour-space conversion, no filtering across texels, no mipmaps.
   irradiance.colorSpace = THREE.NoColorSpace;
   irradiance.magFilter = irradiance.minFilter = THREE.NearestFilter;
   irradiance.generateMipmaps = false;
   irradiance.needsUpdate = true;
-  const defines = {};
-  const uniforms = {
-    uOutput: { value: OUTPUT_RADIANCE },
-    uBaseColor: { value: new THREE.Vector3(baseColor[0], baseColor[1], baseColor[2]) },
-    uEmission: { value: new THREE.Vector3(...emission) },
-    uEmitter: { value: emission.some((e) => e > 0) ? 1 : 0 },
-    uIrradiance: { value: irradiance },
-  };
   if (baseTexture) {
-    defines.USE_BASE_TEXTURE = '';
-    baseTexture.colorSpace = THREE.SRGBColorSpace;
+    baseTexture.colorSpace = THREE.SRGBColorSpace;  // an albedo, decoded from sRGB before filtering
     baseTexture.needsUpdate = true;
-    baseTexture.updateMatrix();
-    uniforms.uBaseTexture = { value: baseTexture };
-    uniforms.uBaseTextureTransform = { value: baseTexture.matrix };
   }
-  return new THREE.ShaderMaterial({
-    name: `lightmap:${materialDef?.name ?? ''}`,
-    glslVersion: THREE.GLSL3,
-    vertexShader,
-    fragmentShader,
-    uniforms,
-    defines,
-    side: materialDef?.doubleSided ? THREE.DoubleSide : THREE.FrontSide,
-  });
+  return radianceShaderMaterial('lightmap', materialDef, lightmap.baseColorFactor ?? [1, 1, 1], baseTexture,
+    { vertexShader, fragmentShader }, { uIrradiance: { value: irradiance } });
 }

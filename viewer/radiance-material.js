@@ -79,30 +79,39 @@ export function emissionOf(materialDef) {
  * @param loaded the material three's GLTFLoader made of it (for its texture and side)
  */
 export function createRadianceMaterial(materialDef, loaded) {
-  const emission = emissionOf(materialDef);
   const baseColor = materialDef?.pbrMetallicRoughness?.baseColorFactor ?? [1, 1, 1, 1];
   const texture = loaded?.map && materialDef?.pbrMetallicRoughness?.baseColorTexture ? loaded.map : null;
+  return radianceShaderMaterial('radiance', materialDef, baseColor, texture, { vertexShader, fragmentShader });
+}
+
+/**
+ * A shader material that writes radiance for one glTF material: the uniforms FRAGMENT_DECLARATIONS
+ * declares (ρ = baseColor, L_e from the material), the base texture and its transform when there is one
+ * (USE_BASE_TEXTURE; `uBaseTextureTransform` is declared here for the vertex shader), and `uniforms` more.
+ */
+export function radianceShaderMaterial(kind, materialDef, baseColor, texture, shaders, uniforms = {}) {
+  const emission = emissionOf(materialDef);
   const defines = {};
-  const uniforms = {
+  const all = {
     uOutput: { value: OUTPUT_RADIANCE },
     uBaseColor: { value: new THREE.Vector3(baseColor[0], baseColor[1], baseColor[2]) },
     uEmission: { value: new THREE.Vector3(...emission) },
     uEmitter: { value: emission.some((e) => e > 0) ? 1 : 0 },
+    ...uniforms,
   };
   if (texture) {
     defines.USE_BASE_TEXTURE = '';
     texture.updateMatrix();
-    uniforms.uBaseTexture = { value: texture };
-    uniforms.uBaseTextureTransform = { value: texture.matrix };
+    all.uBaseTexture = { value: texture };
+    all.uBaseTextureTransform = { value: texture.matrix };
   }
-  const material = new THREE.ShaderMaterial({
-    name: `radiance:${materialDef?.name ?? ''}`,
+  return new THREE.ShaderMaterial({
+    name: `${kind}:${materialDef?.name ?? ''}`,
     glslVersion: THREE.GLSL3,
-    vertexShader: texture ? `uniform mat3 uBaseTextureTransform;\n${vertexShader}` : vertexShader,
-    fragmentShader,
-    uniforms,
+    vertexShader: texture ? `uniform mat3 uBaseTextureTransform;\n${shaders.vertexShader}` : shaders.vertexShader,
+    fragmentShader: shaders.fragmentShader,
+    uniforms: all,
     defines,
     side: materialDef?.doubleSided ? THREE.DoubleSide : THREE.FrontSide,
   });
-  return material;
 }

@@ -12,14 +12,9 @@ namespace radiant {
 
 namespace {
 
-/// What a vertex carries, in Bands.
-struct VertexLight {
-  Bands radiance, irradiance, reflectance;
-};
-
-VertexLight meanLight(std::span<const VertexLight> lights) {
-  VertexLight mean;
-  for (const VertexLight &l : lights) {
+SurfaceLight meanLight(std::span<const SurfaceLight> lights) {
+  SurfaceLight mean;
+  for (const SurfaceLight &l : lights) {
     mean.radiance += l.radiance;
     mean.irradiance += l.irradiance;
     mean.reflectance += l.reflectance;
@@ -34,8 +29,8 @@ VertexLight meanLight(std::span<const VertexLight> lights) {
 /// The light at every node, as the `interpolate` display reads it: B̂ (ambient
 /// included), L = max(B̂, E)/π, and H such that ρ̄H = B̂ − E at the node, so
 /// that a viewer's E + ρ(x)·H reproduces C&W eq. 9.11's E + (B̂ − E)·ρ(x)/ρ̄.
-VertexLight lightFrom(const Bands &b, const Bands &rho, const Bands &elementsIrradiance, const Bands &emitted) {
-  VertexLight v;
+SurfaceLight lightFrom(const Bands &b, const Bands &rho, const Bands &elementsIrradiance, const Bands &emitted) {
+  SurfaceLight v;
   v.reflectance = rho;
   for (int c = 0; c < kBandCount; ++c) {
     const double reflected = std::max(b[c] - emitted[c], 0.0);
@@ -45,18 +40,10 @@ VertexLight lightFrom(const Bands &b, const Bands &rho, const Bands &elementsIrr
   return v;
 }
 
-/// H + ambient of the elements, at the nodes: the irradiance where ρ̄ is too small to recover it from B − E.
-std::vector<Bands> nodeIrradiance(const Solution &solution) {
-  std::vector<Bands> elementIrradiance(solution.elementCount());
-  for (uint32_t e = 0; e < solution.elementCount(); ++e)
-    elementIrradiance[e] = solution.irradiance[e] + solution.ambient;
-  return solution.nodeValues(elementIrradiance);
-}
-
-std::vector<VertexLight> nodeLight(const Scene &scene, const Solution &solution) {
+std::vector<SurfaceLight> nodeLight(const Scene &scene, const Solution &solution) {
   const RadiosityMesh &mesh = solution.mesh;
   const std::vector<Bands> fallback = nodeIrradiance(solution);
-  std::vector<VertexLight> light(mesh.nodes.size());
+  std::vector<SurfaceLight> light(mesh.nodes.size());
   for (size_t n = 0; n < mesh.nodes.size(); ++n) {
     const Material &material = scene.materials[mesh.patches[mesh.nodePatch[n]].material];
     light[n] = lightFrom(solution.nodeRadiosity[n], solution.nodeReflectance[n], fallback[n], material.emission * kPi);
@@ -137,7 +124,7 @@ class PrimitiveBuilder {
   }
 
   uint32_t addVertex(BakedPrimitive &p, const Vec3 &position, const Vec3 &normal, uint32_t face,
-                     const VertexLight &light) {
+                     const SurfaceLight &light) {
     const uint32_t index = uint32_t(p.vertexCount());
     for (int c = 0; c < 3; ++c) {
       p.positions.push_back(float(position[c]));
@@ -170,9 +157,22 @@ class PrimitiveBuilder {
 
 }  // namespace
 
+std::vector<Bands> nodeIrradiance(const Solution &solution) {
+  std::vector<Bands> elementIrradiance(solution.elementCount());
+  for (uint32_t e = 0; e < solution.elementCount(); ++e)
+    elementIrradiance[e] = solution.irradiance[e] + solution.ambient;
+  return solution.nodeValues(elementIrradiance);
+}
+
+SurfaceLight surfaceLightAt(const Solution &solution, const std::vector<Bands> &nodeIrradiance, const MeshLocation &at,
+                            const Bands &emitted) {
+  return lightFrom(solution.interpolate(solution.nodeRadiosity, at), solution.interpolate(solution.nodeReflectance, at),
+                   solution.interpolate(nodeIrradiance, at), emitted);
+}
+
 BakedMesh bakeSolution(const Scene &scene, const Solution &solution, const DisplayLinearFunction &displayLinear) {
   const RadiosityMesh &mesh = solution.mesh;
-  const std::vector<VertexLight> light = nodeLight(scene, solution);
+  const std::vector<SurfaceLight> light = nodeLight(scene, solution);
   PrimitiveBuilder builder(scene);
   constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
   // A node is a vertex of its patch's primitive, and of a neighbour's when it is a T-vertex on its edge.
@@ -209,7 +209,7 @@ BakedMesh bakeSolution(const Scene &scene, const Solution &solution, const Displ
       continue;
     }
     // A fan around the centre, which holds the corners' mean (bilinear's and barycentric's value there).
-    std::array<VertexLight, 4> corners;
+    std::array<SurfaceLight, 4> corners;
     Vec3 centre;
     for (int k = 0; k < element.vertexCount; ++k) {
       corners[size_t(k)] = light[element.nodes[size_t(k)]];
@@ -221,7 +221,7 @@ BakedMesh bakeSolution(const Scene &scene, const Solution &solution, const Displ
       p.indices.insert(p.indices.end(), {c, vertex(boundary[k]), vertex(boundary[(k + 1) % boundary.size()])});
   }
   // Mirrors and glass have no patches: their triangles, with no light, so the geometry is whole.
-  const VertexLight dark{};
+  const SurfaceLight dark{};
   for (const Triangle &t : scene.triangles) {
     const Material &material = scene.materials[t.material];
     if (!material.isSpecular() || (t.face < mesh.patchOfFace.size() && mesh.patchOfFace[t.face] >= 0)) continue;
@@ -258,13 +258,11 @@ BakedMesh resampleLight(const BakedMesh &baked, const Scene &scene, const Soluti
     const Bands emitted = scene.materials[p.material].emission * kPi;
     for (size_t v = 0; v < p.vertexCount(); ++v) {
       const uint32_t face = p.faces[v];
-      VertexLight light;
+      SurfaceLight light;
       if (face < mesh.patchOfFace.size() && mesh.patchOfFace[face] >= 0) {
         const MeshLocation at =
             mesh.locate(face, Vec3(p.positions[3 * v], p.positions[3 * v + 1], p.positions[3 * v + 2]));
-        light =
-            lightFrom(solution.interpolate(solution.nodeRadiosity, at),
-                      solution.interpolate(solution.nodeReflectance, at), solution.interpolate(fallback, at), emitted);
+        light = surfaceLightAt(solution, fallback, at, emitted);
       }
       for (size_t c = 0; c < 3; ++c) {
         p.radiance[3 * v + c] = float(light.radiance[int(c)]);

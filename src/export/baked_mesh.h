@@ -50,6 +50,23 @@ struct BakedMesh {
 /// recovered from B − E, and is taken from the elements' own H instead.
 constexpr double kSmallestReflectance = 1e-4;
 
+/// What a point of a patch carries, as the `interpolate` display reads it
+/// there: L = max(B̂, E)/π (ambient included), H such that ρ̄H = B̂ − E (the
+/// elements' own H + ambient where ρ̄ is below kSmallestReflectance), and ρ̄,
+/// so that E + ρ(x)·H reproduces C&W eq. 9.11's E + (B̂ − E)·ρ(x)/ρ̄.
+struct SurfaceLight {
+  Bands radiance, irradiance, reflectance;
+};
+
+/// The elements' H + ambient at the nodes: surfaceLightAt's fallback irradiance.
+std::vector<Bands> nodeIrradiance(const Solution &solution);
+
+/// The light at a location of the solution's mesh, interpolated from its
+/// element's nodes; `nodeIrradiance` from nodeIrradiance(solution), `emitted`
+/// the material's exitance E (π L_e).
+SurfaceLight surfaceLightAt(const Solution &solution, const std::vector<Bands> &nodeIrradiance, const MeshLocation &at,
+                            const Bands &emitted);
+
 /// Display-linear values (tone operator and gamut rule, display/display_mapping.h)
 /// of a radiance, each channel in [0, 1].
 using DisplayLinearFunction = std::function<void(const float radiance[3], double display[3])>;

@@ -103,26 +103,32 @@ std::pair<std::vector<unsigned char>, std::string> textureImage(const Scene &sce
   }
 }
 
-int addTexture(tinygltf::Model &model, const Scene &scene, const Material &material) {
-  auto [bytes, mimeType] = textureImage(scene, material);
+/// An image in the buffer, its sampler (filtering smooth or nearest; wrapping
+/// repeated or clamped) and the texture joining them; returns the texture's index.
+int addImageTexture(tinygltf::Model &model, const std::vector<unsigned char> &bytes, const std::string &mimeType,
+                    const std::string &name, bool smooth, bool repeat) {
   tinygltf::Image image;
-  image.name = std::filesystem::path(material.diffuseTexture).filename().string();
+  image.name = name;
   image.mimeType = mimeType;
   image.bufferView = addBufferView(model, bytes.data(), bytes.size(), 0);
   model.bufferViews.back().target = 0;  // images are not vertex data
   model.images.push_back(image);
   tinygltf::Sampler sampler;
-  const int wrap =
-      material.textureWrap == TextureWrap::Clamp ? TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE : TINYGLTF_TEXTURE_WRAP_REPEAT;
-  sampler.wrapS = sampler.wrapT = wrap;
-  sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
-  sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+  sampler.wrapS = sampler.wrapT = repeat ? TINYGLTF_TEXTURE_WRAP_REPEAT : TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+  sampler.magFilter = smooth ? TINYGLTF_TEXTURE_FILTER_LINEAR : TINYGLTF_TEXTURE_FILTER_NEAREST;
+  sampler.minFilter = smooth ? TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR : TINYGLTF_TEXTURE_FILTER_NEAREST;
   model.samplers.push_back(sampler);
   tinygltf::Texture texture;
   texture.sampler = int(model.samplers.size() - 1);
   texture.source = int(model.images.size() - 1);
   model.textures.push_back(texture);
   return int(model.textures.size() - 1);
+}
+
+int addTexture(tinygltf::Model &model, const Scene &scene, const Material &material) {
+  auto [bytes, mimeType] = textureImage(scene, material);
+  return addImageTexture(model, bytes, mimeType, std::filesystem::path(material.diffuseTexture).filename().string(),
+                         true, material.textureWrap != TextureWrap::Clamp);
 }
 
 /// The material in glTF's PBR terms (for other programs), unlit (so they show
@@ -175,30 +181,10 @@ struct LightmapTextures {
   int display = -1, irradiance = -1;
 };
 
-int addPngTexture(tinygltf::Model &model, const std::vector<unsigned char> &png, const std::string &name, bool smooth) {
-  tinygltf::Image image;
-  image.name = name;
-  image.mimeType = "image/png";
-  image.bufferView = addBufferView(model, png.data(), png.size(), 0);
-  model.bufferViews.back().target = 0;  // images are not vertex data
-  model.images.push_back(image);
-  tinygltf::Sampler sampler;
-  sampler.wrapS = sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
-  // RGBE must not be blended across texels (the exponents differ): nearest; a decoder filters the floats.
-  sampler.magFilter = smooth ? TINYGLTF_TEXTURE_FILTER_LINEAR : TINYGLTF_TEXTURE_FILTER_NEAREST;
-  sampler.minFilter = smooth ? TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR : TINYGLTF_TEXTURE_FILTER_NEAREST;
-  model.samplers.push_back(sampler);
-  tinygltf::Texture texture;
-  texture.name = name;
-  texture.sampler = int(model.samplers.size() - 1);
-  texture.source = int(model.images.size() - 1);
-  model.textures.push_back(texture);
-  return int(model.textures.size() - 1);
-}
-
 LightmapTextures addLightmapTextures(tinygltf::Model &model, const GltfLightmap &lightmap) {
-  return {addPngTexture(model, lightmap.displayPng, "lightmap", true),
-          addPngTexture(model, lightmap.irradiancePng, "lightmap irradiance (RGBE)", false)};
+  // RGBE must not be blended across texels (the exponents differ): nearest; a decoder filters the floats.
+  return {addImageTexture(model, lightmap.displayPng, "image/png", "lightmap", true, false),
+          addImageTexture(model, lightmap.irradiancePng, "image/png", "lightmap irradiance (RGBE)", false, false)};
 }
 
 /// A material drawn with the lightmap: unlit, its base colour the display

@@ -14,65 +14,38 @@ namespace radiant {
 
 namespace {
 
-struct TexelLight {
-  Bands irradiance, radiance;
-};
-
-/// The solution read at point p of a lightmap triangle, as `interpolate` reads it.
+/// The solution read at a point of a lightmap triangle, as `interpolate` reads it.
 class SolutionReader {
  public:
-  SolutionReader(const Scene &scene, const Solution &solution) : scene_(scene), solution_(solution) {
-    std::vector<Bands> elementIrradiance(solution.elementCount());
-    for (uint32_t e = 0; e < solution.elementCount(); ++e)
-      elementIrradiance[e] = solution.irradiance[e] + solution.ambient;
-    nodeIrradiance_ = solution.nodeValues(elementIrradiance);
-  }
+  SolutionReader(const Scene &scene, const Solution &solution)
+      : scene_(scene), solution_(solution), nodeIrradiance_(nodeIrradiance(solution)) {}
 
   /// False where p lies in a piece of its face that the mesh left out (hidden
   /// where another surface meets the face, mesh/face_split.h): no light is
   /// read there, and dilation fills such texels from the visible ones.
   bool visible(uint32_t face, const Vec3 &p) const {
-    const RadiosityMesh &mesh = solution_.mesh;
-    const Patch &patch = mesh.patches[size_t(mesh.patchAt(face, p))];
-    double depth = INFINITY, size = 0;
-    for (int v = 0; v < patch.vertexCount; ++v) {
-      depth = std::min(depth, dot(p - patch.corners[v], patch.inwardEdgeNormals[v]));
-      size = std::max(size, length(patch.corners[(v + 1) % patch.vertexCount] - patch.corners[v]));
-    }
-    return depth >= -1e-9 * size;
+    const Patch &patch = solution_.mesh.patches[size_t(solution_.mesh.patchAt(face, p))];
+    return patch.depthInside(p) >= -1e-9 * std::sqrt(patch.area);
   }
 
   /// `b` are p's barycentrics in the lightmap triangle (corners 0, 1, 2).
-  TexelLight read(const LightmapTriangle &t, const Vec3 &p, const double b[3]) const {
-    const MeshLocation at = solution_.mesh.locate(t.face, p);
-    const Bands radiosity = solution_.interpolate(solution_.nodeRadiosity, at);
-    const Bands meanReflectance = solution_.interpolate(solution_.nodeReflectance, at);
+  SurfaceLight read(const LightmapTriangle &t, const Vec3 &p, const double b[3]) const {
     const Material &material = scene_.materials[scene_.faces[t.face].material];
-    const Bands emitted = material.emission * kPi;
-    Bands rho = meanReflectance;  // ρ(x) = ρ̄ where no texture varies it: L = B̂/π exactly
-    if (material.diffuseTextureIndex >= 0) {
-      Hit hit;
-      hit.triangle = t.triangle;
-      hit.b1 = b[1];
-      hit.b2 = b[2];
-      hit.material = scene_.faces[t.face].material;
-      hit.face = t.face;
-      hit.position = p;
-      rho = surfaceDetail(scene_, hit).diffuse;
-    }
-    TexelLight light;
-    Bands fallback;
-    bool needFallback = false;
-    for (int c = 0; c < kBandCount; ++c) needFallback |= !(meanReflectance[c] > kSmallestReflectance);
-    if (needFallback) fallback = solution_.interpolate(nodeIrradiance_, at);
-    for (int c = 0; c < kBandCount; ++c) {
-      const double reflected = std::max(radiosity[c] - emitted[c], 0.0);
-      const bool recoverable = meanReflectance[c] > kSmallestReflectance;
-      light.irradiance[c] = recoverable ? reflected / meanReflectance[c] : std::max(fallback[c], 0.0);
-      const double reflectedHere =
-          material.diffuseTextureIndex >= 0 && recoverable ? light.irradiance[c] * rho[c] : reflected;
-      light.radiance[c] = (emitted[c] + reflectedHere) * kInvPi;
-    }
+    SurfaceLight light =
+        surfaceLightAt(solution_, nodeIrradiance_, solution_.mesh.locate(t.face, p), material.emission * kPi);
+    if (material.diffuseTextureIndex < 0) return light;
+    // C&W eq. 9.11: the reflected part E + ρ̄H becomes E + ρ(x)H with the texture there.
+    Hit hit;
+    hit.triangle = t.triangle;
+    hit.b1 = b[1];
+    hit.b2 = b[2];
+    hit.material = scene_.faces[t.face].material;
+    hit.face = t.face;
+    hit.position = p;
+    const Bands rho = surfaceDetail(scene_, hit).diffuse;
+    for (int c = 0; c < kBandCount; ++c)
+      if (light.reflectance[c] > kSmallestReflectance)
+        light.radiance[c] += light.irradiance[c] * (rho[c] - light.reflectance[c]) * kInvPi;
     return light;
   }
 
@@ -111,7 +84,7 @@ void bakeChart(const LightmapChart &chart, std::span<const LightmapTriangle> tri
             const double b[3] = {b0, b1, b2};
             const Vec3 p = triangle.corners[0] * b0 + triangle.corners[1] * b1 + triangle.corners[2] * b2;
             if (!reader.visible(triangle.face, p)) continue;
-            const TexelLight light = reader.read(triangle, p, b);
+            const SurfaceLight light = reader.read(triangle, p, b);
             const size_t local = size_t(j - chart.y) * size_t(width) + size_t(i - chart.x);
             for (int c = 0; c < 3; ++c) {
               sums[6 * local + size_t(c)] += light.irradiance[c];

@@ -10,13 +10,19 @@ namespace radiant {
 
 namespace {
 
-/// Barycentrics (b1, b2) of the scene triangle's corner `k`.
-constexpr double kCornerBarycentrics[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+/// Appends the material's texture coordinates (uvScale applied) at corner `k` of a scene triangle.
+void appendTextureCoordinates(const Scene &scene, const Triangle &triangle, int k, BakedPrimitive &p) {
+  constexpr double kCornerBarycentrics[3][2] = {{0, 0}, {1, 0}, {0, 1}};  // (b1, b2) of corners 0, 1, 2
+  const SurfaceParameterisation s =
+      surfaceParameterisation(scene, triangle, kCornerBarycentrics[k][0], kCornerBarycentrics[k][1]);
+  p.uvs.push_back(float(s.u));
+  p.uvs.push_back(float(s.v));
+}
 
 }  // namespace
 
 BakedMesh lightmapMesh(const Scene &scene, std::span<const LightmapTriangle> triangles, const LightmapAtlas &atlas,
-                       const std::vector<bool> &faceHasLight, size_t elements) {
+                       size_t elements) {
   std::vector<int32_t> primitiveOfMaterial(scene.materials.size(), -1);
   BakedMesh baked;
   baked.elements = elements;
@@ -53,12 +59,7 @@ BakedMesh lightmapMesh(const Scene &scene, std::span<const LightmapTriangle> tri
         const double *uv = &atlas.texelCoordinates[6 * t + 2 * size_t(k)];
         p.lightmapUvs.push_back(float(uv[0] / atlas.width));
         p.lightmapUvs.push_back(float(uv[1] / atlas.height));
-        if (p.hasUv) {
-          const SurfaceParameterisation s =
-              surfaceParameterisation(scene, triangle, kCornerBarycentrics[k][0], kCornerBarycentrics[k][1]);
-          p.uvs.push_back(float(s.u));
-          p.uvs.push_back(float(s.v));
-        }
+        if (p.hasUv) appendTextureCoordinates(scene, triangle, k, p);
         p.faces.push_back(lt.face);
         normals.push_back(Vec3());
       }
@@ -74,9 +75,10 @@ BakedMesh lightmapMesh(const Scene &scene, std::span<const LightmapTriangle> tri
     }
   }
   // Mirrors and glass: no light of their own in the solution, black for a viewer that shows only baked light.
+  std::vector<bool> lit(scene.faces.size(), false);
+  for (const LightmapTriangle &lt : triangles) lit[lt.face] = true;
   for (const Triangle &t : scene.triangles) {
-    const Material &material = scene.materials[t.material];
-    if (!material.isSpecular() || (t.face < faceHasLight.size() && faceHasLight[t.face])) continue;
+    if (!scene.materials[t.material].isSpecular() || lit[t.face]) continue;
     BakedPrimitive &p = primitive(t.material);
     const Vec3 normal = scene.triangleNormal(t);
     for (int k = 0; k < 3; ++k) {
@@ -86,12 +88,7 @@ BakedMesh lightmapMesh(const Scene &scene, std::span<const LightmapTriangle> tri
         p.normals.push_back(float(normal[c]));
         p.colour.push_back(0.0f);
       }
-      if (p.hasUv) {
-        const SurfaceParameterisation s =
-            surfaceParameterisation(scene, t, kCornerBarycentrics[k][0], kCornerBarycentrics[k][1]);
-        p.uvs.push_back(float(s.u));
-        p.uvs.push_back(float(s.v));
-      }
+      if (p.hasUv) appendTextureCoordinates(scene, t, k, p);
       p.faces.push_back(t.face);
     }
   }

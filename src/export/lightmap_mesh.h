@@ -16,9 +16,10 @@ namespace radiant {
 /// TEXCOORD_0; a vertex is shared by the triangles of one chart that meet
 /// at it. Mirrors and glass, which have no light of their own in the
 /// solution, follow as their input triangles without lightmap coordinates
-/// and with black vertex colours, as bakeSolution writes them. `elements`
-/// is the solution's element count, for the file's record.
+/// and with black vertex colours, as bakeSolution writes them (those not
+/// among `triangles`). `elements` is the solution's element count, for the
+/// file's record.
 BakedMesh lightmapMesh(const Scene &scene, std::span<const LightmapTriangle> triangles, const LightmapAtlas &atlas,
-                       const std::vector<bool> &faceHasLight, size_t elements);
+                       size_t elements);
 
 }  // namespace radiant

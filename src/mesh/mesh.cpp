@@ -119,10 +119,7 @@ int32_t RadiosityMesh::patchAt(uint32_t face, const Vec3 &position) const {
   double bestDepth = -INFINITY;
   for (uint32_t c = 0; c < candidateCount; ++c) {
     const uint32_t k = candidates[c] - uint32_t(first);
-    const Patch &p = patches[first + k];
-    double depth = INFINITY;
-    for (int v = 0; v < p.vertexCount; ++v)
-      depth = std::min(depth, dot(position - p.corners[v], p.inwardEdgeNormals[v]));
+    const double depth = patches[first + k].depthInside(position);
     if (depth > bestDepth) bestDepth = depth, best = static_cast<int32_t>(first + k);
   }
   return best;

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -99,6 +100,15 @@ struct Patch {
   std::array<Vec3, 4> inwardEdgeNormals{};
   uint32_t firstElement = 0, elementCount = 0;
   uint32_t firstNode = 0, nodeCount = 0;
+
+  /// How far a point of the patch's plane lies inside its edges, metres
+  /// (negative outside): the smallest distance to an edge's line.
+  double depthInside(const Vec3 &p) const {
+    double depth = INFINITY;
+    for (int v = 0; v < vertexCount; ++v)
+      depth = std::min(depth, dot(p - corners[size_t(v)], inwardEdgeNormals[size_t(v)]));
+    return depth;
+  }
 };
 
 struct Element {

@@ -235,3 +235,21 @@ export function viewerShooter(browser, baseUrl, size) {
     return { ...viewer, image: decodePng(Buffer.from(png)), png };
   };
 }
+
+/**
+ * Serves viewer/ with `routes` (URL path → file), opens Chromium, and runs `body({ browser, server, shoot })`
+ * (shoot: viewerShooter at size × size); prints the browser's time, then closes both and removes `work`.
+ */
+export async function inViewer(repo, routes, work, size, body) {
+  const server = await serveStatic(path.join(repo, 'viewer'), routes);
+  const browser = await launchChromium(repo);
+  try {
+    const started = performance.now();
+    await body({ browser, server, shoot: viewerShooter(browser, server.url, size) });
+    console.log(`     browser: ${((performance.now() - started) / 1000).toFixed(1)} s`);
+  } finally {
+    await browser.close();
+    await server.close();
+    fs.rmSync(work, { recursive: true, force: true });
+  }
+}

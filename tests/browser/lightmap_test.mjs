@@ -17,7 +17,7 @@
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { checkList, decodePng, launchChromium, requireBrowserDependencies, runRadiant, serveStatic, validateGltf, viewerShooter } from './harness.mjs';
+import { checkList, decodePng, inViewer, requireBrowserDependencies, runRadiant, validateGltf } from './harness.mjs';
 import { compareImages } from './image-compare.mjs';
 
 const [radiant, repo] = process.argv.slice(2, 4).map((p) => path.resolve(p));
@@ -34,7 +34,7 @@ async function main() {
   const glb = path.join(work, 'box.glb');
   const interpolated = path.join(work, 'interpolate.png');
   const traced = path.join(work, 'path.png');
-  let started = performance.now();
+  const started = performance.now();
   runRadiant(radiant, ['solve', scene, '-o', solution]);
   const log = runRadiant(radiant, ['export', scene, '--solution', solution, '--lightmap', '-o', glb], { stdio: ['ignore', 'pipe', 'pipe'] });
   runRadiant(radiant, ['render', scene, '--method', 'interpolate', '--solution', solution, '--tonemap', 'linear',
@@ -53,11 +53,7 @@ async function main() {
   const triangles = glbJson.meshes[0].primitives.reduce((n, p) => n + glbJson.accessors[p.indices].count / 3, 0);
   check(triangles <= 4 * json.faces, `${triangles} triangles for ${json.faces} input faces (at most 4 each)`);
 
-  const server = await serveStatic(path.join(repo, 'viewer'), { '/box.glb': glb });
-  const browser = await launchChromium(repo);
-  try {
-    started = performance.now();
-    const shoot = viewerShooter(browser, server.url, SIZE);
+  await inViewer(repo, { '/box.glb': glb }, work, SIZE, async ({ shoot }) => {
     const view = await shoot('model=box.glb&ui=0&tonemap=linear&exposure=0');
     check(view.title === 'ready', `the viewer loads the lightmapped export (title '${view.title}', ${view.loadSeconds.toFixed(1)} s)`);
     check(view.consoleErrors.length === 0, `no console error while loading${view.consoleErrors.map((e) => `\n       ${e}`).join('')}`);
@@ -76,12 +72,7 @@ async function main() {
       fs.copyFileSync(traced, path.join(process.env.RADIANT_VIEWER_TEST_KEEP, 'lightmap-path.png'));
       fs.copyFileSync(interpolated, path.join(process.env.RADIANT_VIEWER_TEST_KEEP, 'lightmap-interpolate.png'));
     }
-    console.log(`     browser: ${((performance.now() - started) / 1000).toFixed(1)} s`);
-  } finally {
-    await browser.close();
-    await server.close();
-    fs.rmSync(work, { recursive: true, force: true });
-  }
+  });
   finish();
 }
 

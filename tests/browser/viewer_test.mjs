@@ -19,7 +19,7 @@ import { spawn } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
-import { checkList, decodePng, launchChromium, openViewer, requireBrowserDependencies, runRadiant, serveStatic, validateGltf, viewerShooter } from './harness.mjs';
+import { checkList, decodePng, inViewer, openViewer, requireBrowserDependencies, runRadiant, validateGltf } from './harness.mjs';
 import { compareImages } from './image-compare.mjs';
 
 const [radiant, repo] = process.argv.slice(2, 4).map((p) => path.resolve(p));
@@ -136,7 +136,7 @@ async function main() {
   const glb = path.join(work, 'box.glb');
   const reference = path.join(work, 'box.png');
   const referenceExr = path.join(work, 'box.exr');
-  let started = performance.now();
+  const started = performance.now();
   // One solution for both, so that the comparison is of display, not of two solves.
   runRadiant(radiant, ['solve', scene, '-o', solution]);
   runRadiant(radiant, ['export', scene, '--solution', solution, '-o', glb]);
@@ -149,11 +149,7 @@ async function main() {
 
   await validate(glb);
 
-  const server = await serveStatic(path.join(repo, 'viewer'), { '/box.glb': glb });
-  const browser = await launchChromium(repo);
-  try {
-    started = performance.now();
-    const shoot = viewerShooter(browser, server.url, SIZE);
+  await inViewer(repo, { '/box.glb': glb }, work, SIZE, async ({ browser, server, shoot }) => {
     const expected = decodePng(fs.readFileSync(reference));
 
     const linear = await shoot('model=box.glb&ui=0&tonemap=linear&exposure=0');
@@ -171,12 +167,7 @@ async function main() {
       await fullChecks(shoot, browser, server.url, work, expected);
       await serveCheck(browser, glb, linear.image);
     }
-    console.log(`     browser: ${((performance.now() - started) / 1000).toFixed(1)} s`);
-  } finally {
-    await browser.close();
-    await server.close();
-    fs.rmSync(work, { recursive: true, force: true });
-  }
+  });
   finish();
 }
 
